@@ -1,0 +1,28 @@
+# Compiles each GLSL shader at build time into a C++ header holding its SPIR-V as a
+# uint32_t array (glslangValidator --vn), so the engine carries its shaders and no
+# runtime path can go stale. A shader error fails the build. Every shader depends on
+# every include, so editing a shared header recompiles them all.
+function(raybudget_add_shaders target)
+  cmake_parse_arguments(ARG "" "" "SOURCES;INCLUDES" ${ARGN})
+  set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/spirv")
+  file(MAKE_DIRECTORY "${out_dir}")
+  set(headers)
+  foreach(src IN LISTS ARG_SOURCES)
+    get_filename_component(name "${src}" NAME)
+    string(REPLACE "." "_" var "${name}")
+    set(out "${out_dir}/${var}.h")
+    add_custom_command(
+      OUTPUT "${out}"
+      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 --quiet
+              -I${CMAKE_CURRENT_SOURCE_DIR} --vn kSpirv_${var}
+              -o "${out}" "${CMAKE_CURRENT_SOURCE_DIR}/${src}"
+      DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${src}" ${ARG_INCLUDES}
+      COMMENT "glslang ${name}"
+      VERBATIM)
+    list(APPEND headers "${out}")
+  endforeach()
+  add_custom_target(${target}_spirv DEPENDS ${headers})
+  add_library(${target} INTERFACE)
+  target_include_directories(${target} INTERFACE "${out_dir}")
+  add_dependencies(${target} ${target}_spirv)
+endfunction()

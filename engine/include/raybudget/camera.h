@@ -1,0 +1,24 @@
+// A pinhole camera and the camera paths the CLI offers.
+#pragma once
+#include <glm/glm.hpp>
+
+namespace raybudget {
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float yfov = 0.8f;  // radians
+  float znear = 0.05f;
+  float zfar = 500.0f;
+
+  glm::mat4 view() const;
+  // Vulkan clip space: y down, depth in [0, 1].
+  glm::mat4 projection(float aspect) const;
+};
+
+// Camera `frame` of `frameCount` on a full circle around `start.target` at `start`'s height
+// and distance: a deterministic orbit for benchmarks and tests.
+Camera orbitCamera(const Camera& start, uint32_t frame, uint32_t frameCount);
+
+}  // namespace raybudget

@@ -1,0 +1,8 @@
+// raybudget: the one header an integrating engine includes.
+#pragma once
+#include "raybudget/camera.h"
+#include "raybudget/error.h"
+#include "raybudget/image_io.h"
+#include "raybudget/renderer.h"
+#include "raybudget/scene.h"
+#include "raybudget/stats.h"

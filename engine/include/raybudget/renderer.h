@@ -1,0 +1,71 @@
+// The deferred renderer: G-buffer, raster fallbacks (shadow maps, environment map),
+// deferred lighting, compose and tonemap, with a GPU timestamp bracket around every pass.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "raybudget/camera.h"
+#include "raybudget/scene.h"
+
+namespace raybudget {
+
+struct RenderSettings {
+  uint32_t width = 1280;
+  uint32_t height = 720;
+  std::string device;              // substring of the Vulkan device name; empty: best available
+  bool validation = false;         // Khronos validation + synchronization validation
+  uint32_t shadowMapSize = 1024;   // directional/spot layers; point-light cube faces get half
+  float exposure = 1.0f;
+  float skyIntensity = 1.0f;
+};
+
+// Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.
+enum class Pass : uint32_t { GBuffer, ShadowMaps, Environment, Lighting, EnvFallback, Compose, Count };
+inline constexpr size_t kPassCount = size_t(Pass::Count);
+const char* passName(Pass pass);
+
+struct FrameTiming {
+  uint64_t frame = 0;
+  std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
+  double totalMs() const;
+};
+
+struct FrameImages {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> ldrRgba8;    // tonemapped sRGB
+  std::vector<uint16_t> hdrRgba16;  // linear HDR, IEEE half floats
+  std::vector<uint32_t> objectIds;  // G-buffer object IDs (RB_NO_OBJECT = 0xFFFFFFFF for none)
+};
+
+class Renderer {
+ public:
+  Renderer(const Scene& scene, const RenderSettings& settings);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Records and submits one frame. Returns the timings of earlier frames whose results have
+  // arrived meanwhile (read without waiting on the GPU for the frame just submitted).
+  std::vector<FrameTiming> render(const Camera& camera);
+
+  // Waits for every submitted frame and returns the timings not yet returned.
+  std::vector<FrameTiming> finish();
+
+  // The images of the last rendered frame (waits for it).
+  FrameImages readback();
+
+  std::string deviceName() const;
+  std::vector<std::string> validationMessages() const;
+  float aspect() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace raybudget

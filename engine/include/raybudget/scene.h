@@ -1,0 +1,162 @@
+// The scene raybudget renders: meshes, materials, objects (node instances), lights and a
+// camera, as loaded from glTF 2.0 and validated. Plain C++: no Vulkan here.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raybudget/camera.h"
+
+namespace raybudget {
+
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  glm::vec2 uv{0.0f};
+  glm::vec4 color{1.0f};
+};
+
+// A glTF primitive after conversion to a triangle list: a range of its mesh's indices.
+struct Primitive {
+  uint32_t firstIndex = 0;
+  uint32_t indexCount = 0;
+  int32_t material = -1;  // -1: the glTF default material
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // triangle list
+  std::vector<Primitive> primitives;
+  glm::vec3 boundsMin{0.0f};
+  glm::vec3 boundsMax{0.0f};
+};
+
+// Decoded texture image, always RGBA8.
+struct Image {
+  std::string name;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> rgba;
+};
+
+struct Sampler {
+  bool magLinear = true;
+  bool minLinear = true;
+  bool mipLinear = true;
+  int wrapS = 10497;  // glTF codes: 10497 REPEAT, 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT
+  int wrapT = 10497;
+};
+
+struct Texture {
+  int image = -1;
+  int sampler = -1;  // -1: the default sampler
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  glm::vec3 emissive{0.0f};  // emissiveFactor * KHR_materials_emissive_strength
+  float normalScale = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  bool doubleSided = false;
+  bool unlit = false;
+  float transmission = 0.0f;  // KHR_materials_transmission
+  float ior = 1.5f;           // KHR_materials_ior
+  float thickness = 0.0f;     // KHR_materials_volume
+  float attenuationDistance = 0.0f;  // 0: infinite
+  glm::vec3 attenuationColor{1.0f};
+  int baseColorTexture = -1;  // indices into Scene::textures
+  int metallicRoughnessTexture = -1;
+  int normalTexture = -1;
+  int emissiveTexture = -1;
+};
+
+// Per-object heuristic inputs (the paper's K, Q, I), from glTF node extras.raybudget.
+// Absent values are filled from defaults by the heuristic (later issue).
+struct RayBudgetParams {
+  std::optional<float> importanceK;
+  std::optional<float> raysQ;
+  std::optional<float> hysteresisI;
+};
+
+// One object = one node instance of one mesh; `id` is its stable index in Scene::objects.
+struct Object {
+  uint32_t id = 0;
+  std::string name;
+  uint32_t mesh = 0;
+  int gltfNode = -1;
+  glm::mat4 transform{1.0f};
+  glm::vec3 boundsMin{0.0f};  // world space
+  glm::vec3 boundsMax{0.0f};
+  RayBudgetParams params;
+};
+
+enum class LightType { Directional, Point, Spot };
+
+struct Light {
+  std::string name;
+  LightType type = LightType::Directional;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;  // lux (directional) or candela (point, spot), as glTF defines
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // direction the light travels
+  float range = 0.0f;                      // 0: infinite
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.7853982f;
+};
+
+struct SceneStats {
+  size_t droppedDegenerateTriangles = 0;
+  size_t skippedPointLinePrimitives = 0;
+  size_t triangles = 0;  // drawn, over all objects
+};
+
+struct Scene {
+  std::filesystem::path path;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Image> images;
+  std::vector<Sampler> samplers;
+  std::vector<Texture> textures;
+  std::vector<Object> objects;
+  std::vector<Light> lights;
+  std::optional<Camera> camera;  // the glTF camera, when the scene has one
+  bool usesDefaultSun = false;   // no KHR_lights_punctual light: the default sun was added
+  glm::vec3 boundsMin{0.0f};
+  glm::vec3 boundsMax{0.0f};
+  SceneStats stats;
+  std::vector<std::string> warnings;
+};
+
+// The sun a scene without lights gets: white, 3 lux, from above and slightly behind the
+// default camera (direction of travel normalize(-0.3, -1, -0.4)).
+Light defaultSun();
+
+// Loads and validates a .gltf or .glb file. Throws raybudget::Error naming the file and the
+// problem on malformed input; recoverable oddities (points/lines, zero-area triangles)
+// become warnings in Scene::warnings.
+Scene loadScene(const std::filesystem::path& path);
+
+// The camera to render with: the scene's own, else one framing its bounds.
+Camera defaultCamera(const Scene& scene, float aspect);
+
+// Writes `params` of each object back into the glTF file as node extras.raybudget,
+// keeping everything else as loaded. Used by the editor and the round-trip test.
+void saveRayBudgetParams(const std::filesystem::path& source, const std::filesystem::path& destination,
+                         const std::vector<std::pair<int, RayBudgetParams>>& nodeParams);
+
+// Validates K/Q/I: finite, non-negative, and below kMaxParamValue. Throws Error naming `where`.
+inline constexpr float kMaxParamValue = 1.0e6f;
+void validateRayBudgetParams(const RayBudgetParams& params, const std::string& where);
+
+}  // namespace raybudget

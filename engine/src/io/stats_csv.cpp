@@ -1,0 +1,49 @@
+#include <algorithm>
+#include <iomanip>
+
+#include "raybudget/error.h"
+#include "raybudget/stats.h"
+
+namespace raybudget {
+
+StatsCsv::StatsCsv(const std::filesystem::path& path) : out_(path), path_(path) {
+  if (!out_) throw Error(path.string() + ": cannot open for writing");
+  out_ << "frame";
+  for (size_t p = 0; p < kPassCount; ++p) out_ << ',' << passName(Pass(p)) << "_ms";
+  out_ << ",total_ms\n";
+}
+
+void StatsCsv::add(const FrameTiming& t) {
+  out_ << t.frame << std::fixed << std::setprecision(4);
+  for (const auto& ms : t.passMs) {
+    out_ << ',';
+    if (ms) out_ << *ms;  // empty cell: the pass was skipped this frame
+  }
+  out_ << ',' << t.totalMs() << '\n';
+  if (!out_) throw Error(path_.string() + ": write failed");
+}
+
+namespace {
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+}  // namespace
+
+PassSummary summarize(const std::vector<FrameTiming>& timings) {
+  PassSummary s;
+  std::vector<double> totals;
+  for (size_t p = 0; p < kPassCount; ++p) {
+    std::vector<double> v;
+    for (const FrameTiming& t : timings)
+      if (t.passMs[p]) v.push_back(*t.passMs[p]);
+    s.medianMs[p] = median(v);
+    s.frames[p] = v.size();
+  }
+  for (const FrameTiming& t : timings) totals.push_back(t.totalMs());
+  s.medianTotalMs = median(totals);
+  return s;
+}
+
+}  // namespace raybudget

@@ -1,0 +1,128 @@
+#include "passes/descriptors.h"
+
+#include "passes/bindings.h"
+#include "shared/config.h"
+#include "vk/check.h"
+
+namespace raybudget::passes {
+namespace {
+
+struct BindingInfo {
+  VkDescriptorType type;
+  uint32_t count;
+};
+
+BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount) {
+  if (binding == kFrameUniforms) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+  if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+  if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
+  if (binding <= kSkyMap) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
+  return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1};
+}
+
+}  // namespace
+
+Samplers createSamplers(const vk::Context& ctx) {
+  Samplers s;
+  VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  ci.magFilter = ci.minFilter = VK_FILTER_NEAREST;
+  ci.addressModeU = ci.addressModeV = ci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  s.nearest = vk::createSampler(ctx, ci);
+  // Hardware PCF (bilinear compare) where the depth format can be filtered.
+  VkFormatProperties fp;
+  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), kDepthFormat, &fp);
+  const bool linearDepth = fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  ci.magFilter = ci.minFilter = linearDepth ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+  ci.compareEnable = VK_TRUE;
+  ci.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+  s.shadow = vk::createSampler(ctx, ci);
+  ci.compareEnable = VK_FALSE;
+  ci.magFilter = ci.minFilter = VK_FILTER_LINEAR;
+  ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  ci.maxLod = VK_LOD_CLAMP_NONE;
+  s.linear = vk::createSampler(ctx, ci);
+  return s;
+}
+
+vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount) {
+  std::vector<VkDescriptorSetLayoutBinding> bindings;
+  for (uint32_t b = 0; b < kBindingCount; ++b) {
+    const BindingInfo info = bindingInfo(b, textureCount);
+    bindings.push_back({b, info.type, info.count, VK_SHADER_STAGE_ALL, nullptr});
+  }
+  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  ci.bindingCount = uint32_t(bindings.size());
+  ci.pBindings = bindings.data();
+  const VkDevice device = ctx.device();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorSetLayout(device, &ci, nullptr, &layout));
+  return vk::Owned<VkDescriptorSetLayout>(layout, [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
+}
+
+vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount) {
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (uint32_t b = 0; b < kBindingCount; ++b) {
+    const BindingInfo info = bindingInfo(b, textureCount);
+    sizes.push_back({info.type, info.count * sets});
+  }
+  VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  ci.maxSets = sets;
+  ci.poolSizeCount = uint32_t(sizes.size());
+  ci.pPoolSizes = sizes.data();
+  const VkDevice device = ctx.device();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorPool(device, &ci, nullptr, &pool));
+  return vk::Owned<VkDescriptorPool>(pool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
+}
+
+VkDescriptorSet allocateSet(const vk::Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &ai, &set));
+  return set;  // freed with the pool
+}
+
+void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uniforms, const SceneGpu& scene, const FrameTargets& t,
+              const Samplers& samplers) {
+  std::vector<VkDescriptorBufferInfo> buffers = {
+      {uniforms.buffer, 0, VK_WHOLE_SIZE}, {scene.objects.buffer, 0, VK_WHOLE_SIZE}, {scene.materials.buffer, 0, VK_WHOLE_SIZE},
+      {scene.lights.buffer, 0, VK_WHOLE_SIZE}, {scene.vertices.buffer, 0, VK_WHOLE_SIZE}};
+  std::vector<VkDescriptorImageInfo> textures;
+  for (const GpuTexture& tex : scene.textures) textures.push_back({tex.sampler, tex.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const VkDescriptorImageInfo sampled[] = {
+      {samplers.nearest, t.depth.view, ro},          {samplers.nearest, t.normal.view, ro},   {samplers.nearest, t.baseMetal.view, ro},
+      {samplers.nearest, t.roughTransIor.view, ro},  {samplers.nearest, t.emissive.view, ro}, {samplers.nearest, t.objectId.view, ro},
+      {samplers.nearest, t.materialId.view, ro},     {samplers.shadow, t.shadowMaps.view, ro}, {samplers.shadow, t.pointShadows.view, ro},
+      {samplers.linear, t.env.view, ro},             {samplers.linear, t.sky.view, ro}};
+  const VkImageLayout g = VK_IMAGE_LAYOUT_GENERAL;
+  const VkDescriptorImageInfo storage[] = {{VK_NULL_HANDLE, t.direct.view, g}, {VK_NULL_HANDLE, t.indirect.view, g},
+                                           {VK_NULL_HANDLE, t.hdr.view, g},    {VK_NULL_HANDLE, t.ldr.view, g},
+                                           {VK_NULL_HANDLE, t.skyStorageView, g}};
+  std::vector<VkDescriptorImageInfo> envMips;
+  for (const auto& v : t.envMipViews) envMips.push_back({VK_NULL_HANDLE, v, g});
+
+  std::vector<VkWriteDescriptorSet> writes;
+  auto write = [&](uint32_t binding, uint32_t count, const VkDescriptorBufferInfo* b, const VkDescriptorImageInfo* i) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = count;
+    w.descriptorType = bindingInfo(binding, count).type;
+    w.pBufferInfo = b;
+    w.pImageInfo = i;
+    writes.push_back(w);
+  };
+  for (uint32_t b = kFrameUniforms; b <= kVertices; ++b) write(b, 1, &buffers[b], nullptr);
+  write(kTextures, uint32_t(textures.size()), nullptr, textures.data());
+  for (uint32_t b = kGDepth; b <= kSkyMap; ++b) write(b, 1, nullptr, &sampled[b - kGDepth]);
+  for (uint32_t b = kDirectImage; b <= kSkyStorage; ++b) write(b, 1, nullptr, &storage[b - kDirectImage]);
+  write(kEnvStorage, uint32_t(envMips.size()), nullptr, envMips.data());
+  vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+}  // namespace raybudget::passes

@@ -1,0 +1,45 @@
+#include "passes/environment.h"
+
+#include "env_prefilter_comp.h"
+#include "shared/config.h"
+#include "shared/types.h"
+#include "sky_comp.h"
+#include "vk/pipelines.h"
+
+namespace raybudget::passes {
+
+EnvironmentPass::EnvironmentPass(const vk::Context& ctx, VkPipelineLayout layout)
+    : sky_(vk::createComputePipeline(ctx, layout, kSpirv_sky_comp)), prefilter_(vk::createComputePipeline(ctx, layout, kSpirv_env_prefilter_comp)) {}
+
+void EnvironmentPass::record(const FrameContext& fc) const {
+  const FrameTargets& t = fc.targets;
+  const uint32_t groups = (RB_ENV_SIZE + RB_TILE_SIZE - 1) / RB_TILE_SIZE;
+  // 1. Sky radiance into mip 0, then a blitted mip chain for filtered sampling.
+  vk::imageBarrier(fc.cmd, t.sky, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sky_);
+  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  vkCmdDispatch(fc.cmd, groups, groups, 6);
+  vk::imageBarrier(fc.cmd, t.sky, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  vk::generateMips(fc.cmd, t.sky);
+
+  // 2. GGX prefilter, one dispatch per roughness level.
+  vk::imageBarrier(fc.cmd, t.env, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prefilter_);
+  for (uint32_t mip = 0; mip < RB_ENV_MIPS; ++mip) {
+    gpu::DrawPush push{};
+    push.objectMaterial.x = mip;
+    vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    const uint32_t size = std::max(RB_ENV_SIZE >> mip, 1);
+    const uint32_t g = (size + RB_TILE_SIZE - 1) / RB_TILE_SIZE;
+    vkCmdDispatch(fc.cmd, g, g, 6);
+  }
+  vk::imageBarrier(fc.cmd, t.env, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+}  // namespace raybudget::passes

@@ -1,0 +1,20 @@
+// Raster fallback for reflections and refractions: the procedural sky rendered into a cube
+// map and GGX-prefiltered into RB_ENV_MIPS roughness levels. Static, so it runs once.
+#pragma once
+#include "passes/frame_context.h"
+#include "vk/context.h"
+#include "vk/owned.h"
+
+namespace raybudget::passes {
+
+class EnvironmentPass {
+ public:
+  EnvironmentPass(const vk::Context& ctx, VkPipelineLayout layout);
+  void record(const FrameContext& fc) const;
+
+ private:
+  vk::Owned<VkPipeline> sky_;
+  vk::Owned<VkPipeline> prefilter_;
+};
+
+}  // namespace raybudget::passes

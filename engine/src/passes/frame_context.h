@@ -1,0 +1,28 @@
+// What a pass needs to record itself into a frame's command buffer.
+#pragma once
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include "passes/frame_targets.h"
+#include "passes/scene_gpu.h"
+
+namespace raybudget::passes {
+
+struct FrameContext {
+  VkCommandBuffer cmd;
+  VkPipelineLayout layout;
+  VkDescriptorSet set;
+  const SceneGpu& scene;
+  const FrameTargets& targets;
+  glm::mat4 viewProj;  // the camera's
+};
+
+inline void bindSet(const FrameContext& fc, VkPipelineBindPoint point) {
+  vkCmdBindDescriptorSets(fc.cmd, point, fc.layout, 0, 1, &fc.set, 0, nullptr);
+}
+
+// True when a bounding sphere may intersect the frustum of `viewProj` (Vulkan clip space,
+// depth 0..1). Planes are taken from the matrix rows (Gribb & Hartmann).
+bool sphereInFrustum(const glm::mat4& viewProj, const glm::vec4& sphere);
+
+}  // namespace raybudget::passes

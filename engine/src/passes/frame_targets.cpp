@@ -1,0 +1,72 @@
+#include "passes/frame_targets.h"
+
+#include <algorithm>
+
+#include "shared/config.h"
+
+namespace raybudget::passes {
+namespace {
+
+vk::Image image2d(const vk::Context& ctx, VkFormat format, uint32_t w, uint32_t h, VkImageUsageFlags usage, uint32_t layers = 1,
+                  bool cube = false, uint32_t mips = 1) {
+  vk::ImageDesc d;
+  d.format = format;
+  d.width = w;
+  d.height = h;
+  d.layers = layers;
+  d.cube = cube;
+  d.mips = mips;
+  d.usage = usage;
+  return vk::createImage(ctx, d);
+}
+
+}  // namespace
+
+FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
+                                uint32_t shadowMapSize) {
+  FrameTargets t;
+  t.width = width;
+  t.height = height;
+  const VkImageUsageFlags attach = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  t.depth = image2d(ctx, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+  t.normal = image2d(ctx, kNormalFormat, width, height, attach);
+  t.baseMetal = image2d(ctx, kBaseMetalFormat, width, height, attach);
+  t.roughTransIor = image2d(ctx, kRoughTransIorFormat, width, height, attach);
+  t.emissive = image2d(ctx, kEmissiveFormat, width, height, attach);
+  t.objectId = image2d(ctx, kIdFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  t.materialId = image2d(ctx, kIdFormat, width, height, attach);
+  t.direct = image2d(ctx, kHdrFormat, width, height, storage);
+  t.indirect = image2d(ctx, kHdrFormat, width, height, storage);
+  t.hdr = image2d(ctx, kHdrFormat, width, height, storage);
+  t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
+
+  // Shadow maps: at least one layer / one cube, so the descriptors always have an image.
+  const VkImageUsageFlags depthUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  t.shadowMapSize = shadowMapSize;
+  t.cubeSize = std::max(shadowMapSize / 2, 16u);
+  const uint32_t mapLayers = std::max(shadows.mapLayers, 1u);
+  t.shadowMaps = image2d(ctx, kDepthFormat, t.shadowMapSize, t.shadowMapSize, depthUsage, mapLayers);
+  if (mapLayers == 1) {
+    // A one-layer image's default view is 2D; the shader samples a 2D array.
+    t.shadowMaps.view = vk::createView(ctx, t.shadowMaps, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, 1);
+  }
+  for (uint32_t l = 0; l < shadows.mapLayers; ++l)
+    t.shadowMapLayers.push_back(vk::createView(ctx, t.shadowMaps, VK_IMAGE_VIEW_TYPE_2D, 0, 1, l, 1));
+  const uint32_t cubes = std::max(shadows.pointCubes, 1u);
+  t.pointShadows = image2d(ctx, kDepthFormat, t.cubeSize, t.cubeSize, depthUsage, 6 * cubes, true);
+  if (cubes == 1) t.pointShadows.view = vk::createView(ctx, t.pointShadows, VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, 0, 1, 0, 6);
+  for (uint32_t f = 0; f < 6 * shadows.pointCubes; ++f)
+    t.pointShadowFaces.push_back(vk::createView(ctx, t.pointShadows, VK_IMAGE_VIEW_TYPE_2D, 0, 1, f, 1));
+
+  // Environment: the sky with a blitted mip chain, and the GGX-prefiltered copy.
+  t.sky = image2d(ctx, kHdrFormat, RB_ENV_SIZE, RB_ENV_SIZE,
+                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 6,
+                  true, RB_ENV_MIPS);
+  t.skyStorageView = vk::createView(ctx, t.sky, VK_IMAGE_VIEW_TYPE_CUBE, 0, 1, 0, 6);
+  t.env = image2d(ctx, kHdrFormat, RB_ENV_SIZE, RB_ENV_SIZE, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 6, true, RB_ENV_MIPS);
+  for (uint32_t m = 0; m < RB_ENV_MIPS; ++m) t.envMipViews.push_back(vk::createView(ctx, t.env, VK_IMAGE_VIEW_TYPE_CUBE, m, 1, 0, 6));
+  return t;
+}
+
+}  // namespace raybudget::passes

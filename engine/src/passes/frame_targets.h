@@ -1,0 +1,44 @@
+// Every image the frame renders into: the G-buffer, the shadow maps, the environment maps
+// and the compute outputs, with the per-layer / per-mip views the passes need.
+#pragma once
+#include <vector>
+
+#include "passes/scene_gpu.h"
+#include "vk/resources.h"
+
+namespace raybudget::passes {
+
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kBaseMetalFormat = VK_FORMAT_R8G8B8A8_UNORM;
+inline constexpr VkFormat kRoughTransIorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
+inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
+
+struct FrameTargets {
+  uint32_t width = 0, height = 0;
+  // G-buffer (color attachments in this order, then depth).
+  vk::Image depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId;
+  // Compute outputs, kept in GENERAL layout.
+  vk::Image direct, indirect, hdr, ldr;
+  // Raster fallbacks.
+  vk::Image shadowMaps;                            // 2D array, one layer per directional/spot light
+  std::vector<vk::Owned<VkImageView>> shadowMapLayers;
+  vk::Image pointShadows;                          // cube array, 6 layers per point light
+  std::vector<vk::Owned<VkImageView>> pointShadowFaces;
+  vk::Image sky, env;                              // cube maps with RB_ENV_MIPS mips
+  vk::Owned<VkImageView> skyStorageView;           // mip 0
+  std::vector<vk::Owned<VkImageView>> envMipViews;  // one cube view per mip
+  uint32_t shadowMapSize = 0, cubeSize = 0;
+
+  std::vector<const vk::Image*> gbufferColors() const {
+    return {&normal, &baseMetal, &roughTransIor, &emissive, &objectId, &materialId};
+  }
+};
+
+FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
+                                uint32_t shadowMapSize);
+
+}  // namespace raybudget::passes

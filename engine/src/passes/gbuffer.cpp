@@ -1,0 +1,80 @@
+#include "passes/gbuffer.h"
+
+#include "gbuffer_frag.h"
+#include "gbuffer_vert.h"
+#include "shared/config.h"
+#include "shared/types.h"
+#include "vk/pipelines.h"
+
+namespace raybudget::passes {
+
+GBufferPass::GBufferPass(const vk::Context& ctx, VkPipelineLayout layout) {
+  vk::GraphicsPipelineDesc d;
+  d.vertex = kSpirv_gbuffer_vert;
+  d.fragment = kSpirv_gbuffer_frag;
+  d.colorFormats = {kNormalFormat, kBaseMetalFormat, kRoughTransIorFormat, kEmissiveFormat, kIdFormat, kIdFormat};
+  d.depthFormat = kDepthFormat;
+  pipeline_ = vk::createGraphicsPipeline(ctx, layout, d);
+}
+
+void GBufferPass::record(const FrameContext& fc) const {
+  const FrameTargets& t = fc.targets;
+  // Previous contents are discarded (UNDEFINED); the frame-start barrier ordered any reads.
+  for (const vk::Image* img : t.gbufferColors())
+    vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  vk::imageBarrier(fc.cmd, t.depth, VK_PIPELINE_STAGE_2_NONE, 0,
+                   VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+                   VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+
+  std::vector<VkRenderingAttachmentInfo> colors;
+  for (const vk::Image* img : t.gbufferColors()) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = img->view;
+    a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    if (img->desc.format == kIdFormat) a.clearValue.color.uint32[0] = RB_NO_OBJECT;
+    colors.push_back(a);
+  }
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = t.depth.view;
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, {t.width, t.height}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = uint32_t(colors.size());
+  ri.pColorAttachments = colors.data();
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(fc.cmd, &ri);
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+  bindSet(fc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+  vkCmdBindIndexBuffer(fc.cmd, fc.scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+  const VkViewport viewport{0.0f, 0.0f, float(t.width), float(t.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {t.width, t.height}};
+  vkCmdSetViewport(fc.cmd, 0, 1, &viewport);
+  vkCmdSetScissor(fc.cmd, 0, 1, &scissor);
+  for (const Draw& d : fc.scene.draws) {
+    if (!sphereInFrustum(fc.viewProj, fc.scene.objectSpheres[d.object])) continue;
+    gpu::DrawPush push{};
+    push.objectMaterial = glm::uvec4(d.object, d.material, 0, 0);
+    vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    vkCmdDrawIndexed(fc.cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+  }
+  vkCmdEndRendering(fc.cmd);
+
+  for (const vk::Image* img : t.gbufferColors())
+    vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  vk::imageBarrier(fc.cmd, t.depth, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+}  // namespace raybudget::passes

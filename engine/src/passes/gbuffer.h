@@ -1,0 +1,19 @@
+// G-buffer pass: rasterises every visible object into depth, normal, base colour + metallic,
+// roughness + transmission + IOR, emissive, object ID and material ID.
+#pragma once
+#include "passes/frame_context.h"
+#include "vk/context.h"
+#include "vk/owned.h"
+
+namespace raybudget::passes {
+
+class GBufferPass {
+ public:
+  GBufferPass(const vk::Context& ctx, VkPipelineLayout layout);
+  void record(const FrameContext& fc) const;
+
+ private:
+  vk::Owned<VkPipeline> pipeline_;
+};
+
+}  // namespace raybudget::passes

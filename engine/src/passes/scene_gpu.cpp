@@ -1,0 +1,199 @@
+#include "passes/scene_gpu.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <map>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shared/config.h"
+
+namespace raybudget::passes {
+namespace {
+
+static_assert(sizeof(gpu::GpuVertex) == 48);
+static_assert(sizeof(gpu::GpuObject) == 160);
+static_assert(sizeof(gpu::GpuMaterial) == 96);
+static_assert(sizeof(gpu::GpuLight) == 144);
+static_assert(sizeof(gpu::FrameUniforms) == 320);
+static_assert(sizeof(gpu::DrawPush) == 80);
+
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
+VkSamplerAddressMode addressMode(int gltfWrap) {
+  switch (gltfWrap) {
+    case 33071: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case 33648: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  }
+}
+
+vk::Owned<VkSampler> makeSampler(const vk::Context& ctx, const Sampler& s) {
+  VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  ci.magFilter = s.magLinear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+  ci.minFilter = s.minLinear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+  ci.mipmapMode = s.mipLinear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  ci.addressModeU = addressMode(s.wrapS);
+  ci.addressModeV = addressMode(s.wrapT);
+  ci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  ci.maxLod = VK_LOD_CLAMP_NONE;
+  return vk::createSampler(ctx, ci);
+}
+
+GpuTexture makeTexture(const vk::Context& ctx, const Image& img, bool srgb, VkSampler sampler) {
+  vk::ImageDesc d;
+  d.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+  d.width = img.width;
+  d.height = img.height;
+  d.mips = uint32_t(std::floor(std::log2(float(std::max(img.width, img.height))))) + 1;
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  GpuTexture t{vk::createImage(ctx, d), sampler};
+  vk::uploadTexture(ctx, t.image, img.rgba);
+  return t;
+}
+
+glm::vec3 anyPerpendicular(const glm::vec3& d) { return std::fabs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
+
+float farthestCorner(const Scene& scene, const glm::vec3& p) {
+  float far = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 corner((c & 1) ? scene.boundsMax.x : scene.boundsMin.x, (c & 2) ? scene.boundsMax.y : scene.boundsMin.y,
+                           (c & 4) ? scene.boundsMax.z : scene.boundsMin.z);
+    far = std::max(far, glm::length(corner - p));
+  }
+  return far;
+}
+
+// Fills each light's shadow parameters and the views the shadow pass renders.
+void placeShadows(const Scene& scene, const RenderSettings& settings, std::vector<gpu::GpuLight>& lights, ShadowViews& views) {
+  const glm::vec3 center = 0.5f * (scene.boundsMin + scene.boundsMax);
+  const float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-3f);
+  const float mapSize = float(settings.shadowMapSize);
+  const float cubeSize = float(std::max(settings.shadowMapSize / 2, 16u));
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    gpu::GpuLight& g = lights[i];
+    if (l.type == LightType::Directional) {
+      // Orthographic box around the scene's bounding sphere.
+      const glm::mat4 view = glm::lookAt(center - l.direction * radius * 2.0f, center, anyPerpendicular(l.direction));
+      const glm::mat4 proj = glm::orthoRH_ZO(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
+      g.shadowViewProj = proj * view;
+      g.shadowParams = glm::vec4(2.0f * radius / mapSize, radius * 0.5f, radius * 3.5f, 0.0f);
+      g.spotShadow.z = float(views.mapLayers++);
+      views.mapViewProj.push_back(g.shadowViewProj);
+    } else {
+      const float far = l.range > 0.0f ? l.range : farthestCorner(scene, l.position) * 1.01f;
+      const float near = std::max(far * 1e-4f, 1e-3f);
+      if (l.type == LightType::Spot) {
+        const float fov = std::min(2.0f * l.outerConeAngle + 0.05f, 3.0f);
+        const glm::mat4 view = glm::lookAt(l.position, l.position + l.direction, anyPerpendicular(l.direction));
+        g.shadowViewProj = glm::perspectiveRH_ZO(fov, 1.0f, near, far) * view;
+        g.shadowParams = glm::vec4(2.0f * std::tan(0.5f * fov) / mapSize, near, far, 0.0f);
+        g.spotShadow.z = float(views.mapLayers++);
+        views.mapViewProj.push_back(g.shadowViewProj);
+      } else {
+        // Cube faces in Vulkan order +X -X +Y -Y +Z -Z, with the up vectors that make the
+        // rendered faces match cube-map addressing (no y flip).
+        static const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+        const glm::mat4 proj = glm::perspectiveRH_ZO(glm::half_pi<float>(), 1.0f, near, far);
+        for (int f = 0; f < 6; ++f) views.cubeFaceViewProj.push_back(proj * glm::lookAt(l.position, l.position + dirs[f], ups[f]));
+        g.shadowParams = glm::vec4(2.0f / cubeSize, near, far, 0.0f);
+        g.spotShadow.z = float(views.pointCubes++);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings) {
+  SceneGpu gpu;
+
+  // Geometry: all meshes in one vertex and one index buffer; draws address them by offset.
+  std::vector<gpu::GpuVertex> vertices;
+  std::vector<uint32_t> indices;
+  std::vector<uint32_t> meshFirstIndex, meshVertexOffset;
+  for (const Mesh& m : scene.meshes) {
+    meshFirstIndex.push_back(uint32_t(indices.size()));
+    meshVertexOffset.push_back(uint32_t(vertices.size()));
+    for (const Vertex& v : m.vertices)
+      vertices.push_back({glm::vec4(v.position, v.uv.x), glm::vec4(v.normal, v.uv.y), v.color});
+    indices.insert(indices.end(), m.indices.begin(), m.indices.end());
+  }
+  gpu.vertices = vk::createDeviceBuffer(ctx, vertices, kStorage);
+  gpu.indices = vk::createDeviceBuffer(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kStorage);
+
+  // Textures: one GPU image per (glTF texture, colour space) actually used.
+  gpu.samplers.push_back(makeSampler(ctx, Sampler{}));
+  for (const Sampler& s : scene.samplers) gpu.samplers.push_back(makeSampler(ctx, s));
+  std::map<std::pair<int, bool>, int> textureSlot;
+  auto slot = [&](int texture, bool srgb) -> int {
+    if (texture < 0) return -1;
+    auto it = textureSlot.find({texture, srgb});
+    if (it != textureSlot.end()) return it->second;
+    const Texture& t = scene.textures[size_t(texture)];
+    gpu.textures.push_back(makeTexture(ctx, scene.images[size_t(t.image)], srgb, gpu.samplers[size_t(t.sampler + 1)]));
+    return textureSlot[{texture, srgb}] = int(gpu.textures.size() - 1);
+  };
+  std::vector<gpu::GpuMaterial> materials;
+  for (const Material& m : scene.materials) {
+    gpu::GpuMaterial g{};
+    g.baseColorFactor = m.baseColorFactor;
+    g.emissiveAlphaCutoff = glm::vec4(m.emissive, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : 0.0f);
+    g.metallicRoughnessTransmissionIor = glm::vec4(m.metallic, m.roughness, m.transmission, m.ior);
+    g.textures = glm::ivec4(slot(m.baseColorTexture, true), slot(m.metallicRoughnessTexture, false), slot(m.normalTexture, false),
+                            slot(m.emissiveTexture, true));
+    g.attenuationColorDistance = glm::vec4(m.attenuationColor, m.attenuationDistance);
+    uint32_t flags = 0;
+    if (m.doubleSided) flags |= RB_MATERIAL_DOUBLE_SIDED;
+    if (m.alphaMode == AlphaMode::Mask) flags |= RB_MATERIAL_ALPHA_MASK;
+    if (m.unlit) flags |= RB_MATERIAL_UNLIT;
+    g.normalScaleThicknessFlags = glm::vec4(m.normalScale, m.thickness, std::bit_cast<float>(flags), 0.0f);
+    materials.push_back(g);
+    gpu.hasTransmission = gpu.hasTransmission || m.transmission > 0.0f;
+  }
+  if (gpu.textures.empty()) {
+    Image white{"white", 1, 1, {255, 255, 255, 255}};
+    gpu.textures.push_back(makeTexture(ctx, white, false, gpu.samplers[0]));
+  }
+  gpu.materials = vk::createDeviceBuffer(ctx, materials, kStorage);
+
+  // Objects and their draws (one per primitive).
+  std::vector<gpu::GpuObject> objects;
+  for (const Object& o : scene.objects) {
+    gpu::GpuObject g{};
+    g.model = o.transform;
+    g.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(o.transform)));
+    const glm::vec3 c = 0.5f * (o.boundsMin + o.boundsMax);
+    g.boundsCenterRadius = glm::vec4(c, 0.5f * glm::length(o.boundsMax - o.boundsMin));
+    g.ids = glm::uvec4(o.id, 0, 0, 0);
+    objects.push_back(g);
+    gpu.objectSpheres.push_back(g.boundsCenterRadius);
+    const Mesh& m = scene.meshes[o.mesh];
+    for (const Primitive& p : m.primitives)
+      gpu.draws.push_back({meshFirstIndex[o.mesh] + p.firstIndex, p.indexCount, int32_t(meshVertexOffset[o.mesh]), o.id,
+                           uint32_t(p.material), scene.materials[size_t(p.material)].alphaMode == AlphaMode::Mask});
+  }
+  gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage);
+
+  // Lights and their shadow views.
+  std::vector<gpu::GpuLight> lights(scene.lights.size());
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    gpu::GpuLight& g = lights[i];
+    const uint32_t type = l.type == LightType::Directional ? RB_LIGHT_DIRECTIONAL : l.type == LightType::Point ? RB_LIGHT_POINT : RB_LIGHT_SPOT;
+    g.positionRange = glm::vec4(l.position, l.range);
+    g.directionType = glm::vec4(l.direction, float(type));
+    g.colorIntensity = glm::vec4(l.color * l.intensity, 0.0f);
+    g.spotShadow = glm::vec4(std::cos(l.innerConeAngle), std::cos(l.outerConeAngle), -1.0f, 0.0f);
+  }
+  placeShadows(scene, settings, lights, gpu.shadows);
+  gpu.lightCount = uint32_t(lights.size());
+  gpu.lights = vk::createDeviceBuffer(ctx, lights, kStorage);
+  return gpu;
+}
+
+}  // namespace raybudget::passes

@@ -1,0 +1,51 @@
+// The scene on the GPU: vertices, indices, objects, materials, lights (with their shadow
+// matrices), textures and samplers, plus the draw list the raster passes walk.
+#pragma once
+#include <vector>
+
+#include "raybudget/renderer.h"
+#include "raybudget/scene.h"
+#include "shared/types.h"
+#include "vk/resources.h"
+
+namespace raybudget::passes {
+
+struct Draw {
+  uint32_t firstIndex;
+  uint32_t indexCount;
+  int32_t vertexOffset;
+  uint32_t object;
+  uint32_t material;
+  bool alphaMask;
+};
+
+struct GpuTexture {
+  vk::Image image;
+  VkSampler sampler;
+};
+
+struct ShadowViews {
+  uint32_t mapLayers = 0;      // directional + spot lights with a shadow map
+  uint32_t pointCubes = 0;     // point lights with a cube map
+  std::vector<glm::mat4> mapViewProj;     // per layer
+  std::vector<glm::mat4> cubeFaceViewProj;  // per cube face (6 per point light)
+};
+
+struct SceneGpu {
+  vk::Buffer vertices;
+  vk::Buffer indices;
+  vk::Buffer objects;
+  vk::Buffer materials;
+  vk::Buffer lights;
+  std::vector<vk::Owned<VkSampler>> samplers;  // [0] default, then one per glTF sampler
+  std::vector<GpuTexture> textures;            // at least one (white) so the array is never empty
+  std::vector<Draw> draws;
+  std::vector<glm::vec4> objectSpheres;  // world bounding spheres, for culling
+  ShadowViews shadows;
+  uint32_t lightCount = 0;
+  bool hasTransmission = false;
+};
+
+SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings);
+
+}  // namespace raybudget::passes

@@ -1,0 +1,16 @@
+#include "passes/screen_pass.h"
+
+#include "shared/config.h"
+
+namespace raybudget::passes {
+
+ScreenPass::ScreenPass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader)
+    : pipeline_(vk::createComputePipeline(ctx, layout, shader)) {}
+
+void ScreenPass::record(const FrameContext& fc) const {
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  vkCmdDispatch(fc.cmd, (fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE, (fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE, 1);
+}
+
+}  // namespace raybudget::passes

@@ -1,0 +1,21 @@
+// A compute pass over the screen in RB_TILE_SIZE tiles: lighting, the environment
+// reflection/refraction fallback and compose are each one of these with its own shader.
+#pragma once
+#include "passes/frame_context.h"
+#include "vk/context.h"
+#include "vk/owned.h"
+#include "vk/pipelines.h"
+
+namespace raybudget::passes {
+
+class ScreenPass {
+ public:
+  ScreenPass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader);
+  // Dispatches over every tile; the caller places the barriers between passes.
+  void record(const FrameContext& fc) const;
+
+ private:
+  vk::Owned<VkPipeline> pipeline_;
+};
+
+}  // namespace raybudget::passes

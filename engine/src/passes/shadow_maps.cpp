@@ -1,0 +1,88 @@
+#include "passes/shadow_maps.h"
+
+#include "shadow_frag.h"
+#include "shadow_vert.h"
+#include "shared/types.h"
+#include "vk/pipelines.h"
+
+namespace raybudget::passes {
+namespace {
+
+constexpr VkPipelineStageFlags2 kDepthStages = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+constexpr VkAccessFlags2 kDepthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+
+}  // namespace
+
+ShadowMapPass::ShadowMapPass(const vk::Context& ctx, VkPipelineLayout layout) {
+  vk::GraphicsPipelineDesc d;
+  d.vertex = kSpirv_shadow_vert;
+  d.depthFormat = kDepthFormat;
+  d.depthBias = true;
+  opaque_ = vk::createGraphicsPipeline(ctx, layout, d);
+  d.fragment = kSpirv_shadow_frag;
+  masked_ = vk::createGraphicsPipeline(ctx, layout, d);
+}
+
+void ShadowMapPass::initialize(VkCommandBuffer cmd, const FrameTargets& t) {
+  for (const vk::Image* img : {&t.shadowMaps, &t.pointShadows})
+    vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+void ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uint32_t size, const glm::mat4& viewProj) const {
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = view;
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, {size, size}};
+  ri.layerCount = 1;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(fc.cmd, &ri);
+  const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {size, size}};
+  VkPipeline bound = VK_NULL_HANDLE;
+  for (const Draw& d : fc.scene.draws) {
+    if (!sphereInFrustum(viewProj, fc.scene.objectSpheres[d.object])) continue;
+    const VkPipeline want = d.alphaMask ? masked_.get() : opaque_.get();
+    if (want != bound) {
+      vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, want);
+      if (bound == VK_NULL_HANDLE) {
+        bindSet(fc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+        vkCmdBindIndexBuffer(fc.cmd, fc.scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+      }
+      vkCmdSetViewport(fc.cmd, 0, 1, &viewport);
+      vkCmdSetScissor(fc.cmd, 0, 1, &scissor);
+      // Slope-scaled bias against acne on surfaces at grazing angles to the light.
+      vkCmdSetDepthBias(fc.cmd, 1.25f, 0.0f, 1.75f);
+      bound = want;
+    }
+    gpu::DrawPush push{};
+    push.viewProj = viewProj;
+    push.objectMaterial = glm::uvec4(d.object, d.material, 0, 0);
+    vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    vkCmdDrawIndexed(fc.cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+  }
+  vkCmdEndRendering(fc.cmd);
+}
+
+void ShadowMapPass::record(const FrameContext& fc) const {
+  const FrameTargets& t = fc.targets;
+  const ShadowViews& views = fc.scene.shadows;
+  std::vector<const vk::Image*> rendered;
+  if (views.mapLayers > 0) rendered.push_back(&t.shadowMaps);
+  if (views.pointCubes > 0) rendered.push_back(&t.pointShadows);
+  for (const vk::Image* img : rendered)
+    vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, kDepthStages, kDepthAccess,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  for (uint32_t l = 0; l < views.mapLayers; ++l) renderView(fc, t.shadowMapLayers[l], t.shadowMapSize, views.mapViewProj[l]);
+  for (uint32_t f = 0; f < 6 * views.pointCubes; ++f) renderView(fc, t.pointShadowFaces[f], t.cubeSize, views.cubeFaceViewProj[f]);
+  for (const vk::Image* img : rendered)
+    vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+}  // namespace raybudget::passes

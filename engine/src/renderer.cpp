@@ -1,0 +1,319 @@
+// The frame: G-buffer -> shadow maps -> (environment, once) -> lighting + environment
+// fallback -> compose, two frames in flight, every pass bracketed by timestamps.
+#include "raybudget/renderer.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "compose_comp.h"
+#include "env_fallback_comp.h"
+#include "lighting_comp.h"
+#include "passes/descriptors.h"
+#include "passes/environment.h"
+#include "passes/frame_targets.h"
+#include "passes/gbuffer.h"
+#include "passes/scene_gpu.h"
+#include "passes/screen_pass.h"
+#include "passes/shadow_maps.h"
+#include "shared/config.h"
+#include "shared/types.h"
+#include "vk/check.h"
+#include "vk/context.h"
+#include "vk/timestamps.h"
+
+namespace raybudget {
+
+const char* passName(Pass pass) {
+  switch (pass) {
+    case Pass::GBuffer: return "gbuffer";
+    case Pass::ShadowMaps: return "shadow_maps";
+    case Pass::Environment: return "environment";
+    case Pass::Lighting: return "lighting";
+    case Pass::EnvFallback: return "env_fallback";
+    case Pass::Compose: return "compose";
+    case Pass::Count: break;
+  }
+  return "?";
+}
+
+double FrameTiming::totalMs() const {
+  double sum = 0.0;
+  for (const auto& ms : passMs) sum += ms.value_or(0.0);
+  return sum;
+}
+
+namespace {
+
+constexpr uint32_t kFramesInFlight = 2;
+
+void validateSettings(const RenderSettings& s) {
+  if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
+    throw Error("render size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1..16384");
+  if (s.shadowMapSize < 16 || s.shadowMapSize > 8192) throw Error("shadow map size must be within 16..8192");
+  if (!std::isfinite(s.exposure) || s.exposure <= 0.0f) throw Error("exposure must be a positive finite number");
+  if (!std::isfinite(s.skyIntensity) || s.skyIntensity < 0.0f) throw Error("sky intensity must be a non-negative finite number");
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  struct Slot {
+    vk::Owned<VkCommandBuffer> cmd;
+    vk::Owned<VkFence> fence;
+    vk::Buffer uniforms;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    bool inFlight = false;
+    uint64_t frame = 0;
+  };
+
+  RenderSettings settings;
+  glm::vec3 sunDirection;
+  vk::Context ctx;
+  passes::SceneGpu scene;
+  passes::FrameTargets targets;
+  passes::Samplers samplers;
+  vk::Owned<VkDescriptorSetLayout> setLayout;
+  vk::Owned<VkPipelineLayout> pipelineLayout;
+  vk::Owned<VkDescriptorPool> pool;
+  vk::Owned<VkCommandPool> commandPool;
+  vk::TimestampPool timestamps;
+  passes::GBufferPass gbuffer;
+  passes::ShadowMapPass shadowMaps;
+  passes::EnvironmentPass environment;
+  passes::ScreenPass lighting;
+  passes::ScreenPass envFallback;
+  passes::ScreenPass compose;
+  Slot slots[kFramesInFlight];
+  uint64_t frameIndex = 0;
+  bool environmentReady = false;
+
+  Impl(const Scene& s, const RenderSettings& rs)
+      : settings(rs),
+        sunDirection(sunOf(s)),
+        ctx(vk::ContextOptions{rs.validation, rs.device}),
+        scene(passes::uploadScene(ctx, s, rs)),
+        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize)),
+        samplers(passes::createSamplers(ctx)),
+        setLayout(passes::createSetLayout(ctx, uint32_t(scene.textures.size()))),
+        pipelineLayout(makePipelineLayout()),
+        pool(passes::createPool(ctx, kFramesInFlight, uint32_t(scene.textures.size()))),
+        commandPool(makeCommandPool()),
+        timestamps(ctx, kFramesInFlight, kPassCount),
+        gbuffer(ctx, pipelineLayout),
+        shadowMaps(ctx, pipelineLayout),
+        environment(ctx, pipelineLayout),
+        lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
+        envFallback(ctx, pipelineLayout, kSpirv_env_fallback_comp),
+        compose(ctx, pipelineLayout, kSpirv_compose_comp) {
+    for (Slot& slot : slots) {
+      slot.cmd = allocateCommandBuffer();
+      slot.fence = makeFence();
+      slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+      slot.set = passes::allocateSet(ctx, pool, setLayout);
+      passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, samplers);
+    }
+    // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr})
+        vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      passes::ShadowMapPass::initialize(cmd, targets);
+    });
+  }
+
+  // The sky's sun follows the scene's first directional light, else a default elevation.
+  static glm::vec3 sunOf(const Scene& s) {
+    for (const Light& l : s.lights)
+      if (l.type == LightType::Directional) return -l.direction;
+    return glm::normalize(glm::vec3(0.3f, 1.0f, 0.4f));
+  }
+
+  vk::Owned<VkPipelineLayout> makePipelineLayout() {
+    VkPushConstantRange range{VK_SHADER_STAGE_ALL, 0, sizeof(gpu::DrawPush)};
+    VkDescriptorSetLayout l = setLayout;
+    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    ci.setLayoutCount = 1;
+    ci.pSetLayouts = &l;
+    ci.pushConstantRangeCount = 1;
+    ci.pPushConstantRanges = &range;
+    const VkDevice device = ctx.device();
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VK_CHECK(vkCreatePipelineLayout(device, &ci, nullptr, &layout));
+    return vk::Owned<VkPipelineLayout>(layout, [device](VkPipelineLayout p) { vkDestroyPipelineLayout(device, p, nullptr); });
+  }
+
+  vk::Owned<VkCommandPool> makeCommandPool() {
+    VkCommandPoolCreateInfo ci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    ci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    ci.queueFamilyIndex = ctx.queueFamily();
+    const VkDevice device = ctx.device();
+    VkCommandPool p = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateCommandPool(device, &ci, nullptr, &p));
+    return vk::Owned<VkCommandPool>(p, [device](VkCommandPool x) { vkDestroyCommandPool(device, x, nullptr); });
+  }
+
+  vk::Owned<VkCommandBuffer> allocateCommandBuffer() {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = commandPool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VK_CHECK(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd));
+    const VkDevice device = ctx.device();
+    const VkCommandPool p = commandPool;
+    return vk::Owned<VkCommandBuffer>(cmd, [device, p](VkCommandBuffer c) { vkFreeCommandBuffers(device, p, 1, &c); });
+  }
+
+  vk::Owned<VkFence> makeFence() {
+    VkFenceCreateInfo ci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    const VkDevice device = ctx.device();
+    VkFence f = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateFence(device, &ci, nullptr, &f));
+    return vk::Owned<VkFence>(f, [device](VkFence x) { vkDestroyFence(device, x, nullptr); });
+  }
+
+  // Waits for the slot's previous frame (submitted kFramesInFlight frames ago) and collects
+  // its timestamps.
+  std::optional<FrameTiming> retire(Slot& slot) {
+    if (!slot.inFlight) return std::nullopt;
+    VkFence fence = slot.fence;
+    VK_CHECK(vkWaitForFences(ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    VK_CHECK(vkResetFences(ctx.device(), 1, &fence));
+    slot.inFlight = false;
+    FrameTiming t;
+    t.frame = slot.frame;
+    const auto ms = timestamps.read(uint32_t(&slot - slots));
+    for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
+    return t;
+  }
+
+  void writeUniforms(Slot& slot, const Camera& camera) {
+    gpu::FrameUniforms u{};
+    const float aspect = float(settings.width) / float(settings.height);
+    u.view = camera.view();
+    u.proj = camera.projection(aspect);
+    u.viewProj = u.proj * u.view;
+    u.invViewProj = glm::inverse(u.viewProj);
+    u.cameraPositionNear = glm::vec4(camera.position, camera.znear);
+    u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
+    u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
+    u.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
+    std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
+  }
+
+  void record(Slot& slot, const glm::mat4& viewProj) {
+    const uint32_t s = uint32_t(&slot - slots);
+    VkCommandBuffer cmd = slot.cmd;
+    VK_CHECK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+    timestamps.reset(cmd, s);
+    // Frames share their images: order this frame after everything the previous one did.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    const passes::FrameContext fc{cmd, pipelineLayout, slot.set, scene, targets, viewProj};
+    auto timed = [&](Pass pass, auto&& body) {
+      timestamps.begin(cmd, s, uint32_t(pass));
+      body();
+      timestamps.end(cmd, s, uint32_t(pass));
+    };
+    timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
+    if (shadowMaps.needed(scene)) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
+    if (!environmentReady) {
+      timed(Pass::Environment, [&] { environment.record(fc); });
+      environmentReady = true;
+    }
+    timed(Pass::Lighting, [&] { lighting.record(fc); });
+    timed(Pass::EnvFallback, [&] { envFallback.record(fc); });
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    timed(Pass::Compose, [&] { compose.record(fc); });
+    VK_CHECK(vkEndCommandBuffer(cmd));
+  }
+
+  std::vector<FrameTiming> render(const Camera& camera) {
+    std::vector<FrameTiming> done;
+    Slot& slot = slots[frameIndex % kFramesInFlight];
+    if (auto t = retire(slot)) done.push_back(*t);
+    writeUniforms(slot, camera);
+    const float aspect = float(settings.width) / float(settings.height);
+    record(slot, camera.projection(aspect) * camera.view());
+    VkCommandBuffer cmd = slot.cmd;
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    VK_CHECK(vkQueueSubmit(ctx.queue(), 1, &si, slot.fence));
+    slot.inFlight = true;
+    slot.frame = frameIndex++;
+    return done;
+  }
+
+  std::vector<FrameTiming> finish() {
+    std::vector<FrameTiming> done;
+    // Oldest first: the slot after the last-used one holds the older frame.
+    for (uint32_t k = 0; k < kFramesInFlight; ++k)
+      if (auto t = retire(slots[(frameIndex + k) % kFramesInFlight])) done.push_back(*t);
+    return done;
+  }
+};
+
+Renderer::Renderer(const Scene& scene, const RenderSettings& settings) {
+  validateSettings(settings);
+  impl_ = std::make_unique<Impl>(scene, settings);
+}
+
+Renderer::~Renderer() {
+  if (impl_) vkDeviceWaitIdle(impl_->ctx.device());
+}
+
+std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->render(camera); }
+
+std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
+
+FrameImages Renderer::readback() {
+  Impl& r = *impl_;
+  if (r.frameIndex == 0) throw Error("readback() before any frame was rendered");
+  VK_CHECK(vkQueueWaitIdle(r.ctx.queue()));
+  const passes::FrameTargets& t = r.targets;
+  const VkDeviceSize pixels = VkDeviceSize(t.width) * t.height;
+  vk::Buffer ldr = vk::createBuffer(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  vk::Buffer hdr = vk::createBuffer(r.ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  vk::Buffer ids = vk::createBuffer(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  r.ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    // Each source goes to TRANSFER_SRC for its copy and back to the layout the frame expects.
+    const std::pair<const vk::Image*, VkImageLayout> sources[] = {
+        {&t.ldr, VK_IMAGE_LAYOUT_GENERAL}, {&t.hdr, VK_IMAGE_LAYOUT_GENERAL}, {&t.objectId, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+    const VkBuffer destinations[] = {ldr.buffer, hdr.buffer, ids.buffer};
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {t.width, t.height, 1};
+    for (size_t i = 0; i < 3; ++i) {
+      const auto [img, layout] = sources[i];
+      vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+      vkCmdCopyImageToBuffer(cmd, img->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destinations[i], 1, &copy);
+      vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
+    }
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  });
+  FrameImages out;
+  out.width = t.width;
+  out.height = t.height;
+  out.ldrRgba8.resize(size_t(pixels) * 4);
+  out.hdrRgba16.resize(size_t(pixels) * 4);
+  out.objectIds.resize(size_t(pixels));
+  std::memcpy(out.ldrRgba8.data(), ldr.mapped, out.ldrRgba8.size());
+  std::memcpy(out.hdrRgba16.data(), hdr.mapped, out.hdrRgba16.size() * 2);
+  std::memcpy(out.objectIds.data(), ids.mapped, out.objectIds.size() * 4);
+  return out;
+}
+
+std::string Renderer::deviceName() const { return impl_->ctx.properties().deviceName; }
+
+std::vector<std::string> Renderer::validationMessages() const { return impl_->ctx.validationMessages(); }
+
+float Renderer::aspect() const { return float(impl_->settings.width) / float(impl_->settings.height); }
+
+}  // namespace raybudget

@@ -1,0 +1,28 @@
+// Bounds-checked reading of glTF accessors. Every byte range is checked against its buffer
+// before it is touched, so a short or lying file becomes an Error, never a read overrun.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace tinygltf {
+class Model;
+}
+
+namespace raybudget::gltf {
+
+// Reads a float accessor of up to 4 components (normalized integers are converted as
+// glTF specifies); missing components are filled from `fill`. `where` names the accessor
+// in error messages.
+std::vector<glm::vec4> readVec4(const tinygltf::Model& model, int accessor, const std::string& where,
+                                glm::vec4 fill = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+
+// Reads an index accessor (unsigned byte, short or int).
+std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor, const std::string& where);
+
+// Element count of an accessor after its index and range checks.
+size_t accessorCount(const tinygltf::Model& model, int accessor, const std::string& where);
+
+}  // namespace raybudget::gltf

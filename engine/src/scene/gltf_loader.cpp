@@ -1,0 +1,384 @@
+// glTF 2.0 -> Scene: node hierarchy, instancing (nodes and EXT_mesh_gpu_instancing),
+// materials with KHR_materials_{transmission,ior,volume,emissive_strength,unlit},
+// KHR_lights_punctual, cameras and extras.raybudget. Every reference is range-checked.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <fstream>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "raybudget/error.h"
+#include "raybudget/scene.h"
+#include "scene/accessor_reader.h"
+#include "scene/mesh_builder.h"
+
+namespace raybudget {
+namespace {
+
+// Translations or scales beyond this are treated as a broken file, not a big world: float
+// positions there have centimetre-scale spacing and every later pass would misbehave.
+constexpr float kMaxTransformElement = 1.0e7f;
+
+double number(const tinygltf::Value& v, const char* key, double fallback) {
+  if (!v.IsObject() || !v.Has(key)) return fallback;
+  const tinygltf::Value& e = v.Get(key);
+  return e.IsNumber() ? e.GetNumberAsDouble() : fallback;
+}
+
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& m, const char* name) {
+  const auto it = m.find(name);
+  return it == m.end() ? nullptr : &it->second;
+}
+
+int textureIndex(const tinygltf::Model& model, int index, int texCoord, const std::string& where, Scene& scene) {
+  if (index < 0) return -1;
+  if (size_t(index) >= model.textures.size())
+    throw Error(where + " refers to texture " + std::to_string(index) + ", which does not exist");
+  if (texCoord != 0) scene.warnings.push_back(where + ": uses TEXCOORD_" + std::to_string(texCoord) + "; TEXCOORD_0 is used");
+  const int image = scene.textures[size_t(index)].image;
+  return image >= 0 && !scene.images[size_t(image)].rgba.empty() ? index : -1;
+}
+
+float finiteOr(double v, const std::string& what) {
+  if (!std::isfinite(v)) throw Error(what + " is not finite");
+  return float(v);
+}
+
+void loadImagesAndTextures(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+  for (size_t i = 0; i < model.images.size(); ++i) {
+    const tinygltf::Image& gi = model.images[i];
+    Image img;
+    img.name = gi.name.empty() ? gi.uri : gi.name;
+    const size_t texels = size_t(std::max(gi.width, 0)) * size_t(std::max(gi.height, 0));
+    const size_t channelBytes = gi.bits == 16 ? 2 : 1;
+    if (texels == 0 || gi.component < 1 || gi.component > 4 || gi.image.size() < texels * size_t(gi.component) * channelBytes) {
+      scene.warnings.push_back(file + ": image " + std::to_string(i) + " ('" + img.name + "') could not be decoded; textures using it are ignored");
+      scene.images.push_back(std::move(img));
+      continue;
+    }
+    img.width = uint32_t(gi.width);
+    img.height = uint32_t(gi.height);
+    img.rgba.resize(texels * 4);
+    for (size_t t = 0; t < texels; ++t) {
+      uint8_t c[4] = {0, 0, 0, 255};
+      for (int k = 0; k < gi.component; ++k) {
+        const size_t at = (t * size_t(gi.component) + size_t(k)) * channelBytes;
+        c[k] = channelBytes == 2 ? gi.image[at + 1] : gi.image[at];  // little-endian: high byte
+      }
+      if (gi.component <= 2) {  // grey (+alpha)
+        const uint8_t a = gi.component == 2 ? c[1] : 255;
+        c[1] = c[2] = c[0];
+        c[3] = a;
+      }
+      std::copy(c, c + 4, img.rgba.begin() + std::ptrdiff_t(t * 4));
+    }
+    scene.images.push_back(std::move(img));
+  }
+  for (const tinygltf::Sampler& gs : model.samplers) {
+    Sampler s;
+    s.magLinear = gs.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST;
+    s.minLinear = gs.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && gs.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST &&
+                  gs.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+    s.mipLinear = gs.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST &&
+                  gs.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST;
+    s.wrapS = gs.wrapS;
+    s.wrapT = gs.wrapT;
+    scene.samplers.push_back(s);
+  }
+  for (size_t i = 0; i < model.textures.size(); ++i) {
+    const tinygltf::Texture& gt = model.textures[i];
+    const std::string at = file + ": texture " + std::to_string(i);
+    if (gt.source >= int(model.images.size())) throw Error(at + " refers to image " + std::to_string(gt.source) + ", which does not exist");
+    if (gt.sampler >= int(model.samplers.size())) throw Error(at + " refers to sampler " + std::to_string(gt.sampler) + ", which does not exist");
+    scene.textures.push_back(Texture{gt.source, gt.sampler});
+  }
+}
+
+void loadMaterials(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+  bool warnedTransform = false;
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    const tinygltf::Material& gm = model.materials[i];
+    const std::string at = file + ": material " + std::to_string(i) + " ('" + gm.name + "')";
+    const auto& pbr = gm.pbrMetallicRoughness;
+    Material m;
+    m.name = gm.name;
+    for (int k = 0; k < 4 && k < int(pbr.baseColorFactor.size()); ++k)
+      m.baseColorFactor[k] = glm::clamp(finiteOr(pbr.baseColorFactor[size_t(k)], at + " baseColorFactor"), 0.0f, 1.0f);
+    m.metallic = glm::clamp(finiteOr(pbr.metallicFactor, at + " metallicFactor"), 0.0f, 1.0f);
+    m.roughness = glm::clamp(finiteOr(pbr.roughnessFactor, at + " roughnessFactor"), 0.0f, 1.0f);
+    for (int k = 0; k < 3 && k < int(gm.emissiveFactor.size()); ++k)
+      m.emissive[k] = std::max(finiteOr(gm.emissiveFactor[size_t(k)], at + " emissiveFactor"), 0.0f);
+    m.alphaMode = gm.alphaMode == "MASK" ? AlphaMode::Mask : gm.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+    m.alphaCutoff = finiteOr(gm.alphaCutoff, at + " alphaCutoff");
+    m.doubleSided = gm.doubleSided;
+    m.normalScale = finiteOr(gm.normalTexture.scale, at + " normalTexture.scale");
+    m.baseColorTexture = textureIndex(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, at, scene);
+    m.metallicRoughnessTexture = textureIndex(model, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, at, scene);
+    m.normalTexture = textureIndex(model, gm.normalTexture.index, gm.normalTexture.texCoord, at, scene);
+    m.emissiveTexture = textureIndex(model, gm.emissiveTexture.index, gm.emissiveTexture.texCoord, at, scene);
+    if (const auto* e = extension(gm.extensions, "KHR_materials_emissive_strength"))
+      m.emissive *= std::max(finiteOr(number(*e, "emissiveStrength", 1.0), at + " emissiveStrength"), 0.0f);
+    if (const auto* e = extension(gm.extensions, "KHR_materials_transmission"))
+      m.transmission = glm::clamp(finiteOr(number(*e, "transmissionFactor", 0.0), at + " transmissionFactor"), 0.0f, 1.0f);
+    if (const auto* e = extension(gm.extensions, "KHR_materials_ior")) {
+      m.ior = finiteOr(number(*e, "ior", 1.5), at + " ior");
+      if (m.ior < 1.0f) m.ior = 1.0f;  // glTF allows 0 as "no refraction": same as 1 here
+    }
+    if (const auto* e = extension(gm.extensions, "KHR_materials_volume")) {
+      m.thickness = std::max(finiteOr(number(*e, "thicknessFactor", 0.0), at + " thicknessFactor"), 0.0f);
+      const double dist = number(*e, "attenuationDistance", 0.0);
+      m.attenuationDistance = std::isfinite(dist) && dist > 0.0 ? float(dist) : 0.0f;
+      if (e->Has("attenuationColor") && e->Get("attenuationColor").IsArray())
+        for (int k = 0; k < 3 && k < int(e->Get("attenuationColor").ArrayLen()); ++k)
+          m.attenuationColor[k] = glm::clamp(finiteOr(e->Get("attenuationColor").Get(k).GetNumberAsDouble(), at + " attenuationColor"), 0.0f, 1.0f);
+    }
+    m.unlit = extension(gm.extensions, "KHR_materials_unlit") != nullptr;
+    if (!warnedTransform && (pbr.baseColorTexture.extensions.count("KHR_texture_transform") != 0)) {
+      scene.warnings.push_back(at + ": KHR_texture_transform is ignored");
+      warnedTransform = true;
+    }
+    scene.materials.push_back(m);
+  }
+}
+
+glm::mat4 localTransform(const tinygltf::Node& n, const std::string& at) {
+  glm::mat4 m(1.0f);
+  if (n.matrix.size() == 16) {
+    for (int k = 0; k < 16; ++k) glm::value_ptr(m)[k] = float(n.matrix[size_t(k)]);
+  } else {
+    glm::vec3 t(0.0f), s(1.0f);
+    glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
+    if (n.translation.size() == 3) t = glm::vec3(float(n.translation[0]), float(n.translation[1]), float(n.translation[2]));
+    if (n.scale.size() == 3) s = glm::vec3(float(n.scale[0]), float(n.scale[1]), float(n.scale[2]));
+    if (n.rotation.size() == 4) r = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
+    m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
+  }
+  for (int k = 0; k < 16; ++k) {
+    const float e = glm::value_ptr(m)[k];
+    if (!std::isfinite(e)) throw Error(at + ": transform has a non-finite element");
+    if (std::fabs(e) > kMaxTransformElement)
+      throw Error(at + ": transform element " + std::to_string(e) + " exceeds " + std::to_string(kMaxTransformElement) + " (absurd transform)");
+  }
+  return m;
+}
+
+RayBudgetParams readParams(const tinygltf::Value& extras, const std::string& at) {
+  RayBudgetParams p;
+  if (!extras.IsObject() || !extras.Has("raybudget")) return p;
+  const tinygltf::Value& rb = extras.Get("raybudget");
+  if (!rb.IsObject()) throw Error(at + ": extras.raybudget must be an object with K, Q, I");
+  auto read = [&](const char* key, std::optional<float>& out) {
+    if (!rb.Has(key)) return;
+    const tinygltf::Value& v = rb.Get(key);
+    if (!v.IsNumber()) throw Error(at + ": extras.raybudget." + key + " must be a number");
+    const double d = v.GetNumberAsDouble();
+    out = std::isfinite(d) && std::fabs(d) < 1e30 ? float(d) : std::numeric_limits<float>::infinity();
+  };
+  read("K", p.importanceK);
+  read("Q", p.raysQ);
+  read("I", p.hysteresisI);
+  validateRayBudgetParams(p, at + ": extras.raybudget");
+  return p;
+}
+
+void addObject(Scene& scene, uint32_t mesh, int node, const glm::mat4& world, const std::string& name, const RayBudgetParams& params,
+               const std::string& at) {
+  const float det = glm::determinant(glm::mat3(world));
+  if (!std::isfinite(det)) throw Error(at + ": world transform is not finite");
+  if (std::fabs(det) < 1e-30f) {
+    scene.warnings.push_back(at + ": zero-scale transform, object skipped (invisible)");
+    return;
+  }
+  const Mesh& m = scene.meshes[mesh];
+  if (m.indices.empty()) return;
+  Object o;
+  o.id = uint32_t(scene.objects.size());
+  o.name = name;
+  o.mesh = mesh;
+  o.gltfNode = node;
+  o.transform = world;
+  o.params = params;
+  o.boundsMin = glm::vec3(std::numeric_limits<float>::max());
+  o.boundsMax = glm::vec3(-std::numeric_limits<float>::max());
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 corner((c & 1) ? m.boundsMax.x : m.boundsMin.x, (c & 2) ? m.boundsMax.y : m.boundsMin.y,
+                           (c & 4) ? m.boundsMax.z : m.boundsMin.z);
+    const glm::vec3 w = glm::vec3(world * glm::vec4(corner, 1.0f));
+    o.boundsMin = glm::min(o.boundsMin, w);
+    o.boundsMax = glm::max(o.boundsMax, w);
+  }
+  scene.stats.triangles += m.indices.size() / 3;
+  scene.objects.push_back(std::move(o));
+}
+
+// EXT_mesh_gpu_instancing: one object per instance, local TRS after the node's transform.
+std::vector<glm::mat4> gpuInstances(const tinygltf::Model& model, const tinygltf::Node& node, const std::string& at) {
+  const auto* ext = extension(node.extensions, "EXT_mesh_gpu_instancing");
+  if (!ext || !ext->Has("attributes")) return {glm::mat4(1.0f)};
+  const tinygltf::Value& attrs = ext->Get("attributes");
+  auto attr = [&](const char* key, glm::vec4 fill) {
+    std::vector<glm::vec4> v;
+    if (attrs.Has(key) && attrs.Get(key).IsInt()) v = gltf::readVec4(model, attrs.Get(key).GetNumberAsInt(), at + " instancing " + key, fill);
+    return v;
+  };
+  const auto t = attr("TRANSLATION", glm::vec4(0.0f)), r = attr("ROTATION", glm::vec4(0, 0, 0, 1)), s = attr("SCALE", glm::vec4(1.0f));
+  const size_t n = std::max(t.size(), std::max(r.size(), s.size()));
+  if ((!t.empty() && t.size() != n) || (!r.empty() && r.size() != n) || (!s.empty() && s.size() != n))
+    throw Error(at + ": EXT_mesh_gpu_instancing attributes have different counts");
+  std::vector<glm::mat4> out;
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec3 ti = t.empty() ? glm::vec3(0.0f) : glm::vec3(t[i]);
+    const glm::vec3 si = s.empty() ? glm::vec3(1.0f) : glm::vec3(s[i]);
+    const glm::quat ri = r.empty() ? glm::quat(1, 0, 0, 0) : glm::quat(r[i].w, r[i].x, r[i].y, r[i].z);
+    out.push_back(glm::translate(glm::mat4(1.0f), ti) * glm::mat4_cast(ri) * glm::scale(glm::mat4(1.0f), si));
+  }
+  return out;
+}
+
+void addLight(const tinygltf::Model& model, const tinygltf::Node& node, const glm::mat4& world, const std::string& at, Scene& scene) {
+  const auto* ext = extension(node.extensions, "KHR_lights_punctual");
+  if (!ext || !ext->Has("light")) return;
+  const int index = ext->Get("light").GetNumberAsInt();
+  if (index < 0 || size_t(index) >= model.lights.size()) throw Error(at + " refers to light " + std::to_string(index) + ", which does not exist");
+  const tinygltf::Light& gl = model.lights[size_t(index)];
+  const std::string lat = at + " light " + std::to_string(index);
+  Light l;
+  l.name = gl.name;
+  if (gl.type == "directional") l.type = LightType::Directional;
+  else if (gl.type == "point") l.type = LightType::Point;
+  else if (gl.type == "spot") l.type = LightType::Spot;
+  else throw Error(lat + " has unknown type '" + gl.type + "'");
+  for (int k = 0; k < 3 && k < int(gl.color.size()); ++k) l.color[k] = std::max(finiteOr(gl.color[size_t(k)], lat + " color"), 0.0f);
+  l.intensity = finiteOr(gl.intensity, lat + " intensity");
+  if (l.intensity < 0.0f) throw Error(lat + " has negative intensity");
+  l.range = std::max(finiteOr(gl.range, lat + " range"), 0.0f);
+  l.innerConeAngle = glm::clamp(finiteOr(gl.spot.innerConeAngle, lat + " innerConeAngle"), 0.0f, 1.5707963f);
+  l.outerConeAngle = glm::clamp(finiteOr(gl.spot.outerConeAngle, lat + " outerConeAngle"), l.innerConeAngle, 1.5707963f);
+  l.position = glm::vec3(world[3]);
+  const glm::vec3 dir = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+  l.direction = glm::length(dir) > 0.0f ? glm::normalize(dir) : glm::vec3(0.0f, -1.0f, 0.0f);
+  scene.lights.push_back(l);
+}
+
+void addCamera(const tinygltf::Model& model, const tinygltf::Node& node, const glm::mat4& world, const std::string& at, Scene& scene) {
+  if (node.camera < 0 || scene.camera) return;
+  if (size_t(node.camera) >= model.cameras.size()) throw Error(at + " refers to camera " + std::to_string(node.camera) + ", which does not exist");
+  const tinygltf::Camera& gc = model.cameras[size_t(node.camera)];
+  Camera c;
+  if (gc.type == "perspective") {
+    c.yfov = glm::clamp(finiteOr(gc.perspective.yfov, at + " camera yfov"), 0.01f, 3.0f);
+    c.znear = std::max(finiteOr(gc.perspective.znear, at + " camera znear"), 1e-4f);
+    c.zfar = gc.perspective.zfar > 0.0 ? finiteOr(gc.perspective.zfar, at + " camera zfar") : 0.0f;  // 0: from bounds later
+  } else {
+    scene.warnings.push_back(at + ": orthographic camera rendered as a perspective one with the same pose");
+  }
+  c.position = glm::vec3(world[3]);
+  c.target = c.position + glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+  c.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
+  scene.camera = c;
+}
+
+}  // namespace
+
+Scene loadScene(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  if (!std::filesystem::exists(path)) throw Error(file + ": file not found");
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  std::ifstream probe(path, std::ios::binary);
+  char magic[4] = {};
+  probe.read(magic, 4);
+  const bool binary = probe.gcount() == 4 && std::string(magic, 4) == "glTF";
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file) : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+  if (!ok || !err.empty()) throw Error(file + ": not a valid glTF file: " + (err.empty() ? "parse failed" : err));
+
+  Scene scene;
+  scene.path = path;
+  if (!warn.empty()) scene.warnings.push_back(file + ": " + warn);
+  for (const std::string& ext : model.extensionsRequired) {
+    static const char* known[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                                  "KHR_materials_emissive_strength", "KHR_materials_unlit", "EXT_mesh_gpu_instancing", "KHR_texture_transform"};
+    if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return ext == k; }) == std::end(known))
+      throw Error(file + ": requires extension " + ext + ", which raybudget does not support");
+  }
+  loadImagesAndTextures(model, file, scene);
+  loadMaterials(model, file, scene);
+
+  // Meshes are built once and shared by every node (and instance) that uses them.
+  std::map<int, uint32_t> meshOf;
+  auto meshFor = [&](int gltfMesh, const std::string& at) {
+    if (gltfMesh < 0 || size_t(gltfMesh) >= model.meshes.size()) throw Error(at + " refers to mesh " + std::to_string(gltfMesh) + ", which does not exist");
+    auto it = meshOf.find(gltfMesh);
+    if (it != meshOf.end()) return it->second;
+    scene.meshes.push_back(gltf::buildMesh(model, gltfMesh, file, scene));
+    return meshOf[gltfMesh] = uint32_t(scene.meshes.size() - 1);
+  };
+
+  // Roots: the default scene's nodes; without scenes, every node that is nobody's child.
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? model.defaultScene : 0;
+    roots = model.scenes[size_t(s)].nodes;
+  } else {
+    std::vector<bool> isChild(model.nodes.size(), false);
+    for (const auto& n : model.nodes)
+      for (int c : n.children)
+        if (c >= 0 && size_t(c) < isChild.size()) isChild[size_t(c)] = true;
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (!isChild[i]) roots.push_back(int(i));
+  }
+
+  // Iterative depth-first walk; a node met twice on one path is a cycle (malformed file).
+  struct Item { int node; glm::mat4 parent; int depth; };
+  std::vector<Item> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f), 0});
+  size_t visits = 0;
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    const std::string at = file + ": node " + std::to_string(item.node);
+    if (item.node < 0 || size_t(item.node) >= model.nodes.size()) throw Error(at + " does not exist");
+    if (item.depth > 256 || ++visits > 4 * model.nodes.size() + 16)
+      throw Error(at + ": the node hierarchy has a cycle or is deeper than 256 levels");
+    const tinygltf::Node& node = model.nodes[size_t(item.node)];
+    const glm::mat4 world = item.parent * localTransform(node, at);
+    if (node.mesh >= 0) {
+      const uint32_t mesh = meshFor(node.mesh, at);
+      const RayBudgetParams params = readParams(node.extras, at);
+      const std::vector<glm::mat4> instances = gpuInstances(model, node, at);
+      for (size_t i = 0; i < instances.size(); ++i) {
+        std::string name = node.name.empty() ? "node" + std::to_string(item.node) : node.name;
+        if (instances.size() > 1) name += "#" + std::to_string(i);
+        addObject(scene, mesh, item.node, world * instances[i], name, params, at);
+      }
+    }
+    addLight(model, node, world, at, scene);
+    addCamera(model, node, world, at, scene);
+    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world, item.depth + 1});
+  }
+
+  if (scene.objects.empty()) throw Error(file + ": the scene has no triangle geometry to render");
+  scene.boundsMin = scene.objects[0].boundsMin;
+  scene.boundsMax = scene.objects[0].boundsMax;
+  for (const Object& o : scene.objects) {
+    scene.boundsMin = glm::min(scene.boundsMin, o.boundsMin);
+    scene.boundsMax = glm::max(scene.boundsMax, o.boundsMax);
+  }
+  if (scene.lights.empty()) {
+    scene.lights.push_back(defaultSun());
+    scene.usesDefaultSun = true;
+  }
+  if (scene.camera && scene.camera->zfar <= 0.0f) {
+    const float extent = glm::length(scene.boundsMax - scene.boundsMin);
+    scene.camera->zfar = glm::length(scene.camera->position - 0.5f * (scene.boundsMin + scene.boundsMax)) + 2.0f * extent;
+  }
+  return scene;
+}
+
+}  // namespace raybudget

@@ -1,0 +1,164 @@
+#include "scene/mesh_builder.h"
+
+#include <cmath>
+
+#include <tiny_gltf.h>
+
+#include "raybudget/error.h"
+#include "scene/accessor_reader.h"
+
+namespace raybudget::gltf {
+namespace {
+
+bool finite3(const glm::vec4& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Triangle list from the primitive's indices (or 0..n-1), converting strips and fans.
+std::vector<uint32_t> triangleList(int mode, const std::vector<uint32_t>& idx) {
+  std::vector<uint32_t> out;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    out.assign(idx.begin(), idx.begin() + std::ptrdiff_t(idx.size() / 3 * 3));
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (size_t i = 2; i < idx.size(); ++i) {
+      // Odd triangles swap two vertices to keep a consistent winding.
+      if (i % 2 == 0) out.insert(out.end(), {idx[i - 2], idx[i - 1], idx[i]});
+      else out.insert(out.end(), {idx[i - 1], idx[i - 2], idx[i]});
+    }
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    for (size_t i = 2; i < idx.size(); ++i) out.insert(out.end(), {idx[0], idx[i - 1], idx[i]});
+  }
+  return out;
+}
+
+bool zeroArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 e1 = b - a, e2 = c - a;
+  const float l1 = glm::dot(e1, e1), l2 = glm::dot(e2, e2);
+  const glm::vec3 n = glm::cross(e1, e2);
+  // Relative test: sin^2 of the angle between the edges below 1e-14 means no area at
+  // float precision, whatever the triangle's scale.
+  return l1 == 0.0f || l2 == 0.0f || glm::dot(n, n) <= 1e-14f * l1 * l2;
+}
+
+int defaultMaterial(Scene& scene) {
+  for (size_t i = 0; i < scene.materials.size(); ++i)
+    if (scene.materials[i].name == "raybudget-default") return int(i);
+  Material m;
+  m.name = "raybudget-default";
+  m.metallic = 0.0f;
+  m.roughness = 0.6f;
+  scene.materials.push_back(m);
+  return int(scene.materials.size() - 1);
+}
+
+}  // namespace
+
+Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& where, Scene& scene) {
+  const tinygltf::Mesh& gm = model.meshes[size_t(meshIndex)];
+  Mesh mesh;
+  mesh.name = gm.name.empty() ? "mesh" + std::to_string(meshIndex) : gm.name;
+  for (size_t p = 0; p < gm.primitives.size(); ++p) {
+    const tinygltf::Primitive& prim = gm.primitives[p];
+    const std::string at = where + ": mesh " + std::to_string(meshIndex) + " ('" + mesh.name + "') primitive " +
+                           std::to_string(p);
+    if (prim.mode < TINYGLTF_MODE_TRIANGLES && prim.mode >= 0) {
+      ++scene.stats.skippedPointLinePrimitives;
+      scene.warnings.push_back(at + ": points/lines primitive skipped");
+      continue;
+    }
+    if (prim.mode > TINYGLTF_MODE_TRIANGLE_FAN) throw Error(at + ": unknown primitive mode " + std::to_string(prim.mode));
+    const auto posIt = prim.attributes.find("POSITION");
+    if (posIt == prim.attributes.end()) throw Error(at + ": has no POSITION attribute");
+    const std::vector<glm::vec4> pos = readVec4(model, posIt->second, at + " POSITION");
+    for (size_t i = 0; i < pos.size(); ++i)
+      if (!finite3(pos[i]))
+        throw Error(at + ": POSITION of vertex " + std::to_string(i) + " is not finite (NaN or Inf)");
+
+    auto optional = [&](const char* name, glm::vec4 fill) {
+      const auto it = prim.attributes.find(name);
+      std::vector<glm::vec4> v;
+      if (it != prim.attributes.end()) {
+        v = readVec4(model, it->second, at + " " + name, fill);
+        if (v.size() != pos.size())
+          throw Error(at + ": " + name + " has " + std::to_string(v.size()) + " elements but POSITION has " +
+                      std::to_string(pos.size()));
+        for (size_t i = 0; i < v.size(); ++i)
+          if (!finite3(v[i])) throw Error(at + ": " + name + " of vertex " + std::to_string(i) + " is not finite");
+      }
+      return v;
+    };
+    const std::vector<glm::vec4> nrm = optional("NORMAL", glm::vec4(0, 0, 1, 0));
+    const std::vector<glm::vec4> uv = optional("TEXCOORD_0", glm::vec4(0, 0, 0, 0));
+    const std::vector<glm::vec4> col = optional("COLOR_0", glm::vec4(1.0f));
+
+    std::vector<uint32_t> idx;
+    if (prim.indices >= 0) {
+      idx = readIndices(model, prim.indices, at + " indices");
+      for (size_t i = 0; i < idx.size(); ++i)
+        if (idx[i] >= pos.size())
+          throw Error(at + ": index " + std::to_string(i) + " is " + std::to_string(idx[i]) +
+                      ", out of range for " + std::to_string(pos.size()) + " vertices");
+    } else {
+      idx.resize(pos.size());
+      for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(i);
+    }
+    std::vector<uint32_t> tris = triangleList(prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode, idx);
+
+    // Drop zero-area triangles: they add BVH and raster work and no pixels.
+    std::vector<uint32_t> kept;
+    kept.reserve(tris.size());
+    size_t dropped = 0;
+    for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+      const uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
+      if (zeroArea(glm::vec3(pos[a]), glm::vec3(pos[b]), glm::vec3(pos[c]))) {
+        ++dropped;
+        continue;
+      }
+      kept.insert(kept.end(), {a, b, c});
+    }
+    if (dropped > 0) {
+      scene.stats.droppedDegenerateTriangles += dropped;
+      scene.warnings.push_back(at + ": dropped " + std::to_string(dropped) + " zero-area triangles");
+    }
+    if (kept.empty()) continue;
+
+    // Area-weighted normals where the file has none.
+    std::vector<glm::vec3> generated;
+    if (nrm.empty()) {
+      generated.assign(pos.size(), glm::vec3(0.0f));
+      for (size_t t = 0; t < kept.size(); t += 3) {
+        const glm::vec3 a(pos[kept[t]]), b(pos[kept[t + 1]]), c(pos[kept[t + 2]]);
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        for (int k = 0; k < 3; ++k) generated[kept[t + size_t(k)]] += n;
+      }
+    }
+
+    const uint32_t base = uint32_t(mesh.vertices.size());
+    for (size_t i = 0; i < pos.size(); ++i) {
+      Vertex v;
+      v.position = glm::vec3(pos[i]);
+      glm::vec3 n = nrm.empty() ? generated[i] : glm::vec3(nrm[i]);
+      const float len = glm::length(n);
+      v.normal = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+      if (!uv.empty()) v.uv = glm::vec2(uv[i]);
+      if (!col.empty()) v.color = col[i];
+      mesh.vertices.push_back(v);
+    }
+    Primitive out;
+    out.firstIndex = uint32_t(mesh.indices.size());
+    out.indexCount = uint32_t(kept.size());
+    if (prim.material >= int(model.materials.size()))
+      throw Error(at + ": material " + std::to_string(prim.material) + " does not exist");
+    out.material = prim.material >= 0 ? prim.material : defaultMaterial(scene);
+    for (uint32_t i : kept) mesh.indices.push_back(base + i);
+    mesh.primitives.push_back(out);
+  }
+  if (!mesh.indices.empty()) {
+    mesh.boundsMin = mesh.boundsMax = mesh.vertices[mesh.indices[0]].position;
+    for (uint32_t i : mesh.indices) {
+      mesh.boundsMin = glm::min(mesh.boundsMin, mesh.vertices[i].position);
+      mesh.boundsMax = glm::max(mesh.boundsMax, mesh.vertices[i].position);
+    }
+  }
+  return mesh;
+}
+
+}  // namespace raybudget::gltf

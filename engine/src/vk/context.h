@@ -1,0 +1,63 @@
+// The Vulkan instance, device and queue raybudget renders with, the validation messenger
+// that records every warning and error, and one-shot command submission for uploads.
+#pragma once
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/owned.h"
+
+namespace raybudget::vk {
+
+struct ContextOptions {
+  bool validation = false;  // VK_LAYER_KHRONOS_validation with synchronization validation
+  std::string deviceName;   // substring of the device name; empty: discrete > integrated > CPU
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options);
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  ~Context();
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  bool validationEnabled() const { return validation_; }
+
+  // Index of a memory type with `flags` among `typeBits`; throws when there is none.
+  uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
+
+  // Records `record` into a fresh command buffer, submits it and waits (uploads, set-up).
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+  // Validation-layer messages (warnings and errors) since start; tests require none.
+  std::vector<std::string> validationMessages() const;
+  void recordValidationMessage(std::string message);
+
+ private:
+  bool validation_ = false;
+  Owned<VkInstance> instance_;
+  Owned<VkDebugUtilsMessengerEXT> messenger_;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  uint32_t queueFamily_ = 0;
+  Owned<VkDevice> device_;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  Owned<VkCommandPool> uploadPool_;
+  mutable std::mutex messagesMutex_;
+  std::vector<std::string> messages_;
+};
+
+// Lists the Vulkan devices this machine offers (name and type), for --help and errors.
+std::vector<std::string> listDevices();
+
+}  // namespace raybudget::vk

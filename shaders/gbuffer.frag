@@ -1,0 +1,63 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "include/bindings.glsl"
+
+layout(push_constant) uniform PushBlock { DrawPush push; };
+
+layout(location = 0) in vec3 inWorld;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inColor;
+
+layout(location = 0) out vec4 outNormal;
+layout(location = 1) out vec4 outBaseMetal;
+layout(location = 2) out vec4 outRoughTransIor;
+layout(location = 3) out vec4 outEmissive;
+layout(location = 4) out uint outObjectId;
+layout(location = 5) out uint outMaterialId;
+
+vec4 sampleTexture(int index, vec2 uv, vec4 fallback) {
+  return index >= 0 ? texture(textures[nonuniformEXT(index)], uv) : fallback;
+}
+
+// Perturbs N with a tangent-space normal map using a cotangent frame built from screen-space
+// derivatives (Schueler 2013), so meshes need no TANGENT attribute.
+vec3 perturbNormal(vec3 N, vec3 mapped, float scale) {
+  vec3 dp1 = dFdx(inWorld), dp2 = dFdy(inWorld);
+  vec2 duv1 = dFdx(inUv), duv2 = dFdy(inUv);
+  vec3 dp2perp = cross(dp2, N), dp1perp = cross(N, dp1);
+  vec3 T = dp2perp * duv1.x + dp1perp * duv2.x;
+  vec3 B = dp2perp * duv1.y + dp1perp * duv2.y;
+  float len = max(dot(T, T), dot(B, B));
+  if (len <= 1e-20) return N;
+  float invmax = inversesqrt(len);
+  vec3 t = mapped * 2.0 - 1.0;
+  t.xy *= scale;
+  vec3 p = mat3(T * invmax, -B * invmax, N) * t;
+  return dot(p, p) > 0.0 ? normalize(p) : N;
+}
+
+void main() {
+  GpuMaterial m = materials[push.objectMaterial.y];
+  uint flags = floatBitsToUint(m.normalScaleThicknessFlags.z);
+  vec4 base = m.baseColorFactor * inColor * sampleTexture(m.textures.x, inUv, vec4(1.0));
+  if ((flags & RB_MATERIAL_ALPHA_MASK) != 0u && base.a < m.emissiveAlphaCutoff.w) discard;
+
+  vec3 N = normalize(inNormal);
+  // Two-sided lighting faces the viewer; one-sided back faces keep their normal.
+  if (!gl_FrontFacing && (flags & RB_MATERIAL_DOUBLE_SIDED) != 0u) N = -N;
+  if (m.textures.z >= 0) N = perturbNormal(N, texture(textures[nonuniformEXT(m.textures.z)], inUv).xyz, m.normalScaleThicknessFlags.x);
+
+  vec4 mr = sampleTexture(m.textures.y, inUv, vec4(1.0));
+  float roughness = clamp(m.metallicRoughnessTransmissionIor.y * mr.g, 0.0, 1.0);
+  float metallic = clamp(m.metallicRoughnessTransmissionIor.x * mr.b, 0.0, 1.0);
+  vec3 emissive = m.emissiveAlphaCutoff.rgb * sampleTexture(m.textures.w, inUv, vec4(1.0)).rgb;
+
+  outNormal = vec4(N, 0.0);
+  outBaseMetal = vec4(base.rgb, metallic);
+  outRoughTransIor = vec4(roughness, m.metallicRoughnessTransmissionIor.z, m.metallicRoughnessTransmissionIor.w,
+                          (flags & RB_MATERIAL_UNLIT) != 0u ? 1.0 : 0.0);
+  outEmissive = vec4(emissive, 0.0);
+  outObjectId = objects[push.objectMaterial.x].ids.x;
+  outMaterialId = push.objectMaterial.y;
+}

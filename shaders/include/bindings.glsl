@@ -1,0 +1,39 @@
+// The one descriptor set every raybudget pipeline shares (engine/src/passes/bindings.h
+// lists the same binding numbers for C++). Unused bindings cost nothing in a shader.
+#ifndef RB_BINDINGS_GLSL
+#define RB_BINDINGS_GLSL
+#extension GL_EXT_nonuniform_qualifier : require
+#include "shared/config.h"
+#include "shared/types.h"
+
+layout(set = 0, binding = 0) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1, std430) readonly buffer ObjectBlock { GpuObject objects[]; };
+layout(set = 0, binding = 2, std430) readonly buffer MaterialBlock { GpuMaterial materials[]; };
+layout(set = 0, binding = 3, std430) readonly buffer LightBlock { GpuLight lights[]; };
+layout(set = 0, binding = 4, std430) readonly buffer VertexBlock { GpuVertex vertices[]; };
+layout(set = 0, binding = 5) uniform sampler2D textures[];
+
+// G-buffer, read with texelFetch.
+layout(set = 0, binding = 6) uniform sampler2D gDepth;
+layout(set = 0, binding = 7) uniform sampler2D gNormal;
+layout(set = 0, binding = 8) uniform sampler2D gBaseMetal;
+layout(set = 0, binding = 9) uniform sampler2D gRoughTransIor;
+layout(set = 0, binding = 10) uniform sampler2D gEmissive;
+layout(set = 0, binding = 11) uniform usampler2D gObjectId;
+layout(set = 0, binding = 12) uniform usampler2D gMaterialId;
+
+// Raster fallbacks.
+layout(set = 0, binding = 13) uniform sampler2DArrayShadow shadowMaps;      // directional + spot
+layout(set = 0, binding = 14) uniform samplerCubeArrayShadow pointShadows;  // 6 faces per point light
+layout(set = 0, binding = 15) uniform samplerCube envMap;                   // prefiltered, RB_ENV_MIPS mips
+layout(set = 0, binding = 16) uniform samplerCube skyMap;                   // sky radiance with mips
+
+// Storage images written by the compute passes.
+layout(set = 0, binding = 17, rgba16f) uniform image2D directImage;
+layout(set = 0, binding = 18, rgba16f) uniform image2D indirectImage;
+layout(set = 0, binding = 19, rgba16f) uniform writeonly image2D hdrImage;
+layout(set = 0, binding = 20, rgba8) uniform writeonly image2D ldrImage;
+layout(set = 0, binding = 21, rgba16f) uniform writeonly imageCube skyStorage;
+layout(set = 0, binding = 22, rgba16f) uniform writeonly imageCube envStorage[RB_ENV_MIPS];
+
+#endif

@@ -1,0 +1,49 @@
+// Reading the G-buffer in the screen-space compute passes.
+#ifndef RB_GBUFFER_GLSL
+#define RB_GBUFFER_GLSL
+
+struct Surface {
+  vec3 position;
+  vec3 normal;
+  vec3 baseColor;
+  float metallic;
+  float roughness;
+  float transmission;
+  float ior;
+  bool unlit;
+  vec3 emissive;
+  uint objectId;
+  uint materialId;
+};
+
+vec3 worldFromDepth(ivec2 pixel, float depth) {
+  vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.sizeLightsFrame.xy) * 2.0 - 1.0;
+  vec4 p = frame.invViewProj * vec4(ndc, depth, 1.0);
+  return p.xyz / p.w;
+}
+
+// Camera ray direction through a pixel (for the background).
+vec3 viewDirection(ivec2 pixel) {
+  return normalize(worldFromDepth(pixel, 1.0) - frame.cameraPositionNear.xyz);
+}
+
+bool readSurface(ivec2 pixel, out Surface s) {
+  float depth = texelFetch(gDepth, pixel, 0).r;
+  s.objectId = texelFetch(gObjectId, pixel, 0).r;
+  if (s.objectId == RB_NO_OBJECT) return false;
+  s.position = worldFromDepth(pixel, depth);
+  s.normal = normalize(texelFetch(gNormal, pixel, 0).xyz);
+  vec4 bm = texelFetch(gBaseMetal, pixel, 0);
+  s.baseColor = bm.rgb;
+  s.metallic = bm.a;
+  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
+  s.roughness = rti.r;
+  s.transmission = rti.g;
+  s.ior = rti.b;
+  s.unlit = rti.a > 0.5;
+  s.emissive = texelFetch(gEmissive, pixel, 0).rgb;
+  s.materialId = texelFetch(gMaterialId, pixel, 0).r;
+  return true;
+}
+
+#endif

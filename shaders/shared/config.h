@@ -1,0 +1,34 @@
+// One configuration header for C++ and GLSL: every constant both sides must agree on.
+#ifndef RAYBUDGET_SHARED_CONFIG_H
+#define RAYBUDGET_SHARED_CONFIG_H
+
+// Compute passes over the screen run 8x8 tiles: the later trace passes dispatch per tile.
+#define RB_TILE_SIZE 8
+
+// Object-ID value of pixels that show no object (the G-buffer clear value).
+#define RB_NO_OBJECT 0xFFFFFFFFu
+
+// Light types (GpuLight.directionType.w).
+#define RB_LIGHT_DIRECTIONAL 0
+#define RB_LIGHT_POINT 1
+#define RB_LIGHT_SPOT 2
+
+// Material flags (GpuMaterial.flags).
+#define RB_MATERIAL_DOUBLE_SIDED 1u
+#define RB_MATERIAL_ALPHA_MASK 2u
+#define RB_MATERIAL_UNLIT 4u
+
+// Upper bound of punctual lights a scene may carry: the lighting loop is per pixel, and
+// beyond this count a deferred renderer would cluster lights (not needed by our scenes).
+#define RB_MAX_LIGHTS 64
+
+// Environment cube map: base resolution and mip count of the prefiltered chain.
+#define RB_ENV_SIZE 128
+#define RB_ENV_MIPS 6
+// GGX importance samples per texel when prefiltering the environment.
+#define RB_ENV_PREFILTER_SAMPLES 64
+
+// Percentage-closer filtering kernel radius in shadow-map texels (3x3 taps).
+#define RB_PCF_RADIUS 1
+
+#endif

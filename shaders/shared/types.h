@@ -1,0 +1,74 @@
+// GPU structs, defined once and included from both C++ and GLSL (std430 / std140-safe:
+// every member is a vec4-sized slot). engine/src/vk/gpu_types.cpp static_asserts sizes.
+#ifndef RAYBUDGET_SHARED_TYPES_H
+#define RAYBUDGET_SHARED_TYPES_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace raybudget::gpu {
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
+using uint = std::uint32_t;
+#endif
+
+// 48 bytes: vertex pulled by index from a storage buffer.
+struct GpuVertex {
+  vec4 positionU;  // xyz position (mesh space), w texture u
+  vec4 normalV;    // xyz normal (mesh space), w texture v
+  vec4 color;      // COLOR_0, white when absent
+};
+
+// 160 bytes: one object = one node instance of one mesh.
+struct GpuObject {
+  mat4 model;
+  mat4 normalMatrix;        // inverse-transpose of model (upper 3x3 used)
+  vec4 boundsCenterRadius;  // world-space bounding sphere
+  uvec4 ids;                // x object ID, yzw unused
+};
+
+// 96 bytes: glTF metallic-roughness material with the transmission/volume extensions.
+struct GpuMaterial {
+  vec4 baseColorFactor;
+  vec4 emissiveAlphaCutoff;   // rgb emissive * emissive_strength, w alpha cutoff
+  vec4 metallicRoughnessTransmissionIor;
+  ivec4 textures;             // base colour, metallic-roughness, normal, emissive (-1 = none)
+  vec4 attenuationColorDistance;  // KHR_materials_volume: rgb colour, w distance
+  vec4 normalScaleThicknessFlags; // x normal scale, y thickness, z flags (as float bits), w unused
+};
+
+// 144 bytes: a punctual light and its shadow map.
+struct GpuLight {
+  vec4 positionRange;   // xyz world position, w range (0 = infinite)
+  vec4 directionType;   // xyz direction the light travels, w type (RB_LIGHT_*)
+  vec4 colorIntensity;  // rgb colour * intensity, w unused
+  vec4 spotShadow;      // x cos(inner), y cos(outer), z shadow layer or cube (-1 none), w unused
+  vec4 shadowParams;    // x texel size (world units; per unit distance for spot/point), y near, z far
+  mat4 shadowViewProj;  // directional / spot: world -> shadow clip space
+};
+
+// Per-frame constants (uniform buffer), 320 bytes.
+struct FrameUniforms {
+  mat4 view;
+  mat4 proj;
+  mat4 viewProj;
+  mat4 invViewProj;
+  vec4 cameraPositionNear;  // xyz camera position, w near plane
+  uvec4 sizeLightsFrame;    // x width, y height, z light count, w frame index
+  vec4 sunDirection;        // xyz direction towards the sun (procedural sky), w sky intensity
+  vec4 exposure;            // x exposure (linear scale before tonemapping), yzw unused
+};
+
+// Push constants for the raster passes and the compute passes, 80 bytes (the guaranteed
+// minimum is 128).
+struct DrawPush {
+  mat4 viewProj;         // shadow passes: the light's view-projection; otherwise unused
+  uvec4 objectMaterial;  // x object index, y material index; compute passes: x = mip or pass argument
+};
+
+#ifdef __cplusplus
+}  // namespace raybudget::gpu
+#endif
+#endif

@@ -1,0 +1,80 @@
+#include "cli_options.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "raybudget/error.h"
+
+namespace raybudget::cli {
+
+const char* kUsage = R"(raybudget: ray-traced effects under a time budget for a deferred renderer
+
+usage:
+  raybudget render SCENE.gltf|SCENE.glb [options]   render frames, write images and stats
+  raybudget devices                                 list the Vulkan devices
+  raybudget --help
+
+render options:
+  --frames N            frames to render (default 1)
+  --width W --height H  image size (default 1280x720)
+  --out DIR             output folder (default ./out): frame.png, frame.exr, stats.csv
+  --camera static|orbit the scene's camera (or one framing the scene), or a full orbit
+                        around its target over the N frames (default static)
+  --device NAME         use the Vulkan device whose name contains NAME
+  --validation          enable VK_LAYER_KHRONOS_validation (fails on any message)
+  --exposure E          linear exposure before tonemapping (default 1)
+  --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
+)";
+
+namespace {
+
+uint32_t parseUint(const std::string& option, const std::string& value, uint32_t lo, uint32_t hi) {
+  uint32_t v = 0;
+  const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+  if (ec != std::errc() || end != value.data() + value.size() || v < lo || v > hi)
+    throw Error(option + " needs a whole number in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + value + "'");
+  return v;
+}
+
+float parsePositive(const std::string& option, const std::string& value) {
+  size_t used = 0;
+  float v = 0.0f;
+  try {
+    v = std::stof(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != value.size() || !std::isfinite(v) || v <= 0.0f) throw Error(option + " needs a positive number, got '" + value + "'");
+  return v;
+}
+
+}  // namespace
+
+RenderCommand parseRender(const std::vector<std::string>& args) {
+  RenderCommand c;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw Error(a + " needs a value");
+      return args[++i];
+    };
+    if (a == "--frames") c.frames = parseUint(a, value(), 1, 1000000);
+    else if (a == "--width") c.settings.width = parseUint(a, value(), 1, 16384);
+    else if (a == "--height") c.settings.height = parseUint(a, value(), 1, 16384);
+    else if (a == "--out") c.out = value();
+    else if (a == "--camera") {
+      c.camera = value();
+      if (c.camera != "static" && c.camera != "orbit") throw Error("--camera must be static or orbit, got '" + c.camera + "'");
+    } else if (a == "--device") c.settings.device = value();
+    else if (a == "--validation") c.settings.validation = true;
+    else if (a == "--exposure") c.settings.exposure = parsePositive(a, value());
+    else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
+    else if (!a.empty() && a[0] == '-') throw Error("unknown option " + a + " (see raybudget --help)");
+    else if (c.scene.empty()) c.scene = a;
+    else throw Error("more than one scene given: '" + c.scene + "' and '" + a + "'");
+  }
+  if (c.scene.empty()) throw Error("render needs a scene file (see raybudget --help)");
+  return c;
+}
+
+}  // namespace raybudget::cli

@@ -1,0 +1,69 @@
+// The `raybudget` command: renders a glTF scene with the deferred renderer and writes the
+// last frame (PNG + EXR) and per-pass GPU times for every frame (stats.csv).
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "cli_options.h"
+#include "raybudget/raybudget.h"
+#include "vk/context.h"
+
+namespace {
+
+int render(const raybudget::cli::RenderCommand& c) {
+  using namespace raybudget;
+  const Scene scene = loadScene(c.scene);
+  for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << '\n';
+  std::cout << c.scene << ": " << scene.objects.size() << " objects, " << scene.stats.triangles << " triangles, " << scene.lights.size()
+            << " lights" << (scene.usesDefaultSun ? " (default sun)" : "") << ", " << scene.materials.size() << " materials\n";
+  Renderer renderer(scene, c.settings);
+  std::cout << "device: " << renderer.deviceName() << '\n';
+  std::filesystem::create_directories(c.out);
+  StatsCsv stats(std::filesystem::path(c.out) / "stats.csv");
+  std::vector<FrameTiming> all;
+  const Camera start = defaultCamera(scene, renderer.aspect());
+  auto collect = [&](const std::vector<FrameTiming>& done) {
+    for (const FrameTiming& t : done) {
+      stats.add(t);
+      all.push_back(t);
+    }
+  };
+  for (uint32_t f = 0; f < c.frames; ++f) collect(renderer.render(c.camera == "orbit" ? orbitCamera(start, f, c.frames) : start));
+  collect(renderer.finish());
+  const FrameImages images = renderer.readback();
+  writePng(std::filesystem::path(c.out) / "frame.png", images.width, images.height, images.ldrRgba8);
+  writeExr(std::filesystem::path(c.out) / "frame.exr", images.width, images.height, images.hdrRgba16);
+
+  const PassSummary s = summarize(all);
+  std::printf("GPU time per pass, median of %zu frames at %ux%u:\n", all.size(), images.width, images.height);
+  for (size_t p = 0; p < kPassCount; ++p)
+    if (s.frames[p] > 0) std::printf("  %-14s %8.3f ms  (%zu frames)\n", passName(Pass(p)), s.medianMs[p], s.frames[p]);
+    else std::printf("  %-14s  skipped\n", passName(Pass(p)));
+  std::printf("  %-14s %8.3f ms\n", "total", s.medianTotalMs);
+  std::cout << "wrote " << c.out << "/frame.png, frame.exr, stats.csv\n";
+  const auto messages = renderer.validationMessages();
+  for (const std::string& m : messages) std::cerr << m << '\n';
+  return messages.empty() ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+      std::cout << raybudget::cli::kUsage;
+      return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "devices") {
+      for (const std::string& d : raybudget::vk::listDevices()) std::cout << d << '\n';
+      return 0;
+    }
+    if (args[0] == "render") return render(raybudget::cli::parseRender({args.begin() + 1, args.end()}));
+    std::cerr << "raybudget: unknown command '" << args[0] << "'\n\n" << raybudget::cli::kUsage;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "raybudget: error: " << e.what() << '\n';
+    return 1;
+  }
+}
