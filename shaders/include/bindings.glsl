@@ -9,7 +9,7 @@
 layout(set = 0, binding = 0) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1, std430) readonly buffer ObjectBlock { GpuObject objects[]; };
 layout(set = 0, binding = 2, std430) readonly buffer MaterialBlock { GpuMaterial materials[]; };
-layout(set = 0, binding = 3, std430) readonly buffer LightBlock { GpuLight lights[]; };
+layout(set = 0, binding = 3, std140) uniform LightBlock { GpuLight lights[RB_MAX_LIGHTS]; };
 layout(set = 0, binding = 4, std430) readonly buffer VertexBlock { GpuVertex vertices[]; };
 layout(set = 0, binding = 5) uniform sampler2D textures[];
 

@@ -18,7 +18,12 @@ float vSmithGgx(float NoV, float NoL, float alpha) {
   return 0.5 / max(gv + gl, 1e-8);
 }
 
-vec3 fSchlick(vec3 f0, float VoH) { return f0 + (1.0 - f0) * pow(1.0 - clamp(VoH, 0.0, 1.0), 5.0); }
+// Schlick's Fresnel; x^5 by multiplication (pow is exp2(log2) on software rasterisers).
+vec3 fSchlick(vec3 f0, float VoH) {
+  float x = 1.0 - clamp(VoH, 0.0, 1.0);
+  float x2 = x * x;
+  return f0 + (1.0 - f0) * (x2 * x2 * x);
+}
 
 // F0 of a dielectric of the given IOR against air.
 float f0FromIor(float ior) {

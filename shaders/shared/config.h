@@ -28,7 +28,4 @@
 // GGX importance samples per texel when prefiltering the environment.
 #define RB_ENV_PREFILTER_SAMPLES 64
 
-// Percentage-closer filtering kernel radius in shadow-map texels (3x3 taps).
-#define RB_PCF_RADIUS 1
-
 #endif

@@ -14,6 +14,7 @@ struct BindingInfo {
 
 BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount) {
   if (binding == kFrameUniforms) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+  if (binding == kLights) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
   if (binding <= kSkyMap) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "raybudget/error.h"
 #include "shared/config.h"
 
 namespace raybudget::passes {
@@ -180,6 +181,9 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage);
 
   // Lights and their shadow views.
+  if (scene.lights.size() > RB_MAX_LIGHTS)
+    throw Error(scene.path.string() + ": " + std::to_string(scene.lights.size()) + " lights; raybudget renders at most " +
+                std::to_string(RB_MAX_LIGHTS));
   std::vector<gpu::GpuLight> lights(scene.lights.size());
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -192,7 +196,10 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   }
   placeShadows(scene, settings, lights, gpu.shadows);
   gpu.lightCount = uint32_t(lights.size());
-  gpu.lights = vk::createDeviceBuffer(ctx, lights, kStorage);
+  // A uniform buffer of the fixed RB_MAX_LIGHTS size the shaders declare: lavapipe reads a
+  // uniform-indexed UBO once per SIMD batch, where an SSBO costs a gather per lane.
+  lights.resize(RB_MAX_LIGHTS);
+  gpu.lights = vk::createDeviceBuffer(ctx, lights, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   return gpu;
 }
 

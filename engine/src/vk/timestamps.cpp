@@ -1,6 +1,7 @@
 #include "vk/timestamps.h"
 
 #include "vk/check.h"
+#include "vk/resources.h"
 
 namespace raybudget::vk {
 
@@ -27,12 +28,20 @@ void TimestampPool::reset(VkCommandBuffer cmd, uint32_t slot) {
   written_[slot].assign(passes_, false);
 }
 
-void TimestampPool::begin(VkCommandBuffer cmd, uint32_t slot, uint32_t pass) {
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, (slot * passes_ + pass) * 2);
+// Lavapipe records a timestamp when it next flushes its binned (raster) work, while compute
+// dispatches run at once: without a flush right after the stamp, a compute pass's begin
+// stamp lands after its own dispatch. A full barrier after each stamp forces that flush
+// (on lavapipe) and costs nothing measurable at pass granularity elsewhere.
+void TimestampPool::stamp(VkCommandBuffer cmd, uint32_t query) {
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, query);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
+void TimestampPool::begin(VkCommandBuffer cmd, uint32_t slot, uint32_t pass) { stamp(cmd, (slot * passes_ + pass) * 2); }
+
 void TimestampPool::end(VkCommandBuffer cmd, uint32_t slot, uint32_t pass) {
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, (slot * passes_ + pass) * 2 + 1);
+  stamp(cmd, (slot * passes_ + pass) * 2 + 1);
   written_[slot][pass] = true;
 }
 

@@ -26,6 +26,7 @@ class TimestampPool {
   std::vector<std::optional<double>> read(uint32_t slot);
 
  private:
+  void stamp(VkCommandBuffer cmd, uint32_t query);
   VkDevice device_;
   Owned<VkQueryPool> pool_;
   uint32_t passes_;

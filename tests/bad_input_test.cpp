@@ -1,0 +1,187 @@
+// Bad input must give an Error naming the file and the problem: never a crash, a hang or a
+// silently wrong scene.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "raybudget/error.h"
+#include "raybudget/scene.h"
+#include "support/gltf_fixture.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+using test::GltfFixture;
+
+// Loads `path` expecting an Error whose message names the file and contains `expected`.
+void expectLoadError(const std::filesystem::path& path, const std::string& expected) {
+  try {
+    loadScene(path);
+    FAIL() << "loading " << path << " should have failed with '" << expected << "'";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << "message does not name the file: " << what;
+    EXPECT_NE(what.find(expected), std::string::npos) << "message: " << what;
+  }
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  std::filesystem::path dir = test::freshTempDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+};
+
+TEST_F(BadInput, ValidFixtureLoads) {
+  const Scene s = loadScene(GltfFixture::oneTriangle().write(dir, "ok"));
+  EXPECT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.stats.triangles, 1u);
+}
+
+TEST_F(BadInput, MissingFile) { expectLoadError(dir / "nothing.gltf", "file not found"); }
+
+TEST_F(BadInput, MalformedJson) {
+  const auto p = dir / "broken.gltf";
+  std::ofstream(p) << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ { \"mesh\": 0 ";
+  expectLoadError(p, "not a valid glTF");
+}
+
+TEST_F(BadInput, MissingBufferFile) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["buffers"][0]["uri"] = "does-not-exist.bin";
+  expectLoadError(f.write(dir, "missingbuf"), "not a valid glTF");
+}
+
+TEST_F(BadInput, ShortBuffer) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.bin.resize(20);  // positions need 36 bytes
+  f.json["buffers"][0]["byteLength"] = 20;
+  expectLoadError(f.write(dir, "short"), "runs past the end");
+}
+
+TEST_F(BadInput, AccessorCountBeyondBufferView) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["accessors"][0]["count"] = 1000;
+  expectLoadError(f.write(dir, "count"), "runs past the end of its bufferView");
+}
+
+TEST_F(BadInput, MissingAccessor) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7;
+  expectLoadError(f.write(dir, "noaccessor"), "accessor 7 does not exist");
+}
+
+TEST_F(BadInput, IndexOutOfRange) {
+  GltfFixture f = GltfFixture::triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 5});
+  expectLoadError(f.write(dir, "index"), "out of range for 3 vertices");
+}
+
+TEST_F(BadInput, NanPosition) {
+  GltfFixture f = GltfFixture::triangles({{0, 0, 0}, {std::nanf(""), 0, 0}, {0, 1, 0}});
+  expectLoadError(f.write(dir, "nan"), "POSITION of vertex 1 is not finite");
+}
+
+TEST_F(BadInput, InfinitePosition) {
+  GltfFixture f = GltfFixture::triangles({{0, 0, 0}, {1, 0, 0}, {0, INFINITY, 0}});
+  expectLoadError(f.write(dir, "inf"), "POSITION of vertex 2 is not finite");
+}
+
+TEST_F(BadInput, ZeroAreaTrianglesAreDroppedAndCounted) {
+  // Triangle 0 is fine, triangle 1 repeats a vertex, triangle 2 is collinear.
+  GltfFixture f = GltfFixture::triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}}, {0, 1, 2, 0, 0, 1, 0, 1, 3});
+  const Scene s = loadScene(f.write(dir, "degenerate"));
+  EXPECT_EQ(s.stats.droppedDegenerateTriangles, 2u);
+  EXPECT_EQ(s.stats.triangles, 1u);
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings[0].find("dropped 2 zero-area triangles"), std::string::npos) << s.warnings[0];
+}
+
+TEST_F(BadInput, OnlyDegenerateGeometryIsAnError) {
+  GltfFixture f = GltfFixture::triangles({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}});
+  expectLoadError(f.write(dir, "flat"), "no triangle geometry");
+}
+
+TEST_F(BadInput, AbsurdTransform) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"][0]["scale"] = {1e20, 1, 1};
+  expectLoadError(f.write(dir, "absurd"), "absurd transform");
+}
+
+TEST_F(BadInput, ZeroScaleObjectIsSkippedWithWarning) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"].push_back({{"mesh", 0}, {"scale", {0, 0, 0}}});
+  f.json["scenes"][0]["nodes"].push_back(1);
+  const Scene s = loadScene(f.write(dir, "zeroscale"));
+  EXPECT_EQ(s.objects.size(), 1u);
+  EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) { return w.find("zero-scale") != std::string::npos; }));
+}
+
+TEST_F(BadInput, NodeCycle) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"][0]["children"] = {0};
+  expectLoadError(f.write(dir, "cycle"), "cycle");
+}
+
+TEST_F(BadInput, MissingMaterial) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["meshes"][0]["primitives"][0]["material"] = 3;
+  expectLoadError(f.write(dir, "material"), "material 3 does not exist");
+}
+
+TEST_F(BadInput, NegativeK) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"][0]["extras"] = {{"raybudget", {{"K", -1.0}}}};
+  expectLoadError(f.write(dir, "negk"), "K = -1.000000 is negative");
+}
+
+TEST_F(BadInput, NonFiniteQ) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"][0]["extras"] = {{"raybudget", {{"Q", 1e300}}}};
+  expectLoadError(f.write(dir, "infq"), "Q is not finite");
+}
+
+TEST_F(BadInput, AbsurdI) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"][0]["extras"] = {{"raybudget", {{"I", 5e7}}}};
+  expectLoadError(f.write(dir, "bigi"), "exceeds the maximum");
+}
+
+TEST_F(BadInput, NonNumericParameter) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"][0]["extras"] = {{"raybudget", {{"K", "high"}}}};
+  expectLoadError(f.write(dir, "textk"), "extras.raybudget.K must be a number");
+}
+
+TEST_F(BadInput, PointsAreSkippedWithWarning) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  nlohmann::json points = f.json["meshes"][0]["primitives"][0];
+  points["mode"] = 0;
+  f.json["meshes"][0]["primitives"].push_back(points);
+  const Scene s = loadScene(f.write(dir, "points"));
+  EXPECT_EQ(s.stats.skippedPointLinePrimitives, 1u);
+  EXPECT_EQ(s.stats.triangles, 1u);
+}
+
+TEST_F(BadInput, UnsupportedRequiredExtension) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  f.json["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  expectLoadError(f.write(dir, "draco"), "KHR_draco_mesh_compression");
+}
+
+TEST_F(BadInput, TruncatedGlb) {
+  const auto p = dir / "truncated.glb";
+  std::ofstream(p, std::ios::binary) << "glTF\x02\x00\x00\x00\xff\xff\x00\x00";
+  expectLoadError(p, "not a valid glTF");
+}
+
+TEST_F(BadInput, LightWithUnknownType) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["extensionsUsed"] = {"KHR_lights_punctual"};
+  f.json["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "area"}, {"intensity", 1.0}}}}}}};
+  f.json["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+  EXPECT_THROW(loadScene(f.write(dir, "arealight")), Error);
+}
+
+}  // namespace
+}  // namespace raybudget

@@ -1,0 +1,36 @@
+#include <gtest/gtest.h>
+
+#include "raybudget/camera.h"
+
+namespace raybudget {
+namespace {
+
+TEST(Camera, OrbitKeepsHeightAndDistanceAndClosesTheCircle) {
+  Camera start;
+  start.position = {3.0f, 2.0f, 4.0f};
+  start.target = {1.0f, 0.5f, -1.0f};
+  const float radius = glm::length(glm::vec2(start.position.x - start.target.x, start.position.z - start.target.z));
+  for (uint32_t f = 0; f < 16; ++f) {
+    const Camera c = orbitCamera(start, f, 16);
+    EXPECT_NEAR(c.position.y, start.position.y, 1e-5f);
+    EXPECT_NEAR(glm::length(glm::vec2(c.position.x - c.target.x, c.position.z - c.target.z)), radius, 1e-4f);
+  }
+  EXPECT_LT(glm::length(orbitCamera(start, 0, 16).position - start.position), 1e-5f);
+  EXPECT_GT(glm::length(orbitCamera(start, 8, 16).position - start.position), 1.9f * radius);
+}
+
+TEST(Camera, ProjectionIsVulkanClipSpace) {
+  Camera c;
+  c.position = {0, 0, 5};
+  c.target = {0, 0, 0};
+  const glm::mat4 vp = c.projection(1.0f) * c.view();
+  const glm::vec4 nearPoint = vp * glm::vec4(0, 0, 5 - c.znear, 1);
+  const glm::vec4 farPoint = vp * glm::vec4(0, 0, 5 - c.zfar, 1);
+  EXPECT_NEAR(nearPoint.z / nearPoint.w, 0.0f, 1e-5f);
+  EXPECT_NEAR(farPoint.z / farPoint.w, 1.0f, 1e-5f);
+  const glm::vec4 up = vp * glm::vec4(0, 1, 0, 1);
+  EXPECT_LT(up.y / up.w, 0.0f) << "world up maps to the top row (negative y) in Vulkan";
+}
+
+}  // namespace
+}  // namespace raybudget

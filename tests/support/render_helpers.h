@@ -1,0 +1,38 @@
+// Renders a scene with validation on and returns what the tests check.
+#pragma once
+#include <gtest/gtest.h>
+
+#include "raybudget/raybudget.h"
+
+namespace raybudget::test {
+
+struct RenderResult {
+  FrameImages images;
+  std::vector<FrameTiming> timings;
+  std::vector<std::string> validation;
+  Camera camera;
+};
+
+inline RenderResult renderWithValidation(const Scene& scene, uint32_t width, uint32_t height, uint32_t frames) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.validation = true;
+  settings.shadowMapSize = 512;
+  Renderer renderer(scene, settings);
+  RenderResult r;
+  r.camera = defaultCamera(scene, renderer.aspect());
+  for (uint32_t f = 0; f < frames; ++f)
+    for (const FrameTiming& t : renderer.render(r.camera)) r.timings.push_back(t);
+  for (const FrameTiming& t : renderer.finish()) r.timings.push_back(t);
+  r.images = renderer.readback();
+  r.validation = renderer.validationMessages();
+  return r;
+}
+
+// Fails the test with every validation message.
+inline void expectValidationClean(const std::vector<std::string>& messages) {
+  EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+}
+
+}  // namespace raybudget::test

@@ -1,0 +1,30 @@
+#include "support/test_scenes.h"
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace raybudget::test {
+
+std::filesystem::path sharedScenesDir() { return std::filesystem::path(RAYBUDGET_SHARED_DIR) / "scenes"; }
+
+std::vector<std::filesystem::path> manifestScenes(const std::string& set) {
+  std::vector<std::filesystem::path> out;
+  std::ifstream in(sharedScenesDir() / "MANIFEST.json");
+  if (!in) return out;
+  const nlohmann::json manifest = nlohmann::json::parse(in);
+  for (const auto& e : manifest)
+    if (e.value("set", "") == set) out.push_back(sharedScenesDir() / e.value("path", ""));
+  return out;
+}
+
+std::filesystem::path defaultScenePath() { return std::filesystem::path(RAYBUDGET_SOURCE_DIR) / "data" / "default" / "court.gltf"; }
+
+std::filesystem::path freshTempDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("raybudget-test-" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace raybudget::test
