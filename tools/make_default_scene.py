@@ -257,7 +257,7 @@ def build():
     g.node("near_crate", cube["wood"], t=(2.6, 0.35, 8.9), s=(0.7, 0.7, 0.7), r=yaw(0.7))
 
     # Lights: a warm sun, two point lights, a spot on the mirror side.
-    sun = g.light({"name": "sun", "type": "directional", "color": [1.0, 0.95, 0.88], "intensity": 2.5})
+    sun = g.light({"name": "sun", "type": "directional", "color": [1.0, 0.95, 0.88], "intensity": 3.0})
     g.node("sun", t=(0, 10, 0), r=(-0.3826834, 0.1830127, 0.0, 0.9054839), light=sun)
     p1 = g.light({"name": "warm point", "type": "point", "color": [1.0, 0.75, 0.45], "intensity": 18.0, "range": 14.0})
     g.node("point_warm", t=(6.5, 3.3, 3.5), light=p1)

@@ -20,7 +20,7 @@ struct RenderSettings {
   bool validation = false;         // Khronos validation + synchronization validation
   uint32_t shadowMapSize = 1024;   // directional/spot layers; point-light cube faces get half
   float exposure = 1.0f;
-  float skyIntensity = 1.0f;
+  float skyIntensity = 0.3f;       // procedural sky radiance scale (ambient, reflections)
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.

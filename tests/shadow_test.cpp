@@ -1,0 +1,118 @@
+// Raster shadow fallbacks: for each light type, a box between the light and a ground plane
+// darkens exactly the ground point the geometry says is occluded, and leaves lit ground
+// smooth (no acne). The sky is off, so a shadowed point receives no light at all.
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "support/gltf_fixture.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+constexpr uint32_t kW = 256, kH = 192;
+
+float halfToFloat(uint16_t h) {
+  const uint32_t exponent = (h >> 10) & 0x1F, mantissa = h & 0x3FF;
+  if (exponent == 0) return std::ldexp(float(mantissa), -24);
+  const uint32_t bits = (uint32_t(h >> 15) << 31) | ((exponent + 112) << 23) | (mantissa << 13);
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+
+// Ground plane 20x20 at y=0 and a unit box floating at y in [1, 2] above the origin.
+Scene groundAndBox(const std::string& name) {
+  std::vector<glm::vec3> p = {{-10, 0, -10}, {10, 0, -10}, {10, 0, 10}, {-10, 0, 10}};
+  std::vector<uint32_t> idx = {0, 2, 1, 0, 3, 2};
+  const glm::vec3 lo(-0.5f, 1.0f, -0.5f), hi(0.5f, 2.0f, 0.5f);
+  for (int c = 0; c < 8; ++c) p.push_back({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z});
+  const uint32_t faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+  for (const auto& f : faces) idx.insert(idx.end(), {4 + f[0], 4 + f[1], 4 + f[2], 4 + f[0], 4 + f[2], 4 + f[3]});
+  const auto dir = test::freshTempDir("shadow-" + name);
+  return loadScene(test::GltfFixture::triangles(p, idx).write(dir, "scene"));
+}
+
+struct ShadowProbe {
+  float shadowed;  // HDR luminance at the occluded ground point
+  float lit;       // at a ground point the box cannot occlude
+  float litRoughness;  // max |L - mean of its horizontal neighbours| / L over a 5x5 patch
+};
+
+ShadowProbe probe(Scene scene, const Light& light, const glm::vec3& occluded, const glm::vec3& open) {
+  scene.lights = {light};
+  scene.usesDefaultSun = false;
+  RenderSettings settings;
+  settings.width = kW;
+  settings.height = kH;
+  settings.validation = true;
+  settings.skyIntensity = 0.0f;
+  Renderer renderer(scene, settings);
+  Camera cam;
+  cam.position = {7.0f, 5.0f, 7.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.znear = 0.1f;
+  cam.zfar = 50.0f;
+  renderer.render(cam);
+  renderer.finish();
+  const FrameImages img = renderer.readback();
+  test::expectValidationClean(renderer.validationMessages());
+  const glm::mat4 vp = cam.projection(renderer.aspect()) * cam.view();
+  auto luminanceAt = [&](const glm::vec3& world, int dx, int dy) {
+    const glm::vec4 c = vp * glm::vec4(world, 1.0f);
+    const int x = int((c.x / c.w * 0.5f + 0.5f) * kW) + dx, y = int((c.y / c.w * 0.5f + 0.5f) * kH) + dy;
+    EXPECT_TRUE(x >= 0 && y >= 0 && x < int(kW) && y < int(kH));
+    const size_t i = (size_t(y) * kW + size_t(x)) * 4;
+    return 0.2126f * halfToFloat(img.hdrRgba16[i]) + 0.7152f * halfToFloat(img.hdrRgba16[i + 1]) + 0.0722f * halfToFloat(img.hdrRgba16[i + 2]);
+  };
+  ShadowProbe r{luminanceAt(occluded, 0, 0), luminanceAt(open, 0, 0), 0.0f};
+  // Acne is high-frequency: a second difference, which ignores the smooth falloff of light.
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      const float l = luminanceAt(open, dx, dy);
+      const float neighbours = 0.5f * (luminanceAt(open, dx - 1, dy) + luminanceAt(open, dx + 1, dy));
+      r.litRoughness = std::max(r.litRoughness, std::fabs(l - neighbours) / l);
+    }
+  return r;
+}
+
+void expectShadow(const ShadowProbe& p) {
+  EXPECT_GT(p.lit, 0.01f);
+  EXPECT_LT(p.shadowed, 0.02f * p.lit) << "the occluded point is lit";
+  EXPECT_LT(p.litRoughness, 0.02f) << "lit ground is not smooth: acne";
+}
+
+TEST(ShadowMaps, DirectionalLightShadowsTheGroundUnderTheBox) {
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.intensity = 3.0f;
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  expectShadow(probe(groundAndBox("dir"), sun, {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f}));
+}
+
+TEST(ShadowMaps, SpotLightShadowsTheGroundUnderTheBox) {
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.intensity = 60.0f;
+  spot.position = {0.0f, 6.0f, 0.0f};
+  spot.direction = {0.0f, -1.0f, 0.0f};
+  spot.innerConeAngle = 0.6f;
+  spot.outerConeAngle = 0.8f;
+  expectShadow(probe(groundAndBox("spot"), spot, {0.0f, 0.0f, 0.0f}, {2.5f, 0.0f, -2.5f}));
+}
+
+TEST(ShadowMaps, PointLightShadowsTheGroundUnderTheBox) {
+  Light point;
+  point.type = LightType::Point;
+  point.intensity = 60.0f;
+  point.position = {0.0f, 5.0f, 0.0f};
+  expectShadow(probe(groundAndBox("point"), point, {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f}));
+  // Off-axis: the light beside the box throws its shadow along +x, through the +x cube face.
+  point.position = {-2.0f, 2.5f, 0.0f};
+  expectShadow(probe(groundAndBox("point2"), point, {2.0f, 0.0f, 0.0f}, {-2.0f, 0.0f, 3.0f}));
+}
+
+}  // namespace
+}  // namespace raybudget
