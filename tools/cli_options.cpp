@@ -23,7 +23,8 @@ render options:
   --device NAME         use the Vulkan device whose name contains NAME
   --validation          enable VK_LAYER_KHRONOS_validation (fails on any message)
   --exposure E          linear exposure before tonemapping (default 1)
-  --sky S               procedural sky radiance scale (default 0.3)
+  --sky S               sky radiance scale (default 0.3)
+  --env FILE.exr        equirectangular HDR environment instead of the procedural sky
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
 )";
 
@@ -70,6 +71,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--validation") c.settings.validation = true;
     else if (a == "--exposure") c.settings.exposure = parsePositive(a, value());
     else if (a == "--sky") c.settings.skyIntensity = parsePositive(a, value());
+    else if (a == "--env") c.settings.environmentMap = value();
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
     else if (!a.empty() && a[0] == '-') throw Error("unknown option " + a + " (see raybudget --help)");
     else if (c.scene.empty()) c.scene = a;

@@ -92,7 +92,7 @@ struct Renderer::Impl {
         sunDirection(sunOf(s)),
         ctx(vk::ContextOptions{rs.validation, rs.device}),
         scene(passes::uploadScene(ctx, s, rs)),
-        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize)),
+        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap)),
         samplers(passes::createSamplers(ctx)),
         setLayout(passes::createSetLayout(ctx, uint32_t(scene.textures.size()))),
         pipelineLayout(makePipelineLayout()),

@@ -36,4 +36,7 @@ layout(set = 0, binding = 20, rgba8) uniform writeonly image2D ldrImage;
 layout(set = 0, binding = 21, rgba16f) uniform writeonly imageCube skyStorage;
 layout(set = 0, binding = 22, rgba16f) uniform writeonly imageCube envStorage[RB_ENV_MIPS];
 
+// An HDR environment image (equirectangular) that replaces the procedural sky when given.
+layout(set = 0, binding = 23) uniform sampler2D envSource;
+
 #endif

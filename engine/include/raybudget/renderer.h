@@ -20,7 +20,8 @@ struct RenderSettings {
   bool validation = false;         // Khronos validation + synchronization validation
   uint32_t shadowMapSize = 1024;   // directional/spot layers; point-light cube faces get half
   float exposure = 1.0f;
-  float skyIntensity = 0.3f;       // procedural sky radiance scale (ambient, reflections)
+  float skyIntensity = 0.3f;       // sky radiance scale (ambient, reflections, background)
+  std::string environmentMap;      // equirectangular OpenEXR replacing the procedural sky
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.

@@ -29,7 +29,8 @@ enum Binding : uint32_t {
   kLdrImage = 20,
   kSkyStorage = 21,
   kEnvStorage = 22,
-  kBindingCount = 23,
+  kEnvSource = 23,
+  kBindingCount = 24,
 };
 
 }  // namespace raybudget::passes

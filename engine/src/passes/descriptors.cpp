@@ -17,7 +17,7 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount) {
   if (binding == kLights) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
-  if (binding <= kSkyMap) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  if (binding <= kSkyMap || binding == kEnvSource) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
   return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1};
 }
@@ -43,6 +43,8 @@ Samplers createSamplers(const vk::Context& ctx) {
   ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
   ci.maxLod = VK_LOD_CLAMP_NONE;
   s.linear = vk::createSampler(ctx, ci);
+  ci.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;  // longitude wraps around
+  s.equirect = vk::createSampler(ctx, ci);
   return s;
 }
 
@@ -123,6 +125,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   for (uint32_t b = kGDepth; b <= kSkyMap; ++b) write(b, 1, nullptr, &sampled[b - kGDepth]);
   for (uint32_t b = kDirectImage; b <= kSkyStorage; ++b) write(b, 1, nullptr, &storage[b - kDirectImage]);
   write(kEnvStorage, uint32_t(envMips.size()), nullptr, envMips.data());
+  const VkDescriptorImageInfo envSource{samplers.equirect, t.envSource.view, ro};
+  write(kEnvSource, 1, nullptr, &envSource);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 

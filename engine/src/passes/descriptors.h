@@ -15,6 +15,7 @@ struct Samplers {
   vk::Owned<VkSampler> nearest;  // G-buffer texelFetch
   vk::Owned<VkSampler> shadow;   // depth compare, LESS_OR_EQUAL
   vk::Owned<VkSampler> linear;   // environment cube maps, trilinear
+  vk::Owned<VkSampler> equirect; // HDR environment image: wraps in u
 };
 
 Samplers createSamplers(const vk::Context& ctx);

@@ -19,6 +19,9 @@ void EnvironmentPass::record(const FrameContext& fc) const {
                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sky_);
   bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  gpu::DrawPush skyPush{};
+  skyPush.objectMaterial.x = t.hasEnvSource ? 1u : 0u;
+  vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(skyPush), &skyPush);
   vkCmdDispatch(fc.cmd, groups, groups, 6);
   vk::imageBarrier(fc.cmd, t.sky, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,

@@ -1,7 +1,13 @@
 #include "passes/frame_targets.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 
+#include <glm/gtc/packing.hpp>
+
+#include "raybudget/error.h"
+#include "raybudget/image_io.h"
 #include "shared/config.h"
 
 namespace raybudget::passes {
@@ -23,7 +29,7 @@ vk::Image image2d(const vk::Context& ctx, VkFormat format, uint32_t w, uint32_t 
 }  // namespace
 
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize) {
+                                uint32_t shadowMapSize, const std::string& environmentMap) {
   FrameTargets t;
   t.width = width;
   t.height = height;
@@ -66,6 +72,28 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.skyStorageView = vk::createView(ctx, t.sky, VK_IMAGE_VIEW_TYPE_CUBE, 0, 1, 0, 6);
   t.env = image2d(ctx, kHdrFormat, RB_ENV_SIZE, RB_ENV_SIZE, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 6, true, RB_ENV_MIPS);
   for (uint32_t m = 0; m < RB_ENV_MIPS; ++m) t.envMipViews.push_back(vk::createView(ctx, t.env, VK_IMAGE_VIEW_TYPE_CUBE, m, 1, 0, 6));
+
+  // The HDR environment image as half floats (1x1 black when the procedural sky is used).
+  uint32_t ew = 1, eh = 1;
+  std::vector<float> texels(4, 0.0f);
+  if (!environmentMap.empty()) {
+    texels = readExr(environmentMap, ew, eh);
+    for (float v : texels)
+      if (!std::isfinite(v)) throw Error(environmentMap + ": the environment image holds NaN or Inf texels");
+    t.hasEnvSource = true;
+  }
+  std::vector<uint8_t> halfs(texels.size() * 2);
+  for (size_t i = 0; i < texels.size(); ++i) {
+    const uint16_t h = uint16_t(glm::packHalf1x16(std::min(texels[i], 65504.0f)));
+    std::memcpy(halfs.data() + i * 2, &h, 2);
+  }
+  vk::ImageDesc d;
+  d.format = kHdrFormat;
+  d.width = ew;
+  d.height = eh;
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  t.envSource = vk::createImage(ctx, d);
+  vk::uploadTexture(ctx, t.envSource, halfs);
   return t;
 }
 

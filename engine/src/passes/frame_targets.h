@@ -31,6 +31,8 @@ struct FrameTargets {
   vk::Image sky, env;                              // cube maps with RB_ENV_MIPS mips
   vk::Owned<VkImageView> skyStorageView;           // mip 0
   std::vector<vk::Owned<VkImageView>> envMipViews;  // one cube view per mip
+  vk::Image envSource;                             // equirectangular HDR image, or 1x1 black
+  bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;
 
   std::vector<const vk::Image*> gbufferColors() const {
@@ -38,7 +40,8 @@ struct FrameTargets {
   }
 };
 
+// `environmentMap`: an equirectangular OpenEXR path, or empty for the procedural sky.
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize);
+                                uint32_t shadowMapSize, const std::string& environmentMap);
 
 }  // namespace raybudget::passes

@@ -165,9 +165,9 @@ void generateMips(VkCommandBuffer cmd, const Image& image) {
   barrier(last, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, readers, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
-void uploadTexture(const Context& ctx, const Image& image, const std::vector<uint8_t>& rgba) {
-  Buffer staging = createBuffer(ctx, rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
-  std::memcpy(staging.mapped, rgba.data(), rgba.size());
+void uploadTexture(const Context& ctx, const Image& image, const std::vector<uint8_t>& texels) {
+  Buffer staging = createBuffer(ctx, texels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+  std::memcpy(staging.mapped, texels.data(), texels.size());
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     imageBarrier(cmd, image, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);

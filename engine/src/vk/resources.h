@@ -68,9 +68,9 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
 // TRANSFER_DST_OPTIMAL; leaves it in SHADER_READ_ONLY_OPTIMAL.
 void generateMips(VkCommandBuffer cmd, const Image& image);
 
-// Uploads RGBA8 texels to mip 0 and fills the other mips by linear blits; leaves the image
+// Uploads texels (bytes in the image's format) to mip 0 and fills the other mips by linear blits; leaves the image
 // in SHADER_READ_ONLY_OPTIMAL.
-void uploadTexture(const Context& ctx, const Image& image, const std::vector<uint8_t>& rgba);
+void uploadTexture(const Context& ctx, const Image& image, const std::vector<uint8_t>& texels);
 
 Owned<VkSampler> createSampler(const Context& ctx, const VkSamplerCreateInfo& info);
 
