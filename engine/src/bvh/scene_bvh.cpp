@@ -1,0 +1,108 @@
+#include "bvh/scene_bvh.h"
+
+#include <bit>
+#include <chrono>
+
+#include "bvh/embree_build.h"
+#include "raybudget/error.h"
+
+namespace raybudget::bvh {
+namespace {
+
+// Depth limits keep the two-level traversal within RB_BVH_STACK_SIZE entries: a stack
+// holds at most one entry per level, plus one marker between the levels.
+constexpr uint32_t kBlasMaxDepth = 38;
+constexpr uint32_t kTlasMaxDepth = 24;
+static_assert(kBlasMaxDepth + kTlasMaxDepth + 1 <= RB_BVH_STACK_SIZE);
+static_assert(sizeof(gpu::GpuBvhNode) == 64 && sizeof(gpu::GpuTriangle) == 48 && sizeof(gpu::GpuInstance) == 64);
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SceneBvh& out) {
+  const size_t triCount = mesh.indices.size() / 3;
+  std::vector<Box> boxes(triCount);
+  std::vector<uint32_t> material(triCount);
+  std::vector<uint32_t> flags(triCount);
+  for (const Primitive& p : mesh.primitives) {
+    const Material& m = scene.materials[size_t(p.material)];
+    for (uint32_t t = p.firstIndex / 3; t < (p.firstIndex + p.indexCount) / 3; ++t) {
+      material[t] = uint32_t(p.material);
+      flags[t] = m.alphaMode == AlphaMode::Mask ? 0u : RB_TRIANGLE_OPAQUE;
+    }
+  }
+  for (size_t t = 0; t < triCount; ++t) {
+    const glm::vec3 a = mesh.vertices[mesh.indices[t * 3]].position, b = mesh.vertices[mesh.indices[t * 3 + 1]].position,
+                    c = mesh.vertices[mesh.indices[t * 3 + 2]].position;
+    boxes[t] = {glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
+  }
+  BlasInfo info;
+  info.firstTriangle = uint32_t(out.triangles.size());
+  info.triangleCount = uint32_t(triCount);
+  if (triCount == 0) return info;  // every triangle was degenerate: no object uses this mesh
+  const FlatTree tree = buildTree(boxes, kBlasMaxDepth, RB_BVH_MAX_LEAF_SIZE, out.nodes, [&](const uint32_t* ids, uint32_t count) {
+    const uint32_t first = uint32_t(out.triangles.size());
+    // The traversal packs a BLAS leaf into one stack entry: 28 bits of index, 3 of count.
+    if (count > 8 || first + count >= (1u << 28))
+      throw Error(scene.path.string() + ": mesh '" + mesh.name + "' gives a BVH leaf the traversal cannot encode (" + std::to_string(count) +
+                  " triangles from " + std::to_string(first) + ")");
+    for (uint32_t i = 0; i < count; ++i) {
+      const uint32_t t = ids[i];
+      gpu::GpuTriangle tri;
+      tri.v0Primitive = glm::vec4(mesh.vertices[mesh.indices[t * 3]].position, std::bit_cast<float>(t));
+      tri.v1Material = glm::vec4(mesh.vertices[mesh.indices[t * 3 + 1]].position, std::bit_cast<float>(material[t]));
+      tri.v2Flags = glm::vec4(mesh.vertices[mesh.indices[t * 3 + 2]].position, std::bit_cast<float>(flags[t]));
+      out.triangles.push_back(tri);
+    }
+    return first;
+  });
+  info.root = tree.root;
+  info.nodeCount = tree.nodeCount;
+  info.sahCost = tree.sahCost;
+  return info;
+}
+
+}  // namespace
+
+void rebuildTlas(SceneBvh& bvh, const Scene& scene) {
+  const auto start = std::chrono::steady_clock::now();
+  // The TLAS always sits after the BLAS nodes: drop the old one.
+  bvh.nodes.resize(bvh.tlasNodeCount > 0 ? bvh.tlasRoot : bvh.nodes.size());
+  bvh.instances.clear();
+  std::vector<Box> boxes;
+  for (const Object& o : scene.objects) boxes.push_back({o.boundsMin, o.boundsMax});
+  const FlatTree tree = buildTree(boxes, kTlasMaxDepth, 1, bvh.nodes, [&](const uint32_t* ids, uint32_t count) {
+    const uint32_t first = uint32_t(bvh.instances.size());
+    for (uint32_t i = 0; i < count; ++i) {
+      const Object& o = scene.objects[ids[i]];
+      const glm::mat4 inv = glm::inverse(o.transform);
+      gpu::GpuInstance inst;
+      for (int r = 0; r < 3; ++r) inst.worldToObject[r] = glm::vec4(inv[0][r], inv[1][r], inv[2][r], inv[3][r]);
+      inst.blasObjectMask = glm::uvec4(bvh.blas[o.mesh].root, o.id, 0xFFu, 0u);
+      bvh.instances.push_back(inst);
+    }
+    return first;
+  });
+  bvh.tlasRoot = tree.root;
+  bvh.tlasNodeCount = tree.nodeCount;
+  bvh.nodes[RB_BVH_TLAS_ROOT_NODE] = bvh.nodes[tree.root];
+  bvh.tlasSahCost = tree.sahCost;
+  bvh.stats.tlasMs = msSince(start);
+  bvh.stats.nodes = bvh.nodes.size();
+}
+
+SceneBvh buildSceneBvh(const Scene& scene) {
+  SceneBvh bvh;
+  bvh.nodes.push_back({});  // node 0: the TLAS root's copy, filled by rebuildTlas
+  const auto start = std::chrono::steady_clock::now();
+  for (const Mesh& m : scene.meshes) bvh.blas.push_back(buildBlas(scene, m, bvh));
+  bvh.stats.blasMs = msSince(start);
+  rebuildTlas(bvh, scene);
+  bvh.stats.triangles = bvh.triangles.size();
+  bvh.stats.bytesPerTriangle = double(bvh.nodes.size() * sizeof(gpu::GpuBvhNode) + bvh.triangles.size() * sizeof(gpu::GpuTriangle)) /
+                               double(std::max<size_t>(bvh.triangles.size(), 1));
+  return bvh;
+}
+
+}  // namespace raybudget::bvh

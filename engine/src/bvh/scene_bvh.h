@@ -1,0 +1,46 @@
+// The two-level BVH of a scene in the GPU layout of shaders/shared/bvh.h: one BLAS per mesh,
+// built on the CPU with Embree's rtcBuildBVH (binned SAH), and a TLAS over the objects.
+// Plain C++ (Embree, no Vulkan).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "raybudget/scene.h"
+#include "shared/bvh.h"
+
+namespace raybudget::bvh {
+
+struct BlasInfo {
+  uint32_t root = 0;           // node index
+  uint32_t nodeCount = 0;
+  uint32_t firstTriangle = 0;
+  uint32_t triangleCount = 0;
+  float sahCost = 0.0f;        // SAH cost with traversal 1, intersection 1, relative to the root box
+};
+
+struct BuildStats {
+  double blasMs = 0.0;  // all meshes
+  double tlasMs = 0.0;
+  size_t nodes = 0;
+  size_t triangles = 0;
+  double bytesPerTriangle = 0.0;  // nodes + triangles (the instance array is per object)
+};
+
+struct SceneBvh {
+  std::vector<gpu::GpuBvhNode> nodes;        // node 0 (TLAS root copy), every BLAS, then the TLAS
+  std::vector<gpu::GpuTriangle> triangles;   // leaf order, per BLAS
+  std::vector<gpu::GpuInstance> instances;   // TLAS leaf order
+  std::vector<BlasInfo> blas;                // per mesh
+  uint32_t tlasRoot = 0;
+  uint32_t tlasNodeCount = 0;
+  float tlasSahCost = 0.0f;
+  BuildStats stats;
+};
+
+// Builds every BLAS and the TLAS. Objects get cull mask 0xFF.
+SceneBvh buildSceneBvh(const Scene& scene);
+
+// Rebuilds only the TLAS (objects moved; meshes unchanged), replacing the old TLAS nodes.
+void rebuildTlas(SceneBvh& bvh, const Scene& scene);
+
+}  // namespace raybudget::bvh

@@ -1,0 +1,32 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Batch tracer: one ray per invocation from a buffer, closest hit or any hit (push flags),
+// every candidate accepted. Used by the oracle tests and the throughput benchmark.
+#define RB_BVH_SET 0
+#define RB_BVH_BINDING 0
+#include "include/rayquery.glsl"
+
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 3, std430) readonly buffer RayBlock { GpuRay rays[]; };
+layout(set = 0, binding = 4, std430) writeonly buffer HitBlock { GpuHit hits[]; };
+layout(push_constant) uniform PushBlock {
+  uint count;
+  uint flags;
+} push;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= push.count) return;
+  GpuRay r = rays[i];
+  RayQuery q;
+  rqInitialize(q, push.flags, 0xFFu, r.originTMin.xyz, r.originTMin.w, r.dirTMax.xyz, r.dirTMax.w);
+  while (rqProceed(q)) rqConfirm(q);
+  GpuHit h;
+  bool hit = q.committedType == RB_RQ_HIT_TRIANGLE;
+  h.t = q.tMax;
+  h.object = q.committedObject;
+  h.primitive = q.committedPrimitive;
+  h.flags = (hit ? 1u : 0u) | (q.committedFrontFace ? 2u : 0u);
+  h.baryWork = vec4(q.committedBary, float(q.nodesVisited), float(q.trianglesTested));
+  hits[i] = h;
+}

@@ -1,0 +1,135 @@
+// The BVH build and the shared traversal, run on the CPU, against Embree: the same rays
+// must hit the same triangles at the same distances.
+#include <gtest/gtest.h>
+
+#include "bvh/cpu_rayquery.h"
+#include "bvh/embree_oracle.h"
+#include "support/gltf_fixture.h"
+#include "support/ray_sets.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+struct Agreement {
+  size_t rays = 0, hitMismatch = 0, primitiveMismatch = 0, tMismatch = 0;
+};
+
+// Both triangles lie in one plane (overlapping coplanar geometry): either is a right answer.
+bool coplanar(const Scene& scene, const bvh::OracleHit& a, const bvh::TraceResult& b) {
+  auto plane = [&](uint32_t object, uint32_t primitive) {
+    const Object& o = scene.objects[object];
+    const Mesh& m = scene.meshes[o.mesh];
+    glm::vec3 v[3];
+    for (int k = 0; k < 3; ++k) v[k] = glm::vec3(o.transform * glm::vec4(m.vertices[m.indices[primitive * 3 + uint32_t(k)]].position, 1.0f));
+    const glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
+    return glm::vec4(n, -glm::dot(n, v[0]));
+  };
+  const glm::vec4 pa = plane(a.object, a.primitive), pb = plane(b.object, b.primitive);
+  return std::fabs(std::fabs(glm::dot(glm::vec3(pa), glm::vec3(pb))) - 1.0f) < 1e-4f &&
+         std::fabs(std::fabs(pa.w) - std::fabs(pb.w)) < 1e-4f * (1.0f + std::fabs(pa.w));
+}
+
+Agreement compareClosest(const Scene& scene, const bvh::SceneBvh& bvh, const bvh::EmbreeOracle& oracle, const std::vector<bvh::OracleRay>& rays) {
+  Agreement a;
+  for (const bvh::OracleRay& r : rays) {
+    ++a.rays;
+    const bvh::OracleHit e = oracle.intersect(r);
+    const bvh::TraceResult c = bvh::traceCpu(bvh, r.origin, r.dir, r.tMin, r.tMax, 0u);
+    if (e.hit != c.hit) {
+      ++a.hitMismatch;
+      continue;
+    }
+    if (!e.hit) continue;
+    // 1e-4 relative, plus the float resolution of the coordinates involved: Embree intersects
+    // world-space triangles, we transform the ray into object space, so the two differ by a
+    // few ulps of the positions (which dominates for hits very close to the origin).
+    const float positionScale = glm::length(r.origin) + e.t * glm::length(r.dir);
+    if (std::fabs(e.t - c.t) > 1e-4f * e.t + 1e-5f * positionScale / glm::length(r.dir)) ++a.tMismatch;
+    else if ((e.object != c.object || e.primitive != c.primitive) && !coplanar(scene, e, c)) ++a.primitiveMismatch;
+  }
+  return a;
+}
+
+void expectAgreement(const Agreement& a, const std::string& what) {
+  SCOPED_TRACE(what);
+  ASSERT_GT(a.rays, 0u);
+  EXPECT_LE(double(a.hitMismatch), 1e-4 * double(a.rays)) << a.hitMismatch << " of " << a.rays << " rays disagree on hit/miss";
+  EXPECT_LE(double(a.tMismatch), 1e-4 * double(a.rays)) << a.tMismatch << " hits differ in t by more than 1e-4 relative";
+  EXPECT_LE(double(a.primitiveMismatch), 1e-4 * double(a.rays)) << a.primitiveMismatch << " hits at equal t on other, non-coplanar triangles";
+}
+
+void checkScene(const Scene& scene, const std::string& name) {
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  const bvh::EmbreeOracle oracle(scene);
+  const Camera cam = defaultCamera(scene, 4.0f / 3.0f);
+  const auto primary = test::primaryRays(cam, 160, 120);
+  const glm::vec3 light = 0.5f * (scene.boundsMin + scene.boundsMax) + glm::vec3(0.0f, glm::length(scene.boundsMax - scene.boundsMin), 0.0f);
+  const auto secondary = test::secondaryRays(scene, oracle, primary, light, 7);
+  expectAgreement(compareClosest(scene, bvh, oracle, primary), name + " primary");
+  expectAgreement(compareClosest(scene, bvh, oracle, secondary.incoherent), name + " incoherent");
+  size_t shadowMismatch = 0;
+  for (const bvh::OracleRay& r : secondary.shadow)
+    shadowMismatch += oracle.occluded(r) != bvh::traceCpu(bvh, r.origin, r.dir, r.tMin, r.tMax, RB_RQ_TERMINATE_ON_FIRST_HIT).hit;
+  EXPECT_LE(double(shadowMismatch), 1e-4 * double(secondary.shadow.size()) + 1.0) << name << " shadow rays";
+}
+
+TEST(BvhCpu, AgreesWithEmbreeOnTheDefaultScene) { checkScene(loadScene(test::defaultScenePath()), "default"); }
+
+TEST(BvhCpu, AgreesWithEmbreeOnEveryCiScene) {
+  RB_REQUIRE_SHARED_SCENES();
+  for (const auto& path : test::manifestScenes("ci")) checkScene(loadScene(path), path.filename().string());
+}
+
+TEST(BvhCpu, TreeIsWellFormed) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  // Every triangle appears exactly once per BLAS, every object once in the TLAS.
+  size_t triangles = 0;
+  for (const Mesh& m : scene.meshes) triangles += m.indices.size() / 3;
+  EXPECT_EQ(bvh.triangles.size(), triangles);
+  ASSERT_EQ(bvh.instances.size(), scene.objects.size());
+  std::vector<int> seen(scene.objects.size(), 0);
+  for (const gpu::GpuInstance& i : bvh.instances) ++seen[i.blasObjectMask.y];
+  for (int s : seen) EXPECT_EQ(s, 1);
+  // Child boxes contain their triangles (checked through the leaves of every BLAS).
+  for (const gpu::GpuBvhNode& n : bvh.nodes) {
+    for (int side = 0; side < 2; ++side) {
+      const glm::vec4 lo = side ? n.rightMinIndex : n.leftMinIndex, hi = side ? n.rightMaxCount : n.leftMaxCount;
+      const uint32_t index = std::bit_cast<uint32_t>(lo.w), count = std::bit_cast<uint32_t>(hi.w);
+      if (count == 0 || lo.x > hi.x) continue;  // inner node, or the empty child of a one-leaf tree
+      const std::ptrdiff_t at = &n - bvh.nodes.data();
+      if (at == RB_BVH_TLAS_ROOT_NODE || at >= std::ptrdiff_t(bvh.tlasRoot)) continue;  // TLAS leaves hold instances
+      for (uint32_t t = index; t < index + count; ++t)
+        for (const glm::vec4& v : {bvh.triangles[t].v0Primitive, bvh.triangles[t].v1Material, bvh.triangles[t].v2Flags})
+          EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::vec3(lo), glm::vec3(v))) && glm::all(glm::lessThanEqual(glm::vec3(v), glm::vec3(hi))));
+    }
+  }
+  EXPECT_GT(bvh.stats.bytesPerTriangle, 48.0);
+}
+
+TEST(BvhCpu, FlagsCullAndTerminate) {
+  const auto dir = test::freshTempDir("bvh-flags");
+  // Two parallel triangles facing +z at z = 0 and z = -1; the ray comes from +z.
+  const Scene scene = loadScene(
+      test::GltfFixture::triangles({{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {-1, -1, -1}, {1, -1, -1}, {0, 1, -1}}, {0, 1, 2, 3, 4, 5}).write(dir, "two"));
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  const glm::vec3 o(0, 0, 5), d(0, 0, -1);
+  const bvh::TraceResult closest = bvh::traceCpu(bvh, o, d, 0.0f, 100.0f, 0u);
+  ASSERT_TRUE(closest.hit);
+  EXPECT_FLOAT_EQ(closest.t, 5.0f);
+  EXPECT_EQ(closest.primitive, 0u);
+  EXPECT_TRUE(closest.frontFace) << "counter-clockwise seen from the ray origin";
+  EXPECT_FALSE(bvh::traceCpu(bvh, o, d, 0.0f, 100.0f, RB_RQ_CULL_FRONT).hit);
+  EXPECT_TRUE(bvh::traceCpu(bvh, o, d, 0.0f, 100.0f, RB_RQ_CULL_BACK).hit);
+  EXPECT_FALSE(bvh::traceCpu(bvh, o, -d, 0.0f, 100.0f, 0u).hit) << "nothing behind the origin";
+  const bvh::TraceResult back = bvh::traceCpu(bvh, glm::vec3(0, 0, -5), -d, 0.0f, 100.0f, RB_RQ_CULL_BACK);
+  EXPECT_FALSE(back.hit) << "seen from -z both triangles are back faces";
+  EXPECT_FALSE(bvh::traceCpu(bvh, o, d, 0.0f, 4.99f, 0u).hit) << "tMax excludes the hit";
+  const bvh::TraceResult beyond = bvh::traceCpu(bvh, o, d, 5.01f, 100.0f, 0u);
+  ASSERT_TRUE(beyond.hit);
+  EXPECT_FLOAT_EQ(beyond.t, 6.0f);
+}
+
+}  // namespace
+}  // namespace raybudget
