@@ -5,7 +5,7 @@
 #include "bvh/cpu_rayquery.h"
 #include "bvh/embree_oracle.h"
 #include "support/gltf_fixture.h"
-#include "support/ray_sets.h"
+#include "bvh/ray_sets.h"
 #include "support/test_scenes.h"
 
 namespace raybudget {
@@ -63,9 +63,9 @@ void checkScene(const Scene& scene, const std::string& name) {
   const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
   const bvh::EmbreeOracle oracle(scene);
   const Camera cam = defaultCamera(scene, 4.0f / 3.0f);
-  const auto primary = test::primaryRays(cam, 160, 120);
+  const auto primary = bvh::primaryRays(cam, 160, 120);
   const glm::vec3 light = 0.5f * (scene.boundsMin + scene.boundsMax) + glm::vec3(0.0f, glm::length(scene.boundsMax - scene.boundsMin), 0.0f);
-  const auto secondary = test::secondaryRays(scene, oracle, primary, light, 7);
+  const auto secondary = bvh::secondaryRays(scene, oracle, primary, light, 7);
   expectAgreement(compareClosest(scene, bvh, oracle, primary), name + " primary");
   expectAgreement(compareClosest(scene, bvh, oracle, secondary.incoherent), name + " incoherent");
   size_t shadowMismatch = 0;

@@ -1,13 +1,13 @@
-#include "support/ray_sets.h"
+#include "bvh/ray_sets.h"
 
 #include <cmath>
 
 #include "shared/offset_ray.h"
 
-namespace raybudget::test {
+namespace raybudget::bvh {
 
-std::vector<bvh::OracleRay> primaryRays(const Camera& camera, uint32_t width, uint32_t height) {
-  std::vector<bvh::OracleRay> rays;
+std::vector<OracleRay> primaryRays(const Camera& camera, uint32_t width, uint32_t height) {
+  std::vector<OracleRay> rays;
   const glm::mat4 inv = glm::inverse(camera.projection(float(width) / float(height)) * camera.view());
   for (uint32_t ty = 0; ty < height; ty += 8)
     for (uint32_t tx = 0; tx < width; tx += 8)
@@ -21,12 +21,12 @@ std::vector<bvh::OracleRay> primaryRays(const Camera& camera, uint32_t width, ui
   return rays;
 }
 
-SecondaryRays secondaryRays(const Scene& scene, const bvh::EmbreeOracle& oracle, const std::vector<bvh::OracleRay>& primary,
+SecondaryRays secondaryRays(const Scene& scene, const EmbreeOracle& oracle, const std::vector<OracleRay>& primary,
                             const glm::vec3& light, uint32_t seed) {
   SecondaryRays out;
   Rng rng(seed);
-  for (const bvh::OracleRay& r : primary) {
-    const bvh::OracleHit h = oracle.intersect(r);
+  for (const OracleRay& r : primary) {
+    const OracleHit h = oracle.intersect(r);
     if (!h.hit) continue;
     const Object& o = scene.objects[h.object];
     const Mesh& m = scene.meshes[o.mesh];
@@ -49,4 +49,4 @@ SecondaryRays secondaryRays(const Scene& scene, const bvh::EmbreeOracle& oracle,
   return out;
 }
 
-}  // namespace raybudget::test
+}  // namespace raybudget::bvh

@@ -1,4 +1,4 @@
-// Deterministic ray sets for tracer tests and benchmarks: primary rays of a camera in 8x8
+// Deterministic ray sets for the tracer tests and benchmarks: primary rays of a camera in 8x8
 // tile order, shadow rays from primary hits to a point, and incoherent rays (one random
 // hemisphere direction per primary hit).
 #pragma once
@@ -9,17 +9,17 @@
 #include "raybudget/camera.h"
 #include "raybudget/scene.h"
 
-namespace raybudget::test {
+namespace raybudget::bvh {
 
-std::vector<bvh::OracleRay> primaryRays(const Camera& camera, uint32_t width, uint32_t height);
+std::vector<OracleRay> primaryRays(const Camera& camera, uint32_t width, uint32_t height);
 
 // From each primary hit, offset along the geometric normal, towards `light` (shadow) or a
 // cosine-distributed direction about the normal (incoherent); misses produce no ray.
 struct SecondaryRays {
-  std::vector<bvh::OracleRay> shadow;
-  std::vector<bvh::OracleRay> incoherent;
+  std::vector<OracleRay> shadow;
+  std::vector<OracleRay> incoherent;
 };
-SecondaryRays secondaryRays(const Scene& scene, const bvh::EmbreeOracle& oracle, const std::vector<bvh::OracleRay>& primary,
+SecondaryRays secondaryRays(const Scene& scene, const EmbreeOracle& oracle, const std::vector<OracleRay>& primary,
                             const glm::vec3& light, uint32_t seed);
 
 // Small deterministic generator (PCG-style hash), the same on every platform.
@@ -32,4 +32,4 @@ struct Rng {
   }
 };
 
-}  // namespace raybudget::test
+}  // namespace raybudget::bvh

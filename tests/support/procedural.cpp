@@ -1,0 +1,118 @@
+#include "support/procedural.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+namespace raybudget::test {
+namespace {
+
+void finish(Mesh& m) {
+  m.primitives = {Primitive{0, uint32_t(m.indices.size()), 0}};
+  m.boundsMin = m.boundsMax = m.vertices[0].position;
+  for (const Vertex& v : m.vertices) {
+    m.boundsMin = glm::min(m.boundsMin, v.position);
+    m.boundsMax = glm::max(m.boundsMax, v.position);
+  }
+}
+
+}  // namespace
+
+Mesh icosphere(int subdivisions) {
+  const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  std::vector<glm::vec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (glm::vec3& v : p) v = glm::normalize(v);
+  std::vector<uint32_t> idx = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
+                               3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      p.push_back(glm::normalize(p[a] + p[b]));
+      return mid[key] = uint32_t(p.size() - 1);
+    };
+    std::vector<uint32_t> next;
+    for (size_t i = 0; i < idx.size(); i += 3) {
+      const uint32_t a = idx[i], b = idx[i + 1], c = idx[i + 2];
+      const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    idx.swap(next);
+  }
+  Mesh m;
+  m.name = "icosphere";
+  for (const glm::vec3& v : p) m.vertices.push_back(Vertex{v, v, {}, glm::vec4(1.0f)});
+  m.indices = idx;
+  finish(m);
+  return m;
+}
+
+Mesh subdividedCube(int n) {
+  Mesh m;
+  m.name = "cube";
+  std::map<std::tuple<int, int, int>, uint32_t> shared;  // lattice point -> vertex, so edges share vertices
+  auto vertex = [&](int x, int y, int z) {
+    const auto key = std::make_tuple(x, y, z);
+    auto it = shared.find(key);
+    if (it != shared.end()) return it->second;
+    const glm::vec3 p = glm::vec3(float(x), float(y), float(z)) * (2.0f / float(n)) - glm::vec3(1.0f);
+    m.vertices.push_back(Vertex{p, glm::normalize(p), {}, glm::vec4(1.0f)});
+    return shared[key] = uint32_t(m.vertices.size() - 1);
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side <= 1; ++side)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto lattice = [&](int a, int b) {
+            int c[3];
+            c[axis] = side * n;
+            c[(axis + 1) % 3] = a;
+            c[(axis + 2) % 3] = b;
+            return vertex(c[0], c[1], c[2]);
+          };
+          const uint32_t v00 = lattice(i, j), v10 = lattice(i + 1, j), v11 = lattice(i + 1, j + 1), v01 = lattice(i, j + 1);
+          if (side) m.indices.insert(m.indices.end(), {v00, v10, v11, v00, v11, v01});
+          else m.indices.insert(m.indices.end(), {v00, v11, v10, v00, v01, v11});
+        }
+  finish(m);
+  return m;
+}
+
+Mesh quad(float h) {
+  Mesh m;
+  m.name = "quad";
+  for (const glm::vec3& p : {glm::vec3(-h, 0, -h), glm::vec3(h, 0, -h), glm::vec3(h, 0, h), glm::vec3(-h, 0, h)})
+    m.vertices.push_back(Vertex{p, {0, 1, 0}, {}, glm::vec4(1.0f)});
+  m.indices = {0, 2, 1, 0, 3, 2};
+  finish(m);
+  return m;
+}
+
+Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform) {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.meshes.push_back(std::move(mesh));
+  Object o;
+  o.mesh = 0;
+  o.transform = transform;
+  o.boundsMin = glm::vec3(std::numeric_limits<float>::max());
+  o.boundsMax = glm::vec3(-std::numeric_limits<float>::max());
+  for (const Vertex& v : s.meshes[0].vertices) {
+    const glm::vec3 w = glm::vec3(transform * glm::vec4(v.position, 1.0f));
+    o.boundsMin = glm::min(o.boundsMin, w);
+    o.boundsMax = glm::max(o.boundsMax, w);
+  }
+  s.objects.push_back(o);
+  s.boundsMin = o.boundsMin;
+  s.boundsMax = o.boundsMax;
+  s.lights.push_back(defaultSun());
+  s.usesDefaultSun = true;
+  return s;
+}
+
+}  // namespace raybudget::test

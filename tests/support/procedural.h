@@ -1,0 +1,15 @@
+// Closed and flat meshes built in code for the tracer's robustness tests, and a one-object
+// Scene around a mesh (no file involved).
+#pragma once
+#include "raybudget/scene.h"
+
+namespace raybudget::test {
+
+Mesh icosphere(int subdivisions);        // unit radius, shared vertices: closed and watertight
+Mesh subdividedCube(int cellsPerEdge);   // [-1, 1]^3, shared vertices along every edge
+Mesh quad(float halfSize);               // the XZ plane, facing +y, two triangles
+
+// A scene holding `mesh` once, placed by `transform`, with a diffuse grey material.
+Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform = glm::mat4(1.0f));
+
+}  // namespace raybudget::test

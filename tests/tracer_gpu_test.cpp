@@ -1,0 +1,172 @@
+// The compute tracer on the GPU: the same hits as its CPU reference and as Embree, no ray
+// slipping through a closed mesh, and no self-intersection of offset secondary rays.
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "bvh/cpu_rayquery.h"
+#include "bvh/embree_oracle.h"
+#include "passes/batch_tracer.h"
+#include "shared/offset_ray.h"
+#include "support/procedural.h"
+#include "bvh/ray_sets.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+#include "vk/context.h"
+
+namespace raybudget {
+namespace {
+
+std::vector<gpu::GpuRay> toGpu(const std::vector<bvh::OracleRay>& rays) {
+  std::vector<gpu::GpuRay> out;
+  for (const bvh::OracleRay& r : rays) out.push_back({glm::vec4(r.origin, r.tMin), glm::vec4(r.dir, r.tMax)});
+  return out;
+}
+
+class TracerGpu : public ::testing::Test {
+ protected:
+  vk::Context ctx{vk::ContextOptions{true, ""}};
+  void TearDown() override { test::expectValidationClean(ctx.validationMessages()); }
+};
+
+TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  const bvh::EmbreeOracle oracle(scene);
+  passes::BatchTracer tracer(ctx, bvh);
+  const auto primary = bvh::primaryRays(defaultCamera(scene, 4.0f / 3.0f), 256, 192);
+  const auto secondary = bvh::secondaryRays(scene, oracle, primary, glm::vec3(-6.0f, 3.8f, -6.0f), 3);
+  for (const auto* set : {&primary, &secondary.incoherent}) {
+    const std::vector<gpu::GpuHit> hits = tracer.trace(toGpu(*set), 0u);
+    size_t cpuMismatch = 0, embreeMismatch = 0;
+    for (size_t i = 0; i < set->size(); ++i) {
+      const bvh::OracleRay& r = (*set)[i];
+      const bool gpuHit = hits[i].flags & 1u;
+      const bvh::TraceResult c = bvh::traceCpu(bvh, r.origin, r.dir, r.tMin, r.tMax, 0u);
+      // Same hits on the same triangles; t within a few ulps of the coordinates, since the
+      // GPU compiler may fuse the object-space transform's multiply-adds.
+      const float ulps = 1e-6f * (glm::length(r.origin) + c.t * glm::length(r.dir)) / glm::length(r.dir);
+      if (gpuHit != c.hit || (gpuHit && (hits[i].object != c.object || hits[i].primitive != c.primitive ||
+                                         std::fabs(hits[i].t - c.t) > 1e-6f * c.t + ulps)))
+        ++cpuMismatch;
+      const bvh::OracleHit e = oracle.intersect(r);
+      if (gpuHit != e.hit || (gpuHit && std::fabs(hits[i].t - e.t) > 1e-4f * e.t + 1e-5f * (glm::length(r.origin) + e.t)))
+        ++embreeMismatch;
+    }
+    EXPECT_EQ(cpuMismatch, 0u) << "GPU and CPU run the same traversal source";
+    EXPECT_LE(double(embreeMismatch), 1e-4 * double(set->size())) << embreeMismatch << " of " << set->size();
+  }
+  // Any-hit shadow rays agree with rtcOccluded1.
+  const std::vector<gpu::GpuHit> shadow = tracer.trace(toGpu(secondary.shadow), RB_RQ_TERMINATE_ON_FIRST_HIT);
+  size_t shadowMismatch = 0;
+  for (size_t i = 0; i < shadow.size(); ++i) shadowMismatch += bool(shadow[i].flags & 1u) != oracle.occluded(secondary.shadow[i]);
+  EXPECT_LE(double(shadowMismatch), 1e-4 * double(shadow.size())) << shadowMismatch << " of " << shadow.size();
+}
+
+// Rays aimed exactly at vertices and at points of shared edges of closed meshes must all
+// hit. Each ray comes from a random direction for which it enters the mesh through that
+// point (-dir lies inside the normal cone of every face there), so a miss can only be a
+// ray slipping between triangles.
+TEST_F(TracerGpu, NoRaySlipsThroughAClosedMesh) {
+  size_t total = 0;
+  for (const Mesh& mesh : {test::icosphere(3), test::subdividedCube(8)}) {
+    const Scene scene = test::sceneWithMesh(mesh, glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(1, 2, 3)));
+    const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+    passes::BatchTracer tracer(ctx, bvh);
+    const glm::mat4& xf = scene.objects[0].transform;
+    std::vector<glm::vec3> world;
+    for (const Vertex& v : mesh.vertices) world.push_back(glm::vec3(xf * glm::vec4(v.position, 1.0f)));
+    const size_t triCount = mesh.indices.size() / 3;
+    std::vector<glm::vec3> faceNormal(triCount);
+    std::vector<std::vector<uint32_t>> facesOfVertex(world.size());
+    for (uint32_t t = 0; t < triCount; ++t) {
+      const uint32_t* i = &mesh.indices[t * 3];
+      faceNormal[t] = glm::normalize(glm::cross(world[i[1]] - world[i[0]], world[i[2]] - world[i[0]]));
+      for (int k = 0; k < 3; ++k) facesOfVertex[i[k]].push_back(t);
+    }
+    bvh::Rng rng(11);
+    std::vector<gpu::GpuRay> rays;
+    const size_t perMesh = 500000;
+    while (rays.size() < perMesh) {
+      const uint32_t tri = uint32_t(rng.next() * float(triCount)) % uint32_t(triCount);
+      const uint32_t a = mesh.indices[tri * 3], b = mesh.indices[tri * 3 + 1];
+      const bool atVertex = rays.size() % 2 == 1;
+      const glm::vec3 target = atVertex ? world[a] : world[a] + (world[b] - world[a]) * rng.next();
+      // The faces through the target: all faces of vertex a, or the two sharing edge a-b.
+      std::vector<glm::vec3> normals;
+      for (uint32_t f : facesOfVertex[a]) {
+        const uint32_t* i = &mesh.indices[f * 3];
+        if (atVertex || i[0] == b || i[1] == b || i[2] == b) normals.push_back(faceNormal[f]);
+      }
+      glm::vec3 mean(0.0f);
+      for (const glm::vec3& n : normals) mean += n;
+      mean = glm::normalize(mean);
+      glm::vec3 out;
+      bool ok = false;
+      for (int attempt = 0; attempt < 32 && !ok; ++attempt) {
+        out = glm::normalize(mean + glm::vec3(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f) * 1.5f);
+        ok = std::all_of(normals.begin(), normals.end(), [&](const glm::vec3& n) { return glm::dot(out, n) > 0.05f; });
+      }
+      if (!ok) continue;
+      const glm::vec3 from = target + out * 4.0f;
+      rays.push_back({glm::vec4(from, 0.0f), glm::vec4(target - from, 1.5f)});  // t = 1 reaches the target
+    }
+    const std::vector<gpu::GpuHit> hits = tracer.trace(rays, RB_RQ_TERMINATE_ON_FIRST_HIT);
+    size_t leaks = 0, cpuLeaks = 0;
+    for (size_t i = 0; i < hits.size(); ++i) {
+      if ((hits[i].flags & 1u) != 0u) continue;
+      ++leaks;
+      cpuLeaks += !bvh::traceCpu(bvh, glm::vec3(rays[i].originTMin), glm::vec3(rays[i].dirTMax), 0.0f, 1.5f, RB_RQ_TERMINATE_ON_FIRST_HIT).hit;
+    }
+    EXPECT_EQ(leaks, 0u) << mesh.name << ": rays slipped through on the GPU";
+    EXPECT_EQ(cpuLeaks, 0u) << mesh.name << ": rays slipped through the CPU reference";
+    total += rays.size();
+  }
+  EXPECT_GE(total, 1000000u);
+}
+
+// Offset secondary origins: shadow rays from points on a plane and a sphere towards a light
+// on their side never hit their own surface, at any scale and far from the origin.
+TEST_F(TracerGpu, OffsetOriginsNeverSelfIntersect) {
+  size_t rays = 0, acne = 0;
+  for (float scale : {1e-3f, 1.0f, 1e4f})
+    for (float distance : {0.0f, 1e3f, 1e5f})
+      for (int shape = 0; shape < 2; ++shape) {
+        const glm::vec3 place(distance, distance * 0.5f, -distance);
+        const glm::mat4 xf = glm::translate(glm::mat4(1.0f), place) * glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+        const Scene scene = test::sceneWithMesh(shape == 0 ? test::quad(1.0f) : test::icosphere(3), xf);
+        const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+        passes::BatchTracer tracer(ctx, bvh);
+        // Primary rays from above hit the surface; their hit points become shadow-ray origins.
+        bvh::Rng rng(5);
+        std::vector<gpu::GpuRay> primary;
+        for (int i = 0; i < 4096; ++i) {
+          const glm::vec3 target = place + glm::vec3(rng.next() - 0.5f, 0.0f, rng.next() - 0.5f) * (1.2f * scale);
+          const glm::vec3 from = target + glm::vec3(0.3f, 3.0f, 0.2f) * scale;
+          primary.push_back({glm::vec4(from, 0.0f), glm::vec4(target + glm::vec3(0, shape ? 0.5f * scale : 0.0f, 0) - from, 1e30f)});
+        }
+        const std::vector<gpu::GpuHit> hits = tracer.trace(primary, 0u);
+        const Mesh& mesh = scene.meshes[0];
+        std::vector<gpu::GpuRay> shadow;
+        for (size_t i = 0; i < hits.size(); ++i) {
+          if (!(hits[i].flags & 1u)) continue;
+          glm::vec3 v[3];
+          for (int k = 0; k < 3; ++k) v[k] = glm::vec3(xf * glm::vec4(mesh.vertices[mesh.indices[hits[i].primitive * 3 + uint32_t(k)]].position, 1.0f));
+          const float b1 = hits[i].baryWork.x, b2 = hits[i].baryWork.y;
+          const glm::vec3 p = v[0] * (1.0f - b1 - b2) + v[1] * b1 + v[2] * b2;
+          glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
+          if (glm::dot(n, glm::vec3(primary[i].dirTMax)) > 0.0f) n = -n;
+          const glm::vec3 origin = gpu::offsetRay(p, n);
+          // Light low over the surface: grazing shadow rays are where acne appears first.
+          const glm::vec3 toLight = glm::normalize(n + glm::vec3(3.0f, 0.0f, 1.0f) * 0.9f);
+          shadow.push_back({glm::vec4(origin, 0.0f), glm::vec4(toLight * (dot(toLight, n) > 0.0f ? 1.0f : -1.0f), 1e30f)});
+        }
+        // A plane cannot shadow itself; a convex sphere neither (the ray leaves towards its side).
+        for (const gpu::GpuHit& h : tracer.trace(shadow, RB_RQ_TERMINATE_ON_FIRST_HIT)) acne += h.flags & 1u;
+        rays += shadow.size();
+      }
+  EXPECT_GT(rays, 60000u);
+  EXPECT_EQ(acne, 0u) << acne << " of " << rays << " shadow rays hit their own surface";
+}
+
+}  // namespace
+}  // namespace raybudget
