@@ -39,6 +39,7 @@ struct RayQuery {
   uint leafCursor;   // BLAS leaf triangles still to test: [leafCursor, leafEnd)
   uint leafEnd;
   uint instance;     // the instance (TLAS leaf) whose BLAS is being traversed
+  uint instanceObject;  // its object ID
   bool inBlas;
   bool done;
   // Committed hit; tMax shrinks to it.
@@ -81,6 +82,7 @@ RB_INLINE void rqInitialize(RB_INOUT(RayQuery) q, uint flags, uint cullMask, vec
   q.leafCursor = 0u;
   q.leafEnd = 0u;
   q.instance = 0u;
+  q.instanceObject = 0u;
   q.inBlas = false;
   q.done = false;
   q.committedType = RB_RQ_HIT_NONE;
@@ -173,7 +175,7 @@ RB_INLINE bool rqTestTriangle(RB_INOUT(RayQuery) q, uint index) {
   if ((q.flags & RB_RQ_CULL_BACK) != 0u && !front) return false;
   if ((q.flags & RB_RQ_CULL_FRONT) != 0u && front) return false;
   q.candidateT = t;
-  q.candidateObject = RB_BVH_INSTANCE(q.instance).blasObjectMask.y;
+  q.candidateObject = q.instanceObject;
   q.candidatePrimitive = floatBitsToUint(tri.v0Primitive.w);
   q.candidateMaterial = floatBitsToUint(tri.v1Material.w);
   q.candidateBary = vec2(bary.y, bary.z);
@@ -188,24 +190,28 @@ RB_INLINE bool rqTestTriangle(RB_INOUT(RayQuery) q, uint index) {
 
 // Advances the traversal; true: a non-opaque candidate waits for rqConfirm (or is ignored
 // by calling rqProceed again); false: traversal is complete.
+//
+// "While-while" structure (Aila & Laine, "Understanding the Efficiency of Ray Traversal on
+// GPUs", 2009): a loop that only visits inner nodes until it holds a leaf, then a loop that
+// only tests that leaf's triangles. SIMD lanes then run the same kind of work together;
+// one loop doing one step of either kind per iteration made every lane pay for both.
 RB_INLINE bool rqProceed(RB_INOUT(RayQuery) q) {
   while (!q.done) {
-    if (q.leafCursor < q.leafEnd) {
+    while (q.leafCursor < q.leafEnd) {
       uint index = q.leafCursor;
       ++q.leafCursor;
       if (rqTestTriangle(q, index)) return true;
-      continue;
+      if (q.done) return false;
     }
-    if (q.node == RB_RQ_STACK_MARKER) {
-      rqPop(q);
-      if (q.node == RB_RQ_STACK_MARKER) q.done = true;
-      continue;
-    }
+    if (q.node == RB_RQ_STACK_MARKER) rqPop(q);
+    while (q.node != RB_RQ_STACK_MARKER && (q.node & RB_RQ_LEAF_BIT) == 0u) rqVisitInner(q, q.node);
     uint entry = q.node;
+    if (entry == RB_RQ_STACK_MARKER) {
+      q.done = true;
+      break;
+    }
     q.node = RB_RQ_STACK_MARKER;
-    if ((entry & RB_RQ_LEAF_BIT) == 0u) {
-      rqVisitInner(q, entry);
-    } else if (q.inBlas) {
+    if (q.inBlas) {
       q.leafCursor = entry & 0x0FFFFFFFu;
       q.leafEnd = q.leafCursor + ((entry >> 28) & 7u) + 1u;
     } else {
@@ -214,6 +220,7 @@ RB_INLINE bool rqProceed(RB_INOUT(RayQuery) q) {
       GpuInstance instance = RB_BVH_INSTANCE(inst);
       if ((instance.blasObjectMask.z & q.cullMask) == 0u) continue;
       q.instance = inst;
+      q.instanceObject = instance.blasObjectMask.y;
       vec4 o = vec4(q.worldOrigin, 1.0f), d = vec4(q.worldDir, 0.0f);
       rqSetRay(q, vec3(dot(instance.worldToObject[0], o), dot(instance.worldToObject[1], o), dot(instance.worldToObject[2], o)),
                vec3(dot(instance.worldToObject[0], d), dot(instance.worldToObject[1], d), dot(instance.worldToObject[2], d)));
