@@ -15,6 +15,9 @@ layout(location = 2) out vec4 outRoughTransIor;
 layout(location = 3) out vec4 outEmissive;
 layout(location = 4) out uint outObjectId;
 layout(location = 5) out uint outMaterialId;
+layout(location = 6) out vec4 outPosition;
+
+#include "include/octahedral.glsl"
 
 vec4 sampleTexture(int index, vec2 uv, vec4 fallback) {
   return index >= 0 ? texture(textures[nonuniformEXT(index)], uv) : fallback;
@@ -60,4 +63,9 @@ void main() {
   outEmissive = vec4(emissive, 0.0);
   outObjectId = objects[push.objectMaterial.x].ids.x;
   outMaterialId = push.objectMaterial.y;
+  // The triangle's plane normal from screen derivatives (exact for the plane: every sample
+  // of a quad, helpers included, lies on it), turned towards the viewer.
+  vec3 ng = normalize(cross(dFdx(inWorld), dFdy(inWorld)));
+  if (dot(ng, frame.cameraPositionNear.xyz - inWorld) < 0.0) ng = -ng;
+  outPosition = vec4(inWorld, uintBitsToFloat(packSnorm2x16(octEncode(ng))));
 }

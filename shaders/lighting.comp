@@ -5,8 +5,9 @@
 #include "include/gbuffer.glsl"
 #include "include/shadows.glsl"
 
-// Deferred direct lighting: every punctual light (GGX/Smith) with its shadow-map
-// visibility, emissive, and diffuse ambient from the environment. Background pixels get
+// Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
+// ray-traced shadow mask where traced, else the shadow maps), emissive, and diffuse ambient
+// from the environment. Background pixels get
 // the sky. Writes directImage.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
@@ -34,6 +35,8 @@ void main() {
   vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
   vec3 N = s.normal;
   vec3 color = s.emissive;
+  // Ray-traced visibility replaces the shadow maps where the shadow pass traced.
+  bool rtShadows = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u;
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
     uint type = uint(light.directionType.w);
@@ -43,7 +46,7 @@ void main() {
     if (type == RB_LIGHT_DIRECTIONAL) {
       L = -light.directionType.xyz;
       if (dot(N, L) <= 0.0) continue;
-      visibility = shadowFromMap(light, s.position, N);
+      visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : shadowFromMap(light, s.position, N);
     } else {
       vec3 toLight = light.positionRange.xyz - s.position;
       float d = length(toLight);
@@ -55,9 +58,9 @@ void main() {
         float t = clamp((cd - light.spotShadow.y) / max(light.spotShadow.x - light.spotShadow.y, 1e-4), 0.0, 1.0);
         attenuation *= t * t;
         if (attenuation <= 0.0) continue;
-        visibility = shadowFromMap(light, s.position, N);
+        visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : shadowFromMap(light, s.position, N);
       } else {
-        visibility = shadowFromCube(light, s.position, N);
+        visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : shadowFromCube(light, s.position, N);
       }
     }
     color += shadePbr(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.ior) * light.colorIntensity.rgb * attenuation *

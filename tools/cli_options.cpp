@@ -25,6 +25,11 @@ render options:
   --exposure E          linear exposure before tonemapping (default 1)
   --sky S               sky radiance scale (default 0.3)
   --env FILE.exr        equirectangular HDR environment instead of the procedural sky
+  --policy none|all     which objects get ray-traced shadows, reflections and refractions:
+                        none (all raster fallbacks, the default) or all (the full-RT reference)
+  --depth D             reflection/refraction bounces, 1..4 (default 1)
+  --no-rt-shadows, --no-rt-reflections, --no-rt-refractions
+                        keep that effect on its raster fallback even where traced
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
 )";
 
@@ -72,6 +77,15 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--exposure") c.settings.exposure = parsePositive(a, value());
     else if (a == "--sky") c.settings.skyIntensity = parsePositive(a, value());
     else if (a == "--env") c.settings.environmentMap = value();
+    else if (a == "--policy") {
+      const std::string p = value();
+      if (p == "none") c.settings.policy = Policy::None;
+      else if (p == "all") c.settings.policy = Policy::All;
+      else throw Error("--policy must be none or all (the budgeted policies come with the GPU heuristic), got '" + p + "'");
+    } else if (a == "--depth") c.settings.rayTracing.depth = parseUint(a, value(), 1, 4);
+    else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
+    else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
+    else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
     else if (!a.empty() && a[0] == '-') throw Error("unknown option " + a + " (see raybudget --help)");
     else if (c.scene.empty()) c.scene = a;

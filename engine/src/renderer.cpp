@@ -6,6 +6,8 @@
 #include <cstring>
 
 #include "compose_comp.h"
+#include "rt_effects_comp.h"
+#include "rt_shadows_comp.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
 #include "passes/descriptors.h"
@@ -23,11 +25,15 @@
 
 namespace raybudget {
 
+const char* policyName(Policy policy) { return policy == Policy::All ? "all" : "none"; }
+
 const char* passName(Pass pass) {
   switch (pass) {
     case Pass::GBuffer: return "gbuffer";
     case Pass::ShadowMaps: return "shadow_maps";
     case Pass::Environment: return "environment";
+    case Pass::TraceShadows: return "trace_shadows";
+    case Pass::TraceEffects: return "trace_effects";
     case Pass::Lighting: return "lighting";
     case Pass::EnvFallback: return "env_fallback";
     case Pass::Compose: return "compose";
@@ -52,6 +58,8 @@ void validateSettings(const RenderSettings& s) {
   if (s.shadowMapSize < 16 || s.shadowMapSize > 8192) throw Error("shadow map size must be within 16..8192");
   if (!std::isfinite(s.exposure) || s.exposure <= 0.0f) throw Error("exposure must be a positive finite number");
   if (!std::isfinite(s.skyIntensity) || s.skyIntensity < 0.0f) throw Error("sky intensity must be a non-negative finite number");
+  if (s.rayTracing.depth < 1 || s.rayTracing.depth > RB_RT_MAX_DEPTH)
+    throw Error("ray-tracing depth must be within 1.." + std::to_string(RB_RT_MAX_DEPTH));
 }
 
 }  // namespace
@@ -83,6 +91,8 @@ struct Renderer::Impl {
   passes::ScreenPass lighting;
   passes::ScreenPass envFallback;
   passes::ScreenPass compose;
+  passes::ScreenPass traceShadows;
+  passes::ScreenPass traceEffects;
   Slot slots[kFramesInFlight];
   uint64_t frameIndex = 0;
   bool environmentReady = false;
@@ -92,7 +102,7 @@ struct Renderer::Impl {
         sunDirection(sunOf(s)),
         ctx(vk::ContextOptions{rs.validation, rs.device}),
         scene(passes::uploadScene(ctx, s, rs)),
-        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap)),
+        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount)),
         samplers(passes::createSamplers(ctx)),
         setLayout(passes::createSetLayout(ctx, uint32_t(scene.textures.size()))),
         pipelineLayout(makePipelineLayout()),
@@ -104,7 +114,9 @@ struct Renderer::Impl {
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
         envFallback(ctx, pipelineLayout, kSpirv_env_fallback_comp),
-        compose(ctx, pipelineLayout, kSpirv_compose_comp) {
+        compose(ctx, pipelineLayout, kSpirv_compose_comp),
+        traceShadows(ctx, pipelineLayout, kSpirv_rt_shadows_comp),
+        traceEffects(ctx, pipelineLayout, kSpirv_rt_effects_comp) {
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
@@ -114,7 +126,7 @@ struct Renderer::Impl {
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr})
+      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask})
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       passes::ShadowMapPass::initialize(cmd, targets);
@@ -198,7 +210,20 @@ struct Renderer::Impl {
     u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
     u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
     u.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
+    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, 0u, 0u);
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
+  }
+
+  // RB_RT_* bits of the effects traced this frame: with policy none, nothing.
+  uint32_t tracedEffects() const {
+    if (settings.policy == Policy::None) return 0u;
+    const RayTracingSettings& rt = settings.rayTracing;
+    return (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
+  }
+
+  void computeToCompute(VkCommandBuffer cmd) {
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
 
   void record(Slot& slot, const glm::mat4& viewProj) {
@@ -218,16 +243,26 @@ struct Renderer::Impl {
       body();
       timestamps.end(cmd, s, uint32_t(pass));
     };
+    // Skip what the frame does not need: no shadow maps when every pixel traces its
+    // shadows, no trace dispatch when nothing is traced.
+    const uint32_t traced = tracedEffects();
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
-    if (shadowMaps.needed(scene)) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
+    if (shadowMaps.needed(scene) && !(traced & RB_RT_SHADOWS)) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
     if (!environmentReady) {
       timed(Pass::Environment, [&] { environment.record(fc); });
       environmentReady = true;
     }
+    if (traced & RB_RT_SHADOWS) {
+      timed(Pass::TraceShadows, [&] { traceShadows.record(fc); });
+      computeToCompute(cmd);
+    }
     timed(Pass::Lighting, [&] { lighting.record(fc); });
     timed(Pass::EnvFallback, [&] { envFallback.record(fc); });
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    if (traced & (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS)) {
+      computeToCompute(cmd);
+      timed(Pass::TraceEffects, [&] { traceEffects.record(fc); });
+    }
+    computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });
     VK_CHECK(vkEndCommandBuffer(cmd));
   }
@@ -271,42 +306,59 @@ std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->
 
 std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
 
-FrameImages Renderer::readback() {
+FrameImages Renderer::readback(bool gbufferDetail) {
   Impl& r = *impl_;
   if (r.frameIndex == 0) throw Error("readback() before any frame was rendered");
   VK_CHECK(vkQueueWaitIdle(r.ctx.queue()));
   const passes::FrameTargets& t = r.targets;
   const VkDeviceSize pixels = VkDeviceSize(t.width) * t.height;
-  vk::Buffer ldr = vk::createBuffer(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-  vk::Buffer hdr = vk::createBuffer(r.ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-  vk::Buffer ids = vk::createBuffer(r.ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  const uint32_t maskLayers = t.shadowMask.desc.layers;
+  struct Source {
+    const vk::Image* image;
+    VkImageLayout layout;  // the layout the frame keeps it in
+    VkDeviceSize bytes;
+    uint32_t layers;
+  };
+  std::vector<Source> sources = {{&t.ldr, VK_IMAGE_LAYOUT_GENERAL, pixels * 4, 1},
+                                 {&t.hdr, VK_IMAGE_LAYOUT_GENERAL, pixels * 8, 1},
+                                 {&t.objectId, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 4, 1}};
+  if (gbufferDetail) {
+    sources.push_back({&t.position, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 16, 1});
+    sources.push_back({&t.shadowMask, VK_IMAGE_LAYOUT_GENERAL, pixels * 4 * maskLayers, maskLayers});
+    sources.push_back({&t.normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 8, 1});
+  }
+  std::vector<vk::Buffer> buffers;
+  for (const Source& src : sources) buffers.push_back(vk::createBuffer(r.ctx, src.bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
   r.ctx.submitAndWait([&](VkCommandBuffer cmd) {
     // Each source goes to TRANSFER_SRC for its copy and back to the layout the frame expects.
-    const std::pair<const vk::Image*, VkImageLayout> sources[] = {
-        {&t.ldr, VK_IMAGE_LAYOUT_GENERAL}, {&t.hdr, VK_IMAGE_LAYOUT_GENERAL}, {&t.objectId, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-    const VkBuffer destinations[] = {ldr.buffer, hdr.buffer, ids.buffer};
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {t.width, t.height, 1};
-    for (size_t i = 0; i < 3; ++i) {
-      const auto [img, layout] = sources[i];
-      vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                       VK_ACCESS_2_TRANSFER_READ_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-      vkCmdCopyImageToBuffer(cmd, img->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destinations[i], 1, &copy);
-      vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
-                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
+    for (size_t i = 0; i < sources.size(); ++i) {
+      const Source& src = sources[i];
+      vk::imageBarrier(cmd, *src.image, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT, src.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+      VkBufferImageCopy copy{};
+      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, src.layers};
+      copy.imageExtent = {t.width, t.height, 1};
+      vkCmdCopyImageToBuffer(cmd, src.image->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffers[i].buffer, 1, &copy);
+      vk::imageBarrier(cmd, *src.image, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, src.layout);
     }
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   });
   FrameImages out;
   out.width = t.width;
   out.height = t.height;
-  out.ldrRgba8.resize(size_t(pixels) * 4);
-  out.hdrRgba16.resize(size_t(pixels) * 4);
-  out.objectIds.resize(size_t(pixels));
-  std::memcpy(out.ldrRgba8.data(), ldr.mapped, out.ldrRgba8.size());
-  std::memcpy(out.hdrRgba16.data(), hdr.mapped, out.hdrRgba16.size() * 2);
-  std::memcpy(out.objectIds.data(), ids.mapped, out.objectIds.size() * 4);
+  auto take = [&](auto& vec, size_t i) {
+    vec.resize(size_t(sources[i].bytes) / sizeof(vec[0]));
+    std::memcpy(vec.data(), buffers[i].mapped, size_t(sources[i].bytes));
+  };
+  take(out.ldrRgba8, 0);
+  take(out.hdrRgba16, 1);
+  take(out.objectIds, 2);
+  if (gbufferDetail) {
+    take(out.positions, 3);
+    take(out.shadowMask, 4);
+    take(out.normals, 5);
+  }
   return out;
 }
 

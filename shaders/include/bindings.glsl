@@ -39,4 +39,12 @@ layout(set = 0, binding = 22, rgba16f) uniform writeonly imageCube envStorage[RB
 // An HDR environment image (equirectangular) that replaces the procedural sky when given.
 layout(set = 0, binding = 23) uniform sampler2D envSource;
 
+// Ray tracing: the BVH (bindings 24-26, see rayquery.glsl), the mesh indices for hit
+// attributes, and the ray-traced shadow mask (one layer per light).
+#define RB_BVH_SET 0
+#define RB_BVH_BINDING 24
+layout(set = 0, binding = 27, std430) readonly buffer IndexBlock { uint meshIndices[]; };
+layout(set = 0, binding = 28, r32f) uniform image2DArray shadowMask;
+layout(set = 0, binding = 29) uniform sampler2D gPosition;  // xyz world position, w packed geometric normal
+
 #endif

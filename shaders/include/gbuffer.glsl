@@ -2,8 +2,10 @@
 #ifndef RB_GBUFFER_GLSL
 #define RB_GBUFFER_GLSL
 
+#include "include/octahedral.glsl"
+
 struct Surface {
-  vec3 position;
+  vec3 position;          // reconstructed from depth (raster passes)
   vec3 normal;
   vec3 baseColor;
   float metallic;
@@ -44,6 +46,14 @@ bool readSurface(ivec2 pixel, out Surface s) {
   s.emissive = texelFetch(gEmissive, pixel, 0).rgb;
   s.materialId = texelFetch(gMaterialId, pixel, 0).r;
   return true;
+}
+
+// The exact world position and the geometric normal (towards the viewer) of a pixel, for
+// secondary rays.
+void readExactSurface(ivec2 pixel, out vec3 position, out vec3 geometricNormal) {
+  vec4 p = texelFetch(gPosition, pixel, 0);
+  position = p.xyz;
+  geometricNormal = octDecode(unpackSnorm2x16(floatBitsToUint(p.w)));
 }
 
 #endif

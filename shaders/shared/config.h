@@ -18,6 +18,16 @@
 #define RB_MATERIAL_ALPHA_MASK 2u
 #define RB_MATERIAL_UNLIT 4u
 
+// Ray-traced effects (FrameUniforms.rayTracing.x bits).
+#define RB_RT_SHADOWS 1u
+#define RB_RT_REFLECTIONS 2u
+#define RB_RT_REFRACTIONS 4u
+// Surfaces rougher than this keep the prefiltered environment for their reflections: a
+// single mirror ray would be noise on them.
+#define RB_RT_MAX_ROUGHNESS 0.35
+// Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
+#define RB_RT_MAX_DEPTH 4
+
 // Upper bound of punctual lights a scene may carry: the lighting loop is per pixel, and
 // beyond this count a deferred renderer would cluster lights (not needed by our scenes).
 #define RB_MAX_LIGHTS 64

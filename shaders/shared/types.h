@@ -26,7 +26,7 @@ struct GpuObject {
   mat4 model;
   mat4 normalMatrix;        // inverse-transpose of model (upper 3x3 used)
   vec4 boundsCenterRadius;  // world-space bounding sphere
-  uvec4 ids;                // x object ID, yzw unused
+  uvec4 ids;                // x object ID, y first index of its mesh, z its vertex offset, w unused
 };
 
 // 96 bytes: glTF metallic-roughness material with the transmission/volume extensions.
@@ -49,7 +49,7 @@ struct GpuLight {
   mat4 shadowViewProj;  // directional / spot: world -> shadow clip space
 };
 
-// Per-frame constants (uniform buffer), 320 bytes.
+// Per-frame constants (uniform buffer), 336 bytes.
 struct FrameUniforms {
   mat4 view;
   mat4 proj;
@@ -59,6 +59,7 @@ struct FrameUniforms {
   uvec4 sizeLightsFrame;    // x width, y height, z light count, w frame index
   vec4 sunDirection;        // xyz direction towards the sun (procedural sky), w sky intensity
   vec4 exposure;            // x exposure (linear scale before tonemapping), yzw unused
+  uvec4 rayTracing;         // x effects traced (RB_RT_* bits, 0: all raster), y bounce depth, zw unused
 };
 
 // Push constants for the raster passes and the compute passes, 80 bytes (the guaranteed

@@ -93,6 +93,27 @@ Mesh quad(float h) {
   return m;
 }
 
+void addObject(Scene& scene, Mesh mesh, const glm::mat4& transform, const Material& material) {
+  scene.materials.push_back(material);
+  for (Primitive& p : mesh.primitives) p.material = int32_t(scene.materials.size() - 1);
+  scene.meshes.push_back(std::move(mesh));
+  Object o;
+  o.id = uint32_t(scene.objects.size());
+  o.mesh = uint32_t(scene.meshes.size() - 1);
+  o.transform = transform;
+  o.boundsMin = glm::vec3(std::numeric_limits<float>::max());
+  o.boundsMax = glm::vec3(-std::numeric_limits<float>::max());
+  for (const Vertex& v : scene.meshes.back().vertices) {
+    const glm::vec3 w = glm::vec3(transform * glm::vec4(v.position, 1.0f));
+    o.boundsMin = glm::min(o.boundsMin, w);
+    o.boundsMax = glm::max(o.boundsMax, w);
+  }
+  scene.boundsMin = scene.objects.empty() ? o.boundsMin : glm::min(scene.boundsMin, o.boundsMin);
+  scene.boundsMax = scene.objects.empty() ? o.boundsMax : glm::max(scene.boundsMax, o.boundsMax);
+  scene.objects.push_back(o);
+  scene.stats.triangles += scene.meshes.back().indices.size() / 3;
+}
+
 Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform) {
   Scene s;
   s.materials.push_back(Material{});

@@ -12,4 +12,7 @@ Mesh quad(float halfSize);               // the XZ plane, facing +y, two triangl
 // A scene holding `mesh` once, placed by `transform`, with a diffuse grey material.
 Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform = glm::mat4(1.0f));
 
+// Adds `mesh` with its own `material` as a new object and grows the scene bounds.
+void addObject(Scene& scene, Mesh mesh, const glm::mat4& transform, const Material& material);
+
 }  // namespace raybudget::test

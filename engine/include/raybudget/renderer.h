@@ -13,6 +13,18 @@
 
 namespace raybudget {
 
+// Which objects get ray-traced effects. The budgeted heuristics (the paper's selection graph
+// and ours) come with the GPU heuristic; today: none or all.
+enum class Policy { None, All };
+const char* policyName(Policy policy);
+
+struct RayTracingSettings {
+  bool shadows = true;       // any-hit rays per light instead of shadow maps
+  bool reflections = true;   // mirror rays on surfaces with roughness <= 0.35
+  bool refractions = true;   // rays through transmissive surfaces
+  uint32_t depth = 1;        // reflection / refraction bounces, 1..4
+};
+
 struct RenderSettings {
   uint32_t width = 1280;
   uint32_t height = 720;
@@ -22,10 +34,12 @@ struct RenderSettings {
   float exposure = 1.0f;
   float skyIntensity = 0.3f;       // sky radiance scale (ambient, reflections, background)
   std::string environmentMap;      // equirectangular OpenEXR replacing the procedural sky
+  Policy policy = Policy::None;
+  RayTracingSettings rayTracing;
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.
-enum class Pass : uint32_t { GBuffer, ShadowMaps, Environment, Lighting, EnvFallback, Compose, Count };
+enum class Pass : uint32_t { GBuffer, ShadowMaps, Environment, TraceShadows, Lighting, EnvFallback, TraceEffects, Compose, Count };
 inline constexpr size_t kPassCount = size_t(Pass::Count);
 const char* passName(Pass pass);
 
@@ -41,6 +55,11 @@ struct FrameImages {
   std::vector<uint8_t> ldrRgba8;    // tonemapped sRGB
   std::vector<uint16_t> hdrRgba16;  // linear HDR, IEEE half floats
   std::vector<uint32_t> objectIds;  // G-buffer object IDs (RB_NO_OBJECT = 0xFFFFFFFF for none)
+  // With readback(true): G-buffer world positions (xyz; w packs the geometric normal) and
+  // the ray-traced shadow mask (light-major: mask[light * pixels + pixel]).
+  std::vector<float> positions;
+  std::vector<uint16_t> normals;  // shading normals, RGBA half floats
+  std::vector<float> shadowMask;
 };
 
 class Renderer {
@@ -57,8 +76,9 @@ class Renderer {
   // Waits for every submitted frame and returns the timings not yet returned.
   std::vector<FrameTiming> finish();
 
-  // The images of the last rendered frame (waits for it).
-  FrameImages readback();
+  // The images of the last rendered frame (waits for it); `gbufferDetail` adds positions and
+  // the shadow mask (for oracle tests).
+  FrameImages readback(bool gbufferDetail = false);
 
   std::string deviceName() const;
   std::vector<std::string> validationMessages() const;

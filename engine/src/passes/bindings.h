@@ -30,7 +30,13 @@ enum Binding : uint32_t {
   kSkyStorage = 21,
   kEnvStorage = 22,
   kEnvSource = 23,
-  kBindingCount = 24,
+  kBvhNodes = 24,
+  kBvhTriangles = 25,
+  kBvhInstances = 26,
+  kIndices = 27,
+  kShadowMask = 28,
+  kGPosition = 29,
+  kBindingCount = 30,
 };
 
 }  // namespace raybudget::passes

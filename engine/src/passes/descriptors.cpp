@@ -17,8 +17,9 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount) {
   if (binding == kLights) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
-  if (binding <= kSkyMap || binding == kEnvSource) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
+  if (binding >= kBvhNodes && binding <= kIndices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1};
 }
 
@@ -127,6 +128,15 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   write(kEnvStorage, uint32_t(envMips.size()), nullptr, envMips.data());
   const VkDescriptorImageInfo envSource{samplers.equirect, t.envSource.view, ro};
   write(kEnvSource, 1, nullptr, &envSource);
+  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhNodes.buffer, 0, VK_WHOLE_SIZE},
+                                              {scene.bvhTriangles.buffer, 0, VK_WHOLE_SIZE},
+                                              {scene.bvhInstances.buffer, 0, VK_WHOLE_SIZE},
+                                              {scene.indices.buffer, 0, VK_WHOLE_SIZE}};
+  for (uint32_t b = kBvhNodes; b <= kIndices; ++b) write(b, 1, &rtBuffers[b - kBvhNodes], nullptr);
+  const VkDescriptorImageInfo mask{VK_NULL_HANDLE, t.shadowMaskArray, g};
+  write(kShadowMask, 1, nullptr, &mask);
+  const VkDescriptorImageInfo position{samplers.nearest, t.position.view, ro};
+  write(kGPosition, 1, nullptr, &position);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 

@@ -29,23 +29,28 @@ vk::Image image2d(const vk::Context& ctx, VkFormat format, uint32_t w, uint32_t 
 }  // namespace
 
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize, const std::string& environmentMap) {
+                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount) {
   FrameTargets t;
   t.width = width;
   t.height = height;
   const VkImageUsageFlags attach = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   t.depth = image2d(ctx, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-  t.normal = image2d(ctx, kNormalFormat, width, height, attach);
+  t.normal = image2d(ctx, kNormalFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.baseMetal = image2d(ctx, kBaseMetalFormat, width, height, attach);
   t.roughTransIor = image2d(ctx, kRoughTransIorFormat, width, height, attach);
   t.emissive = image2d(ctx, kEmissiveFormat, width, height, attach);
   t.objectId = image2d(ctx, kIdFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.materialId = image2d(ctx, kIdFormat, width, height, attach);
+  // Full-precision world position (+ packed geometric normal): secondary rays start at the
+  // exact surface point, which depth reconstruction cannot give to within a few ulps.
+  t.position = image2d(ctx, kPositionFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.direct = image2d(ctx, kHdrFormat, width, height, storage);
   t.indirect = image2d(ctx, kHdrFormat, width, height, storage);
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage);
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
+  t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
+  t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
 
   // Shadow maps: at least one layer / one cube, so the descriptors always have an image.
   const VkImageUsageFlags depthUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;

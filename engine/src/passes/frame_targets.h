@@ -14,13 +14,14 @@ inline constexpr VkFormat kBaseMetalFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kRoughTransIorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
+inline constexpr VkFormat kPositionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 struct FrameTargets {
   uint32_t width = 0, height = 0;
   // G-buffer (color attachments in this order, then depth).
-  vk::Image depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId;
+  vk::Image depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position;
   // Compute outputs, kept in GENERAL layout.
   vk::Image direct, indirect, hdr, ldr;
   // Raster fallbacks.
@@ -32,16 +33,18 @@ struct FrameTargets {
   vk::Owned<VkImageView> skyStorageView;           // mip 0
   std::vector<vk::Owned<VkImageView>> envMipViews;  // one cube view per mip
   vk::Image envSource;                             // equirectangular HDR image, or 1x1 black
+  vk::Image shadowMask;                            // ray-traced light visibility, a layer per light
+  vk::Owned<VkImageView> shadowMaskArray;          // 2D-array view (also for one light)
   bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;
 
   std::vector<const vk::Image*> gbufferColors() const {
-    return {&normal, &baseMetal, &roughTransIor, &emissive, &objectId, &materialId};
+    return {&normal, &baseMetal, &roughTransIor, &emissive, &objectId, &materialId, &position};
   }
 };
 
 // `environmentMap`: an equirectangular OpenEXR path, or empty for the procedural sky.
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize, const std::string& environmentMap);
+                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount);
 
 }  // namespace raybudget::passes

@@ -12,7 +12,7 @@ GBufferPass::GBufferPass(const vk::Context& ctx, VkPipelineLayout layout) {
   vk::GraphicsPipelineDesc d;
   d.vertex = kSpirv_gbuffer_vert;
   d.fragment = kSpirv_gbuffer_frag;
-  d.colorFormats = {kNormalFormat, kBaseMetalFormat, kRoughTransIorFormat, kEmissiveFormat, kIdFormat, kIdFormat};
+  d.colorFormats = {kNormalFormat, kBaseMetalFormat, kRoughTransIorFormat, kEmissiveFormat, kIdFormat, kIdFormat, kPositionFormat};
   d.depthFormat = kDepthFormat;
   pipeline_ = vk::createGraphicsPipeline(ctx, layout, d);
 }

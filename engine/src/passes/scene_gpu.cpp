@@ -18,7 +18,7 @@ static_assert(sizeof(gpu::GpuVertex) == 48);
 static_assert(sizeof(gpu::GpuObject) == 160);
 static_assert(sizeof(gpu::GpuMaterial) == 96);
 static_assert(sizeof(gpu::GpuLight) == 144);
-static_assert(sizeof(gpu::FrameUniforms) == 320);
+static_assert(sizeof(gpu::FrameUniforms) == 336);
 static_assert(sizeof(gpu::DrawPush) == 80);
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -170,7 +170,7 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
     g.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(o.transform)));
     const glm::vec3 c = 0.5f * (o.boundsMin + o.boundsMax);
     g.boundsCenterRadius = glm::vec4(c, 0.5f * glm::length(o.boundsMax - o.boundsMin));
-    g.ids = glm::uvec4(o.id, 0, 0, 0);
+    g.ids = glm::uvec4(o.id, meshFirstIndex[o.mesh], meshVertexOffset[o.mesh], 0);
     objects.push_back(g);
     gpu.objectSpheres.push_back(g.boundsCenterRadius);
     const Mesh& m = scene.meshes[o.mesh];
@@ -179,6 +179,13 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
                            uint32_t(p.material), scene.materials[size_t(p.material)].alphaMode == AlphaMode::Mask});
   }
   gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage);
+
+  // The BVH for the ray-traced effects (static scenes: built once, here).
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  gpu.bvhNodes = vk::createDeviceBuffer(ctx, bvh.nodes, kStorage);
+  gpu.bvhTriangles = vk::createDeviceBuffer(ctx, bvh.triangles, kStorage);
+  gpu.bvhInstances = vk::createDeviceBuffer(ctx, bvh.instances, kStorage);
+  gpu.bvhStats = bvh.stats;
 
   // Lights and their shadow views.
   if (scene.lights.size() > RB_MAX_LIGHTS)

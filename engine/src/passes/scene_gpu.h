@@ -3,6 +3,7 @@
 #pragma once
 #include <vector>
 
+#include "bvh/scene_bvh.h"
 #include "raybudget/renderer.h"
 #include "raybudget/scene.h"
 #include "shared/types.h"
@@ -32,6 +33,10 @@ struct ShadowViews {
 };
 
 struct SceneGpu {
+  vk::Buffer bvhNodes;
+  vk::Buffer bvhTriangles;
+  vk::Buffer bvhInstances;
+  bvh::BuildStats bvhStats;
   vk::Buffer vertices;
   vk::Buffer indices;
   vk::Buffer objects;

@@ -1,0 +1,130 @@
+// Shared pieces of the ray-traced effect passes: hit attributes, alpha-tested visibility
+// rays, and shading of a surface hit by a secondary ray (direct light with its own shadow
+// rays, emissive, environment ambient).
+#ifndef RB_RT_COMMON_GLSL
+#define RB_RT_COMMON_GLSL
+#include "include/bindings.glsl"
+#include "include/brdf.glsl"
+#include "include/rayquery.glsl"
+#include "shared/offset_ray.h"
+
+struct HitSurface {
+  vec3 position;
+  vec3 geometricNormal;  // faces the incoming ray
+  vec3 normal;           // shading normal, same side as geometricNormal
+  vec2 uv;
+  vec4 baseColor;
+  float metallic;
+  float roughness;
+  float transmission;
+  float ior;
+  vec3 emissive;
+  uint material;
+  bool frontFace;
+};
+
+// Interpolated attributes of triangle `primitive` of `object` at barycentrics (b1, b2).
+HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec3 rayDir) {
+  GpuObject o = objects[object];
+  uint base = o.ids.y + primitive * 3u;
+  GpuVertex v0 = vertices[o.ids.z + meshIndices[base]];
+  GpuVertex v1 = vertices[o.ids.z + meshIndices[base + 1u]];
+  GpuVertex v2 = vertices[o.ids.z + meshIndices[base + 2u]];
+  float w0 = 1.0 - bary.x - bary.y;
+  HitSurface h;
+  vec3 p0 = (o.model * vec4(v0.positionU.xyz, 1.0)).xyz, p1 = (o.model * vec4(v1.positionU.xyz, 1.0)).xyz,
+       p2 = (o.model * vec4(v2.positionU.xyz, 1.0)).xyz;
+  h.position = w0 * p0 + bary.x * p1 + bary.y * p2;
+  vec3 ng = normalize(cross(p1 - p0, p2 - p0));
+  h.frontFace = dot(ng, rayDir) < 0.0;
+  h.geometricNormal = h.frontFace ? ng : -ng;
+  vec3 n = normalize(mat3(o.normalMatrix) * (w0 * v0.normalV.xyz + bary.x * v1.normalV.xyz + bary.y * v2.normalV.xyz));
+  h.normal = dot(n, h.geometricNormal) < 0.0 ? -n : n;
+  h.uv = w0 * vec2(v0.positionU.w, v0.normalV.w) + bary.x * vec2(v1.positionU.w, v1.normalV.w) + bary.y * vec2(v2.positionU.w, v2.normalV.w);
+  GpuMaterial m = materials[material];
+  vec4 color = w0 * v0.color + bary.x * v1.color + bary.y * v2.color;
+  h.baseColor = m.baseColorFactor * color;
+  if (m.textures.x >= 0) h.baseColor *= textureLod(textures[nonuniformEXT(m.textures.x)], h.uv, 0.0);
+  vec4 mr = m.textures.y >= 0 ? textureLod(textures[nonuniformEXT(m.textures.y)], h.uv, 0.0) : vec4(1.0);
+  h.metallic = clamp(m.metallicRoughnessTransmissionIor.x * mr.b, 0.0, 1.0);
+  h.roughness = clamp(m.metallicRoughnessTransmissionIor.y * mr.g, 0.0, 1.0);
+  h.transmission = m.metallicRoughnessTransmissionIor.z;
+  h.ior = m.metallicRoughnessTransmissionIor.w;
+  h.emissive = m.emissiveAlphaCutoff.rgb * (m.textures.w >= 0 ? textureLod(textures[nonuniformEXT(m.textures.w)], h.uv, 0.0).rgb : vec3(1.0));
+  h.material = material;
+  return h;
+}
+
+// Alpha test of a non-opaque candidate (alpha-masked material).
+bool candidateIsOpaque(RayQuery q) {
+  GpuMaterial m = materials[q.candidateMaterial];
+  GpuObject o = objects[q.candidateObject];
+  uint base = o.ids.y + q.candidatePrimitive * 3u;
+  float w0 = 1.0 - q.candidateBary.x - q.candidateBary.y;
+  GpuVertex v0 = vertices[o.ids.z + meshIndices[base]];
+  GpuVertex v1 = vertices[o.ids.z + meshIndices[base + 1u]];
+  GpuVertex v2 = vertices[o.ids.z + meshIndices[base + 2u]];
+  vec2 uv = w0 * vec2(v0.positionU.w, v0.normalV.w) + q.candidateBary.x * vec2(v1.positionU.w, v1.normalV.w) +
+            q.candidateBary.y * vec2(v2.positionU.w, v2.normalV.w);
+  float alpha = m.baseColorFactor.a * (w0 * v0.color.a + q.candidateBary.x * v1.color.a + q.candidateBary.y * v2.color.a);
+  if (m.textures.x >= 0) alpha *= textureLod(textures[nonuniformEXT(m.textures.x)], uv, 0.0).a;
+  return alpha >= m.emissiveAlphaCutoff.w;
+}
+
+// 1 when nothing blocks the segment origin + t * dir, t in (0, tMax); alpha masks respected.
+float traceVisibility(vec3 origin, vec3 dir, float tMax, inout uint work) {
+  RayQuery q;
+  rqInitialize(q, RB_RQ_TERMINATE_ON_FIRST_HIT, 0xFFu, origin, 0.0, dir, tMax);
+  while (rqProceed(q))
+    if (candidateIsOpaque(q)) rqConfirm(q);
+  work += q.nodesVisited + q.trianglesTested;
+  return q.committedType == RB_RQ_HIT_NONE ? 1.0 : 0.0;
+}
+
+// Direction to the light, distance and unshadowed radiance scale of light `i` at `p`.
+bool lightSample(GpuLight light, vec3 p, out vec3 L, out float dist, out float scale) {
+  uint type = uint(light.directionType.w);
+  scale = 1.0;
+  if (type == RB_LIGHT_DIRECTIONAL) {
+    L = -light.directionType.xyz;
+    dist = 1e30;
+    return true;
+  }
+  vec3 toLight = light.positionRange.xyz - p;
+  dist = length(toLight);
+  L = toLight / max(dist, 1e-8);
+  float range = light.positionRange.w;
+  float inv = 1.0 / max(dist * dist, 1e-8);
+  if (range > 0.0) {
+    float r = dist / range;
+    float window = clamp(1.0 - r * r * r * r, 0.0, 1.0);
+    inv *= window * window;
+  }
+  scale = inv;
+  if (type == RB_LIGHT_SPOT) {
+    float cd = dot(-L, light.directionType.xyz);
+    float t = clamp((cd - light.spotShadow.y) / max(light.spotShadow.x - light.spotShadow.y, 1e-4), 0.0, 1.0);
+    scale *= t * t;
+  }
+  return scale > 0.0;
+}
+
+// Radiance leaving a secondary-ray hit towards the ray's origin.
+vec3 shadeHit(HitSurface h, vec3 V, inout uint work) {
+  GpuMaterial m = materials[h.material];
+  if ((floatBitsToUint(m.normalScaleThicknessFlags.z) & RB_MATERIAL_UNLIT) != 0u) return h.baseColor.rgb;
+  vec3 color = h.emissive;
+  vec3 origin = offsetRay(h.position, h.geometricNormal);
+  for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
+    GpuLight light = lights[i];
+    vec3 L;
+    float dist, scale;
+    if (!lightSample(light, h.position, L, dist, scale) || dot(h.normal, L) <= 0.0) continue;
+    float visible = traceVisibility(origin, L, dist, work);
+    color += shadePbr(h.normal, V, L, h.baseColor.rgb, h.metallic, h.roughness, h.transmission, h.ior) * light.colorIntensity.rgb * scale * visible;
+  }
+  color += textureLod(envMap, h.normal, float(RB_ENV_MIPS - 1)).rgb * h.baseColor.rgb * (1.0 - h.metallic) * (1.0 - h.transmission);
+  return color;
+}
+
+#endif

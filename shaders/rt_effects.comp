@@ -1,0 +1,146 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "include/rt_common.glsl"
+#include "include/gbuffer.glsl"
+
+// Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to
+// RB_RT_MAX_ROUGHNESS) trace a closest-hit reflection ray, shaded with direct light (and
+// its own shadow rays), emissive and the environment, for up to frame.rayTracing.y
+// bounces along mirrors. Transmissive surfaces trace through: thin walls (no volume)
+// straight on; volumes refract in (Snell, glTF IOR), travel to the exit with Beer-Lambert
+// attenuation (KHR_materials_volume), reflect internally on total internal reflection and
+// refract out. Fresnel splits reflection and transmission. Replaces the environment
+// fallback's result in indirectImage for the pixels it traces.
+layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+
+vec3 prefiltered(vec3 dir, float roughness) { return textureLod(envMap, dir, roughness * float(RB_ENV_MIPS - 1)).rgb; }
+
+// Closest hit along the ray, alpha masks respected.
+bool traceClosest(vec3 origin, vec3 dir, out RayQuery q, inout uint work) {
+  rqInitialize(q, 0u, 0xFFu, origin, 0.0, dir, 1e30);
+  while (rqProceed(q))
+    if (candidateIsOpaque(q)) rqConfirm(q);
+  work += q.nodesVisited + q.trianglesTested;
+  return q.committedType == RB_RQ_HIT_TRIANGLE;
+}
+
+// Radiance arriving at `origin` from direction `dir`: shades the first hit and follows
+// mirror bounces (up to `depth`) and thin transmissive walls (straight on, not counted as
+// bounces: a thin glass shell has a front and a back wall), RB_RT_MAX_DEPTH events in all.
+vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
+  vec3 throughput = vec3(1.0), result = vec3(0.0);
+  uint bounces = 0u;
+  for (int event = 0; event < 2 * RB_RT_MAX_DEPTH; ++event) {
+    RayQuery q;
+    if (!traceClosest(origin, dir, q, work)) return result + throughput * textureLod(envMap, dir, 0.0).rgb;
+    HitSurface h = hitSurface(q.committedObject, q.committedPrimitive, q.committedBary, q.committedMaterial, dir);
+    vec3 V = -dir;
+    result += throughput * shadeHit(h, V, work);
+    float NoV = clamp(dot(h.normal, V), 1e-4, 1.0);
+    vec3 f0 = mix(vec3(f0FromIor(h.ior)), h.baseColor.rgb, h.metallic);
+    vec3 weight = envBrdfApprox(f0, h.roughness, NoV);
+    vec3 R = reflect(dir, h.normal);
+    float transmission = h.transmission * (1.0 - h.metallic);
+    bool thinWall = transmission > 0.0 && materials[h.material].normalScaleThicknessFlags.y <= 0.0;
+    if (thinWall) {
+      // The wall's reflection from the environment; the ray goes on through it.
+      result += throughput * prefiltered(R, h.roughness) * weight;
+      throughput *= h.baseColor.rgb * transmission * (vec3(1.0) - weight);
+      origin = offsetRay(h.position, -h.geometricNormal);
+      continue;
+    }
+    if (bounces + 1u < depth && h.roughness <= RB_RT_MAX_ROUGHNESS) {
+      ++bounces;
+      throughput *= weight;
+      origin = offsetRay(h.position, h.geometricNormal);
+      dir = R;
+      continue;
+    }
+    // Last bounce: the hit's own specular reflection (and, for a volume, what it transmits)
+    // comes from the environment.
+    result += throughput * prefiltered(R, h.roughness) * weight;
+    if (transmission > 0.0) result += throughput * prefiltered(dir, h.roughness) * h.baseColor.rgb * transmission * (vec3(1.0) - weight);
+    return result;
+  }
+  return result;
+}
+
+// The ray that carries light through the surface at p towards the viewer: for a thin wall
+// the view ray continued behind the surface, for a volume the refracted ray after its way
+// through (internal reflections included), with the volume's absorption. False when the
+// light is trapped (internal reflections beyond the depth bound).
+bool transmittedRay(vec3 p, vec3 ng, vec3 V, vec3 n, float ior, uint materialId, out vec3 origin, out vec3 dir, out vec3 absorbed,
+                    inout uint work) {
+  GpuMaterial m = materials[materialId];
+  float thickness = m.normalScaleThicknessFlags.y;
+  absorbed = vec3(1.0);
+  origin = offsetRay(p, -ng);
+  dir = -V;
+  if (thickness <= 0.0) return true;  // thin wall
+  vec3 T = refract(-V, n, 1.0 / max(ior, 1.0));
+  if (dot(T, T) == 0.0) return false;
+  for (int inside = 0; inside < RB_RT_MAX_DEPTH; ++inside) {
+    RayQuery q;
+    if (!traceClosest(origin, T, q, work)) {  // an open mesh: the ray leaves as it is
+      dir = T;
+      return true;
+    }
+    HitSurface h = hitSurface(q.committedObject, q.committedPrimitive, q.committedBary, q.committedMaterial, T);
+    float travelled = q.tMax * length(T);
+    if (m.attenuationColorDistance.w > 0.0) absorbed *= pow(m.attenuationColorDistance.rgb, vec3(travelled / m.attenuationColorDistance.w));
+    vec3 E = refract(T, h.normal, max(ior, 1.0));
+    if (dot(E, E) == 0.0) {  // total internal reflection: stay inside
+      T = reflect(T, h.normal);
+      origin = offsetRay(h.position, h.geometricNormal);
+      continue;
+    }
+    origin = offsetRay(h.position, -h.geometricNormal);
+    dir = E;
+    return true;
+  }
+  return false;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
+  Surface s;
+  if (!readSurface(pixel, s) || s.unlit) return;
+  uint effects = frame.rayTracing.x;
+  float transmission = s.transmission * (1.0 - s.metallic);
+  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= RB_RT_MAX_ROUGHNESS;
+  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0;
+  if (!reflects && !refracts) return;  // the environment fallback stands
+  vec3 p, ng;
+  readExactSurface(pixel, p, ng);
+  vec3 V = normalize(frame.cameraPositionNear.xyz - p);
+  vec3 N = s.normal;
+  if (dot(N, ng) < 0.0) N = -N;
+  float NoV = clamp(dot(N, V), 1e-4, 1.0);
+  vec3 f0 = mix(vec3(f0FromIor(s.ior)), s.baseColor, s.metallic);
+  vec3 specularWeight = envBrdfApprox(f0, s.roughness, NoV);
+  uint depth = clamp(frame.rayTracing.y, 1u, uint(RB_RT_MAX_DEPTH));
+  uint work = 0u;
+  vec3 R = reflect(-V, N);
+  if (dot(R, ng) < 0.0) R = reflect(R, ng);  // a normal map tilted the mirror ray below the surface
+  vec3 transmitWeight = s.baseColor * transmission * (vec3(1.0) - specularWeight);
+  // Path 0 reflects, path 1 transmits; one traceRadiance call site keeps the shader (and
+  // its compile time on lavapipe) half the size.
+  vec3 color = vec3(0.0);
+  for (int path = 0; path < 2; ++path) {
+    bool traced = path == 0 ? reflects : refracts;
+    if (path == 1 && transmission <= 0.0) break;
+    if (!traced) {
+      color += path == 0 ? prefiltered(R, s.roughness) * specularWeight : prefiltered(-V, s.roughness) * transmitWeight;
+      continue;
+    }
+    vec3 origin = offsetRay(p, ng), dir = R, weight = specularWeight;
+    if (path == 1) {
+      vec3 absorbed;
+      if (!transmittedRay(p, ng, V, N, s.ior, s.materialId, origin, dir, absorbed, work)) continue;
+      weight = transmitWeight * absorbed;
+    }
+    color += traceRadiance(origin, dir, depth, work) * weight;
+  }
+  imageStore(indirectImage, pixel, vec4(color, 1.0));
+}

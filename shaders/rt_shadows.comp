@@ -1,0 +1,27 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "include/rt_common.glsl"
+#include "include/gbuffer.glsl"
+
+// Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
+// the geometric normal), alpha masks respected. Writes each light's visibility into its
+// layer of the shadow mask, which the lighting pass uses instead of the shadow maps.
+layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
+  Surface s;
+  if (!readSurface(pixel, s) || s.unlit) return;  // the lighting pass reads no mask there
+  vec3 p, ng;
+  readExactSurface(pixel, p, ng);
+  vec3 origin = offsetRay(p, ng);
+  uint work = 0u;
+  for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
+    vec3 L;
+    float dist, scale;
+    float visible = 0.0;
+    if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) visible = traceVisibility(origin, L, dist, work);
+    imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
+  }
+}

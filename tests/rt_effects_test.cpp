@@ -1,0 +1,173 @@
+// Ray-traced effects in the frame: shadows equal Embree's visibility for the same G-buffer
+// points; reflections and refractions show what the geometry says; the policy switches
+// tracing on and off without touching anything else.
+#include <bit>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
+#include <gtest/gtest.h>
+
+#include "bvh/embree_oracle.h"
+#include "shared/offset_ray.h"
+#include "support/procedural.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+// The shader's octahedral decode (shaders/include/octahedral.glsl) of the packed normal.
+glm::vec3 geometricNormal(float packed) {
+  const glm::vec2 e = glm::unpackSnorm2x16(std::bit_cast<uint32_t>(packed));
+  glm::vec3 n(e, 1.0f - std::fabs(e.x) - std::fabs(e.y));
+  if (n.z < 0.0f) {
+    const glm::vec2 xy = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+    n.x = xy.x;
+    n.y = xy.y;
+  }
+  return glm::normalize(n);
+}
+
+FrameImages renderScene(const Scene& scene, Policy policy, const Camera& camera, uint32_t w, uint32_t h, bool detail = false,
+                        float sky = 0.3f, std::vector<FrameTiming>* timings = nullptr) {
+  RenderSettings s;
+  s.width = w;
+  s.height = h;
+  s.validation = true;
+  s.policy = policy;
+  s.skyIntensity = sky;
+  Renderer renderer(scene, s);
+  for (const FrameTiming& t : renderer.render(camera))
+    if (timings) timings->push_back(t);
+  for (const FrameTiming& t : renderer.finish())
+    if (timings) timings->push_back(t);
+  FrameImages img = renderer.readback(detail);
+  test::expectValidationClean(renderer.validationMessages());
+  return img;
+}
+
+glm::vec3 hdr(const FrameImages& img, uint32_t x, uint32_t y) {
+  const size_t i = (size_t(y) * img.width + x) * 4;
+  return {glm::unpackHalf1x16(img.hdrRgba16[i]), glm::unpackHalf1x16(img.hdrRgba16[i + 1]), glm::unpackHalf1x16(img.hdrRgba16[i + 2])};
+}
+
+TEST(RtShadows, MaskEqualsEmbreeVisibilityAtTheGBufferPoints) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const uint32_t w = 192, h = 128;
+  const Camera cam = defaultCamera(scene, float(w) / float(h));
+  const FrameImages img = renderScene(scene, Policy::All, cam, w, h, true);
+  const bvh::EmbreeOracle oracle(scene);
+  const size_t pixels = size_t(w) * h;
+  size_t compared = 0, mismatches = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    if (img.objectIds[i] == 0xFFFFFFFFu) continue;
+    const glm::vec3 p(img.positions[i * 4], img.positions[i * 4 + 1], img.positions[i * 4 + 2]);
+    const glm::vec3 origin = gpu::offsetRay(p, geometricNormal(img.positions[i * 4 + 3]));
+    const glm::vec3 n = glm::normalize(glm::vec3(glm::unpackHalf1x16(img.normals[i * 4]), glm::unpackHalf1x16(img.normals[i * 4 + 1]),
+                                                 glm::unpackHalf1x16(img.normals[i * 4 + 2])));
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+      const Light& light = scene.lights[l];
+      glm::vec3 L = -light.direction;
+      float dist = 1e30f;
+      if (light.type != LightType::Directional) {
+        dist = glm::length(light.position - p);
+        L = (light.position - p) / dist;
+        if (light.range > 0.0f && dist >= light.range) continue;  // no light reaches: the mask is moot
+        if (light.type == LightType::Spot && glm::dot(-L, light.direction) <= std::cos(light.outerConeAngle)) continue;
+      }
+      if (glm::dot(n, L) <= 0.01f) continue;  // faces away (the shader writes 0 without a ray)
+      ++compared;
+      const bool visible = !oracle.occluded({origin, 0.0f, L, dist});
+      mismatches += visible != (img.shadowMask[l * pixels + i] > 0.5f);
+    }
+  }
+  ASSERT_GT(compared, pixels);
+  EXPECT_LE(double(mismatches), 1e-4 * double(compared)) << mismatches << " of " << compared << " shadow rays disagree with Embree";
+}
+
+// A mirror floor seen from straight above shows what hangs above the camera: with ray
+// tracing the red emitter, with the raster fallback only the (black) sky.
+TEST(RtReflections, MirrorShowsTheObjectAboveIt) {
+  Scene scene;
+  Material mirror;
+  mirror.metallic = 1.0f;
+  mirror.roughness = 0.0f;
+  test::addObject(scene, test::quad(5.0f), glm::mat4(1.0f), mirror);
+  Material red;
+  red.baseColorFactor = glm::vec4(0, 0, 0, 1);
+  red.emissive = glm::vec3(4.0f, 0.0f, 0.0f);
+  red.doubleSided = true;
+  test::addObject(scene, test::quad(20.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, 10, 0)), red);  // facing up, seen from below
+  Camera cam;
+  cam.position = {0.0f, 5.0f, 0.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.up = {0.0f, 0.0f, -1.0f};
+  const FrameImages traced = renderScene(scene, Policy::All, cam, 64, 64, false, 0.0f);
+  const FrameImages raster = renderScene(scene, Policy::None, cam, 64, 64, false, 0.0f);
+  const glm::vec3 t = hdr(traced, 32, 32), r = hdr(raster, 32, 32);
+  EXPECT_NEAR(t.r, 4.0f, 0.25f) << "a white mirror reflects the emitter (F ~ 1)";
+  EXPECT_LT(t.g + t.b, 0.05f);
+  EXPECT_LT(r.r, 0.05f) << "the fallback reflects the black sky";
+}
+
+// White light through a cube of tinted glass: KHR_materials_volume attenuation over the
+// 1-unit path halves red (attenuation colour 0.5 at distance 1) and keeps green.
+TEST(RtRefractions, VolumeAttenuatesAlongThePathThroughTheCube) {
+  Scene scene;
+  Material glass;
+  glass.metallic = 0.0f;
+  glass.roughness = 0.0f;
+  glass.transmission = 1.0f;
+  glass.ior = 1.5f;
+  glass.thickness = 1.0f;
+  glass.attenuationDistance = 1.0f;
+  glass.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  test::addObject(scene, test::subdividedCube(1), glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)), glass);  // unit cube
+  Material white;
+  white.baseColorFactor = glm::vec4(0, 0, 0, 1);
+  white.emissive = glm::vec3(2.0f);
+  white.doubleSided = true;
+  test::addObject(scene, test::quad(30.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, -3, 0)), white);
+  Camera cam;  // looking straight down through the cube's top and bottom faces
+  cam.position = {0.0f, 4.0f, 0.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.up = {0.0f, 0.0f, -1.0f};
+  const FrameImages traced = renderScene(scene, Policy::All, cam, 64, 64, false, 0.0f);
+  const glm::vec3 c = hdr(traced, 32, 32);
+  ASSERT_GT(c.g, 0.5f) << "light passes through the glass";
+  EXPECT_NEAR(c.r / c.g, 0.5f, 0.03f);
+  EXPECT_NEAR(c.b / c.g, 1.0f, 0.03f);
+  // Two dielectric interfaces at normal incidence keep (1 - 0.04)^2 of the light.
+  EXPECT_NEAR(c.g, 2.0f * 0.96f * 0.96f, 0.15f);
+}
+
+TEST(RtPolicy, NoneTracesNothingAndAllWithoutEffectsEqualsNone) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const Camera cam = defaultCamera(scene, 1.5f);
+  std::vector<FrameTiming> noneTimings, allTimings;
+  const FrameImages none = renderScene(scene, Policy::None, cam, 96, 64, false, 0.3f, &noneTimings);
+  const FrameImages all = renderScene(scene, Policy::All, cam, 96, 64, false, 0.3f, &allTimings);
+  ASSERT_EQ(noneTimings.size(), 1u);
+  EXPECT_FALSE(noneTimings[0].passMs[size_t(Pass::TraceShadows)].has_value());
+  EXPECT_FALSE(noneTimings[0].passMs[size_t(Pass::TraceEffects)].has_value());
+  EXPECT_TRUE(noneTimings[0].passMs[size_t(Pass::ShadowMaps)].has_value());
+  EXPECT_TRUE(allTimings[0].passMs[size_t(Pass::TraceShadows)].has_value());
+  EXPECT_FALSE(allTimings[0].passMs[size_t(Pass::ShadowMaps)].has_value()) << "every pixel traces its shadows: no shadow maps";
+  EXPECT_NE(none.hdrRgba16, all.hdrRgba16);
+
+  RenderSettings s;
+  s.width = 96;
+  s.height = 64;
+  s.validation = true;
+  s.policy = Policy::All;
+  s.rayTracing = RayTracingSettings{false, false, false, 1};
+  Renderer renderer(scene, s);
+  renderer.render(cam);
+  renderer.finish();
+  EXPECT_EQ(renderer.readback().hdrRgba16, none.hdrRgba16) << "with every effect off, policy all is the raster frame";
+  test::expectValidationClean(renderer.validationMessages());
+}
+
+}  // namespace
+}  // namespace raybudget
