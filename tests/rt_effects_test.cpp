@@ -52,11 +52,9 @@ glm::vec3 hdr(const FrameImages& img, uint32_t x, uint32_t y) {
   return {glm::unpackHalf1x16(img.hdrRgba16[i]), glm::unpackHalf1x16(img.hdrRgba16[i + 1]), glm::unpackHalf1x16(img.hdrRgba16[i + 2])};
 }
 
-TEST(RtShadows, MaskEqualsEmbreeVisibilityAtTheGBufferPoints) {
-  const Scene scene = loadScene(test::defaultScenePath());
-  const uint32_t w = 192, h = 128;
-  const Camera cam = defaultCamera(scene, float(w) / float(h));
-  const FrameImages img = renderScene(scene, Policy::All, cam, w, h, true);
+// Compares the frame's ray-traced shadow mask with Embree's visibility from the same points.
+void expectMaskMatchesEmbree(const Scene& scene, const FrameImages& img) {
+  const uint32_t w = img.width, h = img.height;
   const bvh::EmbreeOracle oracle(scene);
   const size_t pixels = size_t(w) * h;
   size_t compared = 0, mismatches = 0;
@@ -84,6 +82,40 @@ TEST(RtShadows, MaskEqualsEmbreeVisibilityAtTheGBufferPoints) {
   }
   ASSERT_GT(compared, pixels);
   EXPECT_LE(double(mismatches), 1e-4 * double(compared)) << mismatches << " of " << compared << " shadow rays disagree with Embree";
+}
+
+TEST(RtShadows, MaskEqualsEmbreeVisibilityAtTheGBufferPoints) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const Camera cam = defaultCamera(scene, 1.5f);
+  expectMaskMatchesEmbree(scene, renderScene(scene, Policy::All, cam, 192, 128, true));
+}
+
+// Moving an object rebuilds only the TLAS; the next frame traces it where it is now.
+TEST(RtShadows, MovedObjectIsTracedWhereItIsNow) {
+  Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s;
+  s.width = 192;
+  s.height = 128;
+  s.validation = true;
+  s.policy = Policy::All;
+  Renderer renderer(scene, s);
+  const Camera cam = defaultCamera(scene, 1.5f);
+  uint32_t chrome = 0;
+  for (const Object& o : scene.objects)
+    if (o.name == "chrome_sphere") chrome = o.id;
+  std::vector<FrameTiming> timings = renderer.render(cam);
+  const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(2.5f, 0.8f, 1.0f)) * scene.objects[chrome].transform;
+  renderer.setObjectTransform(chrome, moved);
+  setObjectTransform(scene, chrome, moved);
+  for (const FrameTiming& t : renderer.render(cam)) timings.push_back(t);
+  for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
+  ASSERT_EQ(timings.size(), 2u);
+  EXPECT_EQ(timings[0].tlasRebuildMs, 0.0) << "a static scene does no BVH work after load";
+  EXPECT_GT(timings[1].tlasRebuildMs, 0.0);
+  expectMaskMatchesEmbree(scene, renderer.readback(true));
+  test::expectValidationClean(renderer.validationMessages());
+  EXPECT_THROW(renderer.setObjectTransform(9999, moved), Error);
+  EXPECT_THROW(renderer.setObjectTransform(chrome, glm::mat4(0.0f)), Error);
 }
 
 // A mirror floor seen from straight above shows what hangs above the camera: with ray

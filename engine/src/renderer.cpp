@@ -2,6 +2,7 @@
 // fallback -> compose, two frames in flight, every pass bracketed by timestamps.
 #include "raybudget/renderer.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -72,6 +73,8 @@ struct Renderer::Impl {
     VkDescriptorSet set = VK_NULL_HANDLE;
     bool inFlight = false;
     uint64_t frame = 0;
+    double tlasRebuildMs = 0.0;
+    vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
   };
 
   RenderSettings settings;
@@ -96,6 +99,7 @@ struct Renderer::Impl {
   Slot slots[kFramesInFlight];
   uint64_t frameIndex = 0;
   bool environmentReady = false;
+  bool objectsMoved = false;
 
   Impl(const Scene& s, const RenderSettings& rs)
       : settings(rs),
@@ -194,6 +198,7 @@ struct Renderer::Impl {
     slot.inFlight = false;
     FrameTiming t;
     t.frame = slot.frame;
+    t.tlasRebuildMs = slot.tlasRebuildMs;
     const auto ms = timestamps.read(uint32_t(&slot - slots));
     for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
     return t;
@@ -226,6 +231,32 @@ struct Renderer::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
 
+  // Rebuilds the TLAS for moved objects on the CPU and stages it with the new object records
+  // in the slot's staging buffer; record() copies them at the start of the frame, after
+  // the previous frame's reads (the frame-start barrier orders them).
+  std::vector<VkBufferCopy> stageMovedObjects(Slot& slot) {
+    if (!objectsMoved) return {};
+    objectsMoved = false;
+    const auto start = std::chrono::steady_clock::now();
+    bvh::SceneBvh& b = scene.bvh;
+    bvh::rebuildTlas(b, scene.shell.objects);
+    std::vector<gpu::GpuObject> objects;
+    for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
+    for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+    slot.tlasRebuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const VkDeviceSize nodeBytes = sizeof(gpu::GpuBvhNode), tlasBytes = b.tlasNodeCount * nodeBytes;
+    const VkDeviceSize instBytes = b.instances.size() * sizeof(gpu::GpuInstance), objBytes = objects.size() * sizeof(gpu::GpuObject);
+    const VkDeviceSize total = nodeBytes + tlasBytes + instBytes + objBytes;
+    if (slot.updateStaging.size < total) slot.updateStaging = vk::createBuffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    auto* dst = static_cast<uint8_t*>(slot.updateStaging.mapped);
+    std::memcpy(dst, &b.nodes[RB_BVH_TLAS_ROOT_NODE], nodeBytes);
+    std::memcpy(dst + nodeBytes, &b.nodes[b.tlasRoot], tlasBytes);
+    std::memcpy(dst + nodeBytes + tlasBytes, b.instances.data(), instBytes);
+    std::memcpy(dst + nodeBytes + tlasBytes + instBytes, objects.data(), objBytes);
+    return {{0, 0, nodeBytes}, {nodeBytes, b.tlasRoot * nodeBytes, tlasBytes}, {nodeBytes + tlasBytes, 0, instBytes},
+            {nodeBytes + tlasBytes + instBytes, 0, objBytes}};
+  }
+
   void record(Slot& slot, const glm::mat4& viewProj) {
     const uint32_t s = uint32_t(&slot - slots);
     VkCommandBuffer cmd = slot.cmd;
@@ -237,6 +268,14 @@ struct Renderer::Impl {
     // Frames share their images: order this frame after everything the previous one did.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    const std::vector<VkBufferCopy> moved = stageMovedObjects(slot);
+    if (!moved.empty()) {
+      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhNodes.buffer, 2, moved.data());
+      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhInstances.buffer, 1, &moved[2]);
+      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.objects.buffer, 1, &moved[3]);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                        VK_ACCESS_2_MEMORY_READ_BIT);
+    }
     const passes::FrameContext fc{cmd, pipelineLayout, slot.set, scene, targets, viewProj};
     auto timed = [&](Pass pass, auto&& body) {
       timestamps.begin(cmd, s, uint32_t(pass));
@@ -305,6 +344,11 @@ Renderer::~Renderer() {
 std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->render(camera); }
 
 std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
+
+void Renderer::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
+  raybudget::setObjectTransform(impl_->scene.shell, objectId, transform);
+  impl_->objectsMoved = true;
+}
 
 FrameImages Renderer::readback(bool gbufferDetail) {
   Impl& r = *impl_;

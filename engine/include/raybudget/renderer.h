@@ -45,6 +45,7 @@ const char* passName(Pass pass);
 
 struct FrameTiming {
   uint64_t frame = 0;
+  double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
 };
@@ -75,6 +76,11 @@ class Renderer {
 
   // Waits for every submitted frame and returns the timings not yet returned.
   std::vector<FrameTiming> finish();
+
+  // Moves an object (animation, the editor): from the next frame on, its raster draws, its
+  // BVH instance (only the TLAS is rebuilt) and its bounds follow. Throws Error on a bad
+  // ID or transform.
+  void setObjectTransform(uint32_t objectId, const glm::mat4& transform);
 
   // The images of the last rendered frame (waits for it); `gbufferDetail` adds positions and
   // the shadow mask (for oracle tests).

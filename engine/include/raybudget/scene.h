@@ -155,6 +155,10 @@ Camera defaultCamera(const Scene& scene, float aspect);
 void saveRayBudgetParams(const std::filesystem::path& source, const std::filesystem::path& destination,
                          const std::vector<std::pair<int, RayBudgetParams>>& nodeParams);
 
+// Moves object `id` to `transform` and updates its world bounds (and the scene's). Throws
+// Error for an unknown object or a non-finite, singular or absurd transform.
+void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform);
+
 // Validates K/Q/I: finite, non-negative, and below kMaxParamValue. Throws Error naming `where`.
 inline constexpr float kMaxParamValue = 1.0e6f;
 void validateRayBudgetParams(const RayBudgetParams& params, const std::string& where);

@@ -65,17 +65,17 @@ BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SceneBvh& out) {
 
 }  // namespace
 
-void rebuildTlas(SceneBvh& bvh, const Scene& scene) {
+void rebuildTlas(SceneBvh& bvh, std::span<const Object> objects) {
   const auto start = std::chrono::steady_clock::now();
   // The TLAS always sits after the BLAS nodes: drop the old one.
   bvh.nodes.resize(bvh.tlasNodeCount > 0 ? bvh.tlasRoot : bvh.nodes.size());
   bvh.instances.clear();
   std::vector<Box> boxes;
-  for (const Object& o : scene.objects) boxes.push_back({o.boundsMin, o.boundsMax});
+  for (const Object& o : objects) boxes.push_back({o.boundsMin, o.boundsMax});
   const FlatTree tree = buildTree(boxes, kTlasMaxDepth, 1, bvh.nodes, [&](const uint32_t* ids, uint32_t count) {
     const uint32_t first = uint32_t(bvh.instances.size());
     for (uint32_t i = 0; i < count; ++i) {
-      const Object& o = scene.objects[ids[i]];
+      const Object& o = objects[ids[i]];
       const glm::mat4 inv = glm::inverse(o.transform);
       gpu::GpuInstance inst;
       for (int r = 0; r < 3; ++r) inst.worldToObject[r] = glm::vec4(inv[0][r], inv[1][r], inv[2][r], inv[3][r]);
@@ -98,7 +98,7 @@ SceneBvh buildSceneBvh(const Scene& scene) {
   const auto start = std::chrono::steady_clock::now();
   for (const Mesh& m : scene.meshes) bvh.blas.push_back(buildBlas(scene, m, bvh));
   bvh.stats.blasMs = msSince(start);
-  rebuildTlas(bvh, scene);
+  rebuildTlas(bvh, scene.objects);
   bvh.stats.triangles = bvh.triangles.size();
   bvh.stats.bytesPerTriangle = double(bvh.nodes.size() * sizeof(gpu::GpuBvhNode) + bvh.triangles.size() * sizeof(gpu::GpuTriangle)) /
                                double(std::max<size_t>(bvh.triangles.size(), 1));

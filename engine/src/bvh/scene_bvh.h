@@ -3,6 +3,7 @@
 // Plain C++ (Embree, no Vulkan).
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "raybudget/scene.h"
@@ -41,6 +42,7 @@ struct SceneBvh {
 SceneBvh buildSceneBvh(const Scene& scene);
 
 // Rebuilds only the TLAS (objects moved; meshes unchanged), replacing the old TLAS nodes.
-void rebuildTlas(SceneBvh& bvh, const Scene& scene);
+// The TLAS of N objects always has the same number of nodes, so its place in `nodes` stays.
+void rebuildTlas(SceneBvh& bvh, std::span<const Object> objects);
 
 }  // namespace raybudget::bvh

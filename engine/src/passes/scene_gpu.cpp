@@ -110,13 +110,24 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
 
 }  // namespace
 
+gpu::GpuObject gpuObject(const SceneGpu& scene, const Object& o) {
+  gpu::GpuObject g{};
+  g.model = o.transform;
+  g.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(o.transform)));
+  const glm::vec3 c = 0.5f * (o.boundsMin + o.boundsMax);
+  g.boundsCenterRadius = glm::vec4(c, 0.5f * glm::length(o.boundsMax - o.boundsMin));
+  g.ids = glm::uvec4(o.id, scene.meshFirstIndex[o.mesh], scene.meshVertexOffset[o.mesh], 0);
+  return g;
+}
+
 SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings) {
   SceneGpu gpu;
+  std::vector<uint32_t>& meshFirstIndex = gpu.meshFirstIndex;
+  std::vector<uint32_t>& meshVertexOffset = gpu.meshVertexOffset;
 
   // Geometry: all meshes in one vertex and one index buffer; draws address them by offset.
   std::vector<gpu::GpuVertex> vertices;
   std::vector<uint32_t> indices;
-  std::vector<uint32_t> meshFirstIndex, meshVertexOffset;
   for (const Mesh& m : scene.meshes) {
     meshFirstIndex.push_back(uint32_t(indices.size()));
     meshVertexOffset.push_back(uint32_t(vertices.size()));
@@ -165,12 +176,7 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   // Objects and their draws (one per primitive).
   std::vector<gpu::GpuObject> objects;
   for (const Object& o : scene.objects) {
-    gpu::GpuObject g{};
-    g.model = o.transform;
-    g.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(o.transform)));
-    const glm::vec3 c = 0.5f * (o.boundsMin + o.boundsMax);
-    g.boundsCenterRadius = glm::vec4(c, 0.5f * glm::length(o.boundsMax - o.boundsMin));
-    g.ids = glm::uvec4(o.id, meshFirstIndex[o.mesh], meshVertexOffset[o.mesh], 0);
+    const gpu::GpuObject g = gpuObject(gpu, o);
     objects.push_back(g);
     gpu.objectSpheres.push_back(g.boundsCenterRadius);
     const Mesh& m = scene.meshes[o.mesh];
@@ -178,14 +184,23 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
       gpu.draws.push_back({meshFirstIndex[o.mesh] + p.firstIndex, p.indexCount, int32_t(meshVertexOffset[o.mesh]), o.id,
                            uint32_t(p.material), scene.materials[size_t(p.material)].alphaMode == AlphaMode::Mask});
   }
-  gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage);
+  gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 
   // The BVH for the ray-traced effects (static scenes: built once, here).
-  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
-  gpu.bvhNodes = vk::createDeviceBuffer(ctx, bvh.nodes, kStorage);
-  gpu.bvhTriangles = vk::createDeviceBuffer(ctx, bvh.triangles, kStorage);
-  gpu.bvhInstances = vk::createDeviceBuffer(ctx, bvh.instances, kStorage);
-  gpu.bvhStats = bvh.stats;
+  gpu.bvh = bvh::buildSceneBvh(scene);
+  const VkBufferUsageFlags updatable = kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  gpu.bvhNodes = vk::createDeviceBuffer(ctx, gpu.bvh.nodes, updatable);
+  gpu.bvhTriangles = vk::createDeviceBuffer(ctx, gpu.bvh.triangles, kStorage);
+  gpu.bvhInstances = vk::createDeviceBuffer(ctx, gpu.bvh.instances, updatable);
+  gpu.bvhStats = gpu.bvh.stats;
+  gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
+  gpu.bvh.triangles.shrink_to_fit();
+  gpu.shell = scene;
+  for (Mesh& m : gpu.shell.meshes) {
+    m.vertices = {};
+    m.indices = {};
+  }
+  gpu.shell.images = {};
 
   // Lights and their shadow views.
   if (scene.lights.size() > RB_MAX_LIGHTS)

@@ -33,6 +33,11 @@ struct ShadowViews {
 };
 
 struct SceneGpu {
+  // CPU copies for updates when objects move: the scene without vertex data, the BVH, and
+  // where each mesh starts in the shared index and vertex buffers.
+  Scene shell;
+  bvh::SceneBvh bvh;
+  std::vector<uint32_t> meshFirstIndex, meshVertexOffset;
   vk::Buffer bvhNodes;
   vk::Buffer bvhTriangles;
   vk::Buffer bvhInstances;
@@ -52,5 +57,8 @@ struct SceneGpu {
 };
 
 SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings);
+
+// The GPU record of an object (transforms, bounds, IDs, where its mesh lives).
+gpu::GpuObject gpuObject(const SceneGpu& scene, const Object& o);
 
 }  // namespace raybudget::passes

@@ -15,6 +15,7 @@
 #include "raybudget/error.h"
 #include "raybudget/scene.h"
 #include "scene/accessor_reader.h"
+#include "scene/bounds.h"
 #include "scene/mesh_builder.h"
 
 namespace raybudget {
@@ -203,15 +204,7 @@ void addObject(Scene& scene, uint32_t mesh, int node, const glm::mat4& world, co
   o.gltfNode = node;
   o.transform = world;
   o.params = params;
-  o.boundsMin = glm::vec3(std::numeric_limits<float>::max());
-  o.boundsMax = glm::vec3(-std::numeric_limits<float>::max());
-  for (int c = 0; c < 8; ++c) {
-    const glm::vec3 corner((c & 1) ? m.boundsMax.x : m.boundsMin.x, (c & 2) ? m.boundsMax.y : m.boundsMin.y,
-                           (c & 4) ? m.boundsMax.z : m.boundsMin.z);
-    const glm::vec3 w = glm::vec3(world * glm::vec4(corner, 1.0f));
-    o.boundsMin = glm::min(o.boundsMin, w);
-    o.boundsMax = glm::max(o.boundsMax, w);
-  }
+  worldBounds(m, world, o.boundsMin, o.boundsMax);
   scene.stats.triangles += m.indices.size() / 3;
   scene.objects.push_back(std::move(o));
 }

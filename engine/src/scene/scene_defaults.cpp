@@ -1,8 +1,10 @@
 // Defaults for what a scene may leave out (lights, camera) and the K/Q/I checks.
 #include <cmath>
+#include <limits>
 
 #include "raybudget/error.h"
 #include "raybudget/scene.h"
+#include "scene/bounds.h"
 
 namespace raybudget {
 
@@ -32,6 +34,26 @@ Camera defaultCamera(const Scene& scene, float aspect) {
   c.znear = std::max(std::min(c.znear, distance - radius), distance * 1e-3f);
   c.zfar = distance + radius * 2.0f;
   return c;
+}
+
+void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform) {
+  if (id >= scene.objects.size()) throw Error("setObjectTransform: object " + std::to_string(id) + " does not exist");
+  const float det = glm::determinant(glm::mat3(transform));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(transform[c][r]) || std::fabs(transform[c][r]) > 1.0e7f)
+        throw Error("setObjectTransform: object " + std::to_string(id) + ": non-finite or absurd transform");
+  if (!std::isfinite(det) || std::fabs(det) < 1e-30f) throw Error("setObjectTransform: object " + std::to_string(id) + ": singular transform");
+  Object& o = scene.objects[id];
+  const Mesh& m = scene.meshes[o.mesh];
+  o.transform = transform;
+  worldBounds(m, transform, o.boundsMin, o.boundsMax);
+  scene.boundsMin = scene.objects[0].boundsMin;
+  scene.boundsMax = scene.objects[0].boundsMax;
+  for (const Object& x : scene.objects) {
+    scene.boundsMin = glm::min(scene.boundsMin, x.boundsMin);
+    scene.boundsMax = glm::max(scene.boundsMax, x.boundsMax);
+  }
 }
 
 void validateRayBudgetParams(const RayBudgetParams& params, const std::string& where) {
