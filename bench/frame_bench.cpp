@@ -58,6 +58,10 @@ int main(int argc, char** argv) {
     const double total = medianOf(totals);
     for (size_t p = 0; p < kPassCount; ++p) {
       if (Pass(p) == Pass::Environment) continue;  // built once at start, not per frame
+      if (runs[0].frames[p] == 0) {
+        std::printf("%-14s %12s\n", passName(Pass(p)), "skipped");
+        continue;
+      }
       std::vector<double> v;
       for (const PassSummary& s : runs) v.push_back(s.medianMs[p]);
       std::printf("%-14s %12.2f %7.1f%%  ", passName(Pass(p)), medianOf(v), 100.0 * medianOf(v) / total);
