@@ -79,6 +79,24 @@ RTCRay toRtc(const OracleRay& r) {
   return ray;
 }
 
+// Rays base..base+7 into a packet; lanes past `count` are invalid (copies of the last ray).
+void fillPacket(const OracleRay* rays, size_t count, size_t base, RTCRay8& ray, int* valid) {
+  for (int k = 0; k < 8; ++k) {
+    const size_t i = base + size_t(k);
+    valid[k] = i < count ? -1 : 0;
+    const OracleRay& r = rays[std::min(i, count - 1)];
+    ray.org_x[k] = r.origin.x;
+    ray.org_y[k] = r.origin.y;
+    ray.org_z[k] = r.origin.z;
+    ray.dir_x[k] = r.dir.x;
+    ray.dir_y[k] = r.dir.y;
+    ray.dir_z[k] = r.dir.z;
+    ray.tnear[k] = r.tMin;
+    ray.tfar[k] = r.tMax;
+    ray.mask[k] = 0xFFFFFFFFu;
+  }
+}
+
 }  // namespace
 
 OracleHit EmbreeOracle::intersect(const OracleRay& r) const {
@@ -112,21 +130,8 @@ void EmbreeOracle::intersect8(const OracleRay* rays, size_t count, OracleHit* hi
   for (size_t base = 0; base < count; base += 8) {
     alignas(32) int valid[8];
     alignas(32) RTCRayHit8 rh{};
-    for (int k = 0; k < 8; ++k) {
-      const size_t i = base + size_t(k);
-      valid[k] = i < count ? -1 : 0;
-      const OracleRay& r = rays[std::min(i, count - 1)];
-      rh.ray.org_x[k] = r.origin.x;
-      rh.ray.org_y[k] = r.origin.y;
-      rh.ray.org_z[k] = r.origin.z;
-      rh.ray.dir_x[k] = r.dir.x;
-      rh.ray.dir_y[k] = r.dir.y;
-      rh.ray.dir_z[k] = r.dir.z;
-      rh.ray.tnear[k] = r.tMin;
-      rh.ray.tfar[k] = r.tMax;
-      rh.ray.mask[k] = 0xFFFFFFFFu;
-      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-    }
+    fillPacket(rays, count, base, rh.ray, valid);
+    for (int k = 0; k < 8; ++k) rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect8(valid, impl_->scene, &ctx, &rh);
     for (int k = 0; k < 8 && base + size_t(k) < count; ++k) {
       OracleHit& h = hits[base + size_t(k)];
@@ -147,20 +152,7 @@ void EmbreeOracle::occluded8(const OracleRay* rays, size_t count, bool* blocked)
   for (size_t base = 0; base < count; base += 8) {
     alignas(32) int valid[8];
     alignas(32) RTCRay8 ray{};
-    for (int k = 0; k < 8; ++k) {
-      const size_t i = base + size_t(k);
-      valid[k] = i < count ? -1 : 0;
-      const OracleRay& r = rays[std::min(i, count - 1)];
-      ray.org_x[k] = r.origin.x;
-      ray.org_y[k] = r.origin.y;
-      ray.org_z[k] = r.origin.z;
-      ray.dir_x[k] = r.dir.x;
-      ray.dir_y[k] = r.dir.y;
-      ray.dir_z[k] = r.dir.z;
-      ray.tnear[k] = r.tMin;
-      ray.tfar[k] = r.tMax;
-      ray.mask[k] = 0xFFFFFFFFu;
-    }
+    fillPacket(rays, count, base, ray, valid);
     rtcOccluded8(valid, impl_->scene, &ctx, &ray);
     for (int k = 0; k < 8 && base + size_t(k) < count; ++k) blocked[base + size_t(k)] = ray.tfar[k] < 0.0f;
   }
