@@ -21,6 +21,11 @@ using glm::vec4;
 inline uint floatBitsToUint(float f) { return std::bit_cast<uint>(f); }
 #endif
 
+#ifndef RB_RQ_EXTERNAL_STACK
+#define RB_RQ_STACK_READ(q, i) q.stack[i]
+#define RB_RQ_STACK_WRITE(q, i, v) q.stack[i] = (v)
+#endif
+
 struct RayQuery {
   // The ray in world space, and in the current instance's object space while in a BLAS.
   vec3 worldOrigin;
@@ -33,7 +38,9 @@ struct RayQuery {
   uint flags;
   uint cullMask;
   // Traversal state.
+#ifndef RB_RQ_EXTERNAL_STACK
   uint stack[RB_BVH_STACK_SIZE];
+#endif
   int sp;
   uint node;         // next inner node to visit, RB_RQ_STACK_MARKER when none
   uint leafCursor;   // BLAS leaf triangles still to test: [leafCursor, leafEnd)
@@ -129,7 +136,7 @@ RB_INLINE void rqPop(RB_INOUT(RayQuery) q) {
   q.node = RB_RQ_STACK_MARKER;
   while (q.sp > 0) {
     --q.sp;
-    uint entry = q.stack[q.sp];
+    uint entry = RB_RQ_STACK_READ(q, q.sp);
     if (entry != RB_RQ_STACK_MARKER) {
       q.node = entry;
       return;
@@ -150,7 +157,7 @@ RB_INLINE void rqVisitInner(RB_INOUT(RayQuery) q, uint index) {
   uint right = rqChildEntry(q.inBlas, floatBitsToUint(n.rightMinIndex.w), floatBitsToUint(n.rightMaxCount.w));
   if (tl >= 0.0f && tr >= 0.0f) {
     bool leftFirst = tl <= tr;
-    q.stack[q.sp] = leftFirst ? right : left;
+    RB_RQ_STACK_WRITE(q, q.sp, leftFirst ? right : left);
     ++q.sp;
     q.node = leftFirst ? left : right;
   } else if (tl >= 0.0f) {
@@ -224,7 +231,7 @@ RB_INLINE bool rqProceed(RB_INOUT(RayQuery) q) {
       vec4 o = vec4(q.worldOrigin, 1.0f), d = vec4(q.worldDir, 0.0f);
       rqSetRay(q, vec3(dot(instance.worldToObject[0], o), dot(instance.worldToObject[1], o), dot(instance.worldToObject[2], o)),
                vec3(dot(instance.worldToObject[0], d), dot(instance.worldToObject[1], d), dot(instance.worldToObject[2], d)));
-      q.stack[q.sp] = RB_RQ_STACK_MARKER;
+      RB_RQ_STACK_WRITE(q, q.sp, RB_RQ_STACK_MARKER);
       ++q.sp;
       q.inBlas = true;
       q.node = instance.blasObjectMask.x;

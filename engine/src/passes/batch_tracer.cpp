@@ -13,6 +13,12 @@ namespace {
 
 constexpr uint32_t kBindings = 5;  // nodes, triangles, instances, rays, hits
 constexpr uint32_t kGroupSize = 64;
+constexpr uint32_t kTexelBindings = 2;  // nodes and triangles are read as texels (rayquery.glsl)
+constexpr VkBufferUsageFlags kTexels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+
+VkDescriptorType bindingType(uint32_t binding) {
+  return binding < kTexelBindings ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
 
 struct Push {
   uint32_t count;
@@ -24,6 +30,7 @@ struct Push {
 struct BatchTracer::Impl {
   const vk::Context& ctx;
   vk::Buffer nodes, triangles, instances;
+  vk::Owned<VkBufferView> nodeTexels, triangleTexels;
   vk::Owned<VkDescriptorSetLayout> setLayout;
   vk::Owned<VkPipelineLayout> layout;
   vk::Owned<VkPipeline> pipeline;
@@ -33,13 +40,15 @@ struct BatchTracer::Impl {
 
   Impl(const vk::Context& c, const bvh::SceneBvh& bvh)
       : ctx(c),
-        nodes(vk::createDeviceBuffer(c, bvh.nodes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)),
-        triangles(vk::createDeviceBuffer(c, bvh.triangles, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)),
+        nodes(vk::createDeviceBuffer(c, bvh.nodes, kTexels)),
+        triangles(vk::createDeviceBuffer(c, bvh.triangles, kTexels)),
         instances(vk::createDeviceBuffer(c, bvh.instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)),
+        nodeTexels(vk::createTexelView(c, nodes, VK_FORMAT_R32G32B32A32_SFLOAT, 16)),
+        triangleTexels(vk::createTexelView(c, triangles, VK_FORMAT_R32G32B32A32_SFLOAT, 16)),
         timestamps(c, 1, 1) {
     const VkDevice device = c.device();
     std::vector<VkDescriptorSetLayoutBinding> b;
-    for (uint32_t i = 0; i < kBindings; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    for (uint32_t i = 0; i < kBindings; ++i) b.push_back({i, bindingType(i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     lci.bindingCount = kBindings;
     lci.pBindings = b.data();
@@ -56,12 +65,13 @@ struct BatchTracer::Impl {
     VK_CHECK(vkCreatePipelineLayout(device, &pci, nullptr, &pl));
     layout = vk::Owned<VkPipelineLayout>(pl, [device](VkPipelineLayout x) { vkDestroyPipelineLayout(device, x, nullptr); });
     pipeline = vk::createComputePipeline(c, layout, kSpirv_trace_rays_comp);
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings};
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kTexelBindings},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings - kTexelBindings}};
     VkDescriptorPoolCreateInfo dci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dci.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
     dci.maxSets = 1;
-    dci.poolSizeCount = 1;
-    dci.pPoolSizes = &size;
+    dci.poolSizeCount = 2;
+    dci.pPoolSizes = sizes;
     VkDescriptorPool p = VK_NULL_HANDLE;
     VK_CHECK(vkCreateDescriptorPool(device, &dci, nullptr, &p));
     pool = vk::Owned<VkDescriptorPool>(p, [device](VkDescriptorPool x) { vkDestroyDescriptorPool(device, x, nullptr); });
@@ -83,8 +93,9 @@ struct BatchTracer::Impl {
     ai.pSetLayouts = &sl;
     VkDescriptorSet set = VK_NULL_HANDLE;
     VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &ai, &set));
-    const VkDescriptorBufferInfo infos[kBindings] = {{nodes.buffer, 0, VK_WHOLE_SIZE},
-                                                     {triangles.buffer, 0, VK_WHOLE_SIZE},
+    const VkBufferView texelViews[kTexelBindings] = {nodeTexels, triangleTexels};
+    const VkDescriptorBufferInfo infos[kBindings] = {{},
+                                                     {},
                                                      {instances.buffer, 0, VK_WHOLE_SIZE},
                                                      {rayBuffer.buffer, 0, VK_WHOLE_SIZE},
                                                      {hitBuffer.buffer, 0, VK_WHOLE_SIZE}};
@@ -94,8 +105,9 @@ struct BatchTracer::Impl {
       writes[i].dstSet = set;
       writes[i].dstBinding = i;
       writes[i].descriptorCount = 1;
-      writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-      writes[i].pBufferInfo = &infos[i];
+      writes[i].descriptorType = bindingType(i);
+      if (i < kTexelBindings) writes[i].pTexelBufferView = &texelViews[i];
+      else writes[i].pBufferInfo = &infos[i];
     }
     vkUpdateDescriptorSets(ctx.device(), kBindings, writes, 0, nullptr);
 

@@ -19,7 +19,8 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount) {
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
   if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
-  if (binding >= kBvhNodes && binding <= kIndices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+  if (binding == kBvhNodes || binding == kBvhTriangles) return {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1};
+  if (binding == kBvhInstances || binding == kIndices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1};
 }
 
@@ -111,7 +112,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   for (const auto& v : t.envMipViews) envMips.push_back({VK_NULL_HANDLE, v, g});
 
   std::vector<VkWriteDescriptorSet> writes;
-  auto write = [&](uint32_t binding, uint32_t count, const VkDescriptorBufferInfo* b, const VkDescriptorImageInfo* i) {
+  auto write = [&](uint32_t binding, uint32_t count, const VkDescriptorBufferInfo* b, const VkDescriptorImageInfo* i,
+                   const VkBufferView* texels = nullptr) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = set;
     w.dstBinding = binding;
@@ -119,6 +121,7 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
     w.descriptorType = bindingInfo(binding, count).type;
     w.pBufferInfo = b;
     w.pImageInfo = i;
+    w.pTexelBufferView = texels;
     writes.push_back(w);
   };
   for (uint32_t b = kFrameUniforms; b <= kVertices; ++b) write(b, 1, &buffers[b], nullptr);
@@ -128,11 +131,12 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   write(kEnvStorage, uint32_t(envMips.size()), nullptr, envMips.data());
   const VkDescriptorImageInfo envSource{samplers.equirect, t.envSource.view, ro};
   write(kEnvSource, 1, nullptr, &envSource);
-  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhNodes.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.bvhTriangles.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.bvhInstances.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.indices.buffer, 0, VK_WHOLE_SIZE}};
-  for (uint32_t b = kBvhNodes; b <= kIndices; ++b) write(b, 1, &rtBuffers[b - kBvhNodes], nullptr);
+  const VkBufferView bvhTexels[] = {scene.bvhNodeTexels, scene.bvhTriangleTexels};
+  write(kBvhNodes, 1, nullptr, nullptr, &bvhTexels[0]);
+  write(kBvhTriangles, 1, nullptr, nullptr, &bvhTexels[1]);
+  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhInstances.buffer, 0, VK_WHOLE_SIZE}, {scene.indices.buffer, 0, VK_WHOLE_SIZE}};
+  write(kBvhInstances, 1, &rtBuffers[0], nullptr);
+  write(kIndices, 1, &rtBuffers[1], nullptr);
   const VkDescriptorImageInfo mask{VK_NULL_HANDLE, t.shadowMaskArray, g};
   write(kShadowMask, 1, nullptr, &mask);
   const VkDescriptorImageInfo position{samplers.nearest, t.position.view, ro};

@@ -188,10 +188,13 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
 
   // The BVH for the ray-traced effects (static scenes: built once, here).
   gpu.bvh = bvh::buildSceneBvh(scene);
-  const VkBufferUsageFlags updatable = kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  gpu.bvhNodes = vk::createDeviceBuffer(ctx, gpu.bvh.nodes, updatable);
-  gpu.bvhTriangles = vk::createDeviceBuffer(ctx, gpu.bvh.triangles, kStorage);
-  gpu.bvhInstances = vk::createDeviceBuffer(ctx, gpu.bvh.instances, updatable);
+  // Nodes and triangles are read as RGBA32F texels (shaders/include/rayquery.glsl).
+  const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  gpu.bvhNodes = vk::createDeviceBuffer(ctx, gpu.bvh.nodes, texels | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  gpu.bvhTriangles = vk::createDeviceBuffer(ctx, gpu.bvh.triangles, texels);
+  gpu.bvhInstances = vk::createDeviceBuffer(ctx, gpu.bvh.instances, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  gpu.bvhNodeTexels = vk::createTexelView(ctx, gpu.bvhNodes, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+  gpu.bvhTriangleTexels = vk::createTexelView(ctx, gpu.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
   gpu.bvhStats = gpu.bvh.stats;
   gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
   gpu.bvh.triangles.shrink_to_fit();

@@ -41,6 +41,7 @@ struct SceneGpu {
   vk::Buffer bvhNodes;
   vk::Buffer bvhTriangles;
   vk::Buffer bvhInstances;
+  vk::Owned<VkBufferView> bvhNodeTexels, bvhTriangleTexels;
   bvh::BuildStats bvhStats;
   vk::Buffer vertices;
   vk::Buffer indices;

@@ -95,6 +95,22 @@ Owned<VkImageView> createView(const Context& ctx, const Image& image, VkImageVie
   return Owned<VkImageView>(view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
 }
 
+Owned<VkBufferView> createTexelView(const Context& ctx, const Buffer& buffer, VkFormat format, VkDeviceSize texelBytes) {
+  const VkDeviceSize texels = buffer.size / texelBytes;
+  if (texels > ctx.properties().limits.maxTexelBufferElements)
+    throw Error("buffer of " + std::to_string(texels) + " texels exceeds the device's maxTexelBufferElements (" +
+                std::to_string(ctx.properties().limits.maxTexelBufferElements) + ")");
+  const VkDevice device = ctx.device();
+  VkBufferViewCreateInfo vi{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  vi.buffer = buffer.buffer;
+  vi.format = format;
+  vi.offset = 0;
+  vi.range = texels * texelBytes;
+  VkBufferView view = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateBufferView(device, &vi, nullptr, &view));
+  return Owned<VkBufferView>(view, [device](VkBufferView v) { vkDestroyBufferView(device, v, nullptr); });
+}
+
 void imageBarrier(VkCommandBuffer cmd, const Image& image, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess, VkImageLayout oldLayout, VkImageLayout newLayout) {
   VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};

@@ -72,6 +72,10 @@ void generateMips(VkCommandBuffer cmd, const Image& image);
 // in SHADER_READ_ONLY_OPTIMAL.
 void uploadTexture(const Context& ctx, const Image& image, const std::vector<uint8_t>& texels);
 
+// A view of a whole buffer as `format` texels, for uniform texel buffers. Throws when the
+// buffer holds more texels than the device's maxTexelBufferElements.
+Owned<VkBufferView> createTexelView(const Context& ctx, const Buffer& buffer, VkFormat format, VkDeviceSize texelBytes);
+
 Owned<VkSampler> createSampler(const Context& ctx, const VkSamplerCreateInfo& info);
 
 }  // namespace raybudget::vk
