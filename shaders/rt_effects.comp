@@ -20,8 +20,9 @@ bool traceClosest(vec3 origin, vec3 dir, out RayQuery q, inout uint work) {
   rqInitialize(q, 0u, 0xFFu, origin, 0.0, dir, 1e30);
   while (rqProceed(q))
     if (candidateIsOpaque(q)) rqConfirm(q);
-  work += q.nodesVisited + q.trianglesTested;
-  return q.committedType == RB_RQ_HIT_TRIANGLE;
+  uvec2 w = rqWork(q);
+  work += w.x + w.y;
+  return rqCommittedHit(q);
 }
 
 // Radiance arriving at `origin` from direction `dir`: shades the first hit and follows
@@ -33,7 +34,7 @@ vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
   for (int event = 0; event < 2 * RB_RT_MAX_DEPTH; ++event) {
     RayQuery q;
     if (!traceClosest(origin, dir, q, work)) return result + throughput * textureLod(envMap, dir, 0.0).rgb;
-    HitSurface h = hitSurface(q.committedObject, q.committedPrimitive, q.committedBary, q.committedMaterial, dir);
+    HitSurface h = hitSurface(rqCommittedObject(q), rqCommittedPrimitive(q), rqCommittedBarycentrics(q), rqCommittedMaterial(q), dir);
     vec3 V = -dir;
     result += throughput * shadeHit(h, V, work);
     float NoV = clamp(dot(h.normal, V), 1e-4, 1.0);
@@ -85,8 +86,8 @@ bool transmittedRay(vec3 p, vec3 ng, vec3 V, vec3 n, float ior, uint materialId,
       dir = T;
       return true;
     }
-    HitSurface h = hitSurface(q.committedObject, q.committedPrimitive, q.committedBary, q.committedMaterial, T);
-    float travelled = q.tMax * length(T);
+    HitSurface h = hitSurface(rqCommittedObject(q), rqCommittedPrimitive(q), rqCommittedBarycentrics(q), rqCommittedMaterial(q), T);
+    float travelled = rqCommittedT(q) * length(T);
     if (m.attenuationColorDistance.w > 0.0) absorbed *= pow(m.attenuationColorDistance.rgb, vec3(travelled / m.attenuationColorDistance.w));
     vec3 E = refract(T, h.normal, max(ior, 1.0));
     if (dot(E, E) == 0.0) {  // total internal reflection: stay inside

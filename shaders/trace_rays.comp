@@ -22,11 +22,12 @@ void main() {
   rqInitialize(q, push.flags, 0xFFu, r.originTMin.xyz, r.originTMin.w, r.dirTMax.xyz, r.dirTMax.w);
   while (rqProceed(q)) rqConfirm(q);
   GpuHit h;
-  bool hit = q.committedType == RB_RQ_HIT_TRIANGLE;
-  h.t = q.tMax;
-  h.object = q.committedObject;
-  h.primitive = q.committedPrimitive;
-  h.flags = (hit ? 1u : 0u) | (q.committedFrontFace ? 2u : 0u);
-  h.baryWork = vec4(q.committedBary, float(q.nodesVisited), float(q.trianglesTested));
+  bool hit = rqCommittedHit(q);
+  uvec2 work = rqWork(q);
+  h.t = hit ? rqCommittedT(q) : r.dirTMax.w;
+  h.object = hit ? rqCommittedObject(q) : 0u;
+  h.primitive = hit ? rqCommittedPrimitive(q) : 0u;
+  h.flags = hit ? (1u | (rqCommittedFrontFace(q) ? 2u : 0u)) : 0u;
+  h.baryWork = vec4(hit ? rqCommittedBarycentrics(q) : vec2(0.0), float(work.x), float(work.y));
   hits[i] = h;
 }

@@ -62,6 +62,57 @@ TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
   EXPECT_LE(double(shadowMismatch), 1e-4 * double(shadow.size())) << shadowMismatch << " of " << shadow.size();
 }
 
+// The native VK_KHR_ray_query tracer and the compute tracer, same rays: same hits, the
+// same object, primitive, front face and barycentrics (the geometry table maps the
+// driver's geometry and primitive indices back to ours), and Embree agrees with both.
+void expectNativeMatchesCompute(const vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height) {
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  const bvh::EmbreeOracle oracle(scene);
+  passes::BatchTracer compute(ctx, bvh);
+  passes::BatchTracer native(ctx, scene);
+  const auto primary = bvh::primaryRays(defaultCamera(scene, 4.0f / 3.0f), width, height);
+  const glm::vec3 light = 0.5f * (scene.boundsMin + scene.boundsMax) + glm::vec3(0.2f, 0.8f, 0.3f) * glm::length(scene.boundsMax - scene.boundsMin);
+  const auto secondary = bvh::secondaryRays(scene, oracle, primary, light, 3);
+  size_t primaryHits = 0;
+  for (int kind = 0; kind < 3; ++kind) {
+    const auto& set = kind == 0 ? primary : kind == 1 ? secondary.incoherent : secondary.shadow;
+    const uint32_t flags = kind == 2 ? RB_RQ_TERMINATE_ON_FIRST_HIT : 0u;
+    const std::vector<gpu::GpuHit> a = compute.trace(toGpu(set), flags), b = native.trace(toGpu(set), flags);
+    size_t hitMismatch = 0, attributeMismatch = 0, embreeMismatch = 0;
+    for (size_t i = 0; i < set.size(); ++i) {
+      const bool ha = a[i].flags & 1u, hb = b[i].flags & 1u;
+      primaryHits += kind == 0 && hb;
+      hitMismatch += ha != hb;
+      if (kind == 2) {
+        embreeMismatch += hb != oracle.occluded(set[i]);
+        continue;
+      }
+      const bvh::OracleHit e = oracle.intersect(set[i]);
+      embreeMismatch += hb != e.hit || (hb && std::fabs(b[i].t - e.t) > 1e-4f * e.t + 1e-5f * (glm::length(set[i].origin) + e.t));
+      if (ha && hb &&
+          (a[i].object != b[i].object || a[i].primitive != b[i].primitive || (a[i].flags & 2u) != (b[i].flags & 2u) ||
+           std::fabs(a[i].t - b[i].t) > 1e-4f * a[i].t + 1e-5f * (glm::length(set[i].origin) + a[i].t) || glm::length(glm::vec2(a[i].baryWork) - glm::vec2(b[i].baryWork)) > 1e-3f)) 
+        ++attributeMismatch;
+    }
+    const double allowed = 1e-4 * double(set.size()) + 1.0;  // a ray grazing an edge may go either way
+    EXPECT_LE(double(hitMismatch), allowed) << scene.path.filename() << " ray set " << kind << ": " << hitMismatch << " of " << set.size();
+    EXPECT_LE(double(attributeMismatch), allowed) << scene.path.filename() << " ray set " << kind << ": " << attributeMismatch;
+    EXPECT_LE(double(embreeMismatch), allowed) << scene.path.filename() << " ray set " << kind << ": " << embreeMismatch;
+  }
+  EXPECT_GT(primaryHits, primary.size() / 100) << scene.path.filename() << ": the camera should see the scene";
+}
+
+TEST_F(TracerGpu, NativeRayQueryMatchesComputeAndEmbree) {
+  if (!ctx.rayQuerySupported()) GTEST_SKIP() << ctx.properties().deviceName << " offers no VK_KHR_ray_query: native tracer not tested";
+  expectNativeMatchesCompute(ctx, loadScene(test::defaultScenePath()), 256, 192);
+}
+
+TEST_F(TracerGpu, NativeRayQueryMatchesComputeOnTheCiScenes) {
+  RB_REQUIRE_SHARED_SCENES();
+  if (!ctx.rayQuerySupported()) GTEST_SKIP() << ctx.properties().deviceName << " offers no VK_KHR_ray_query: native tracer not tested";
+  for (const auto& path : test::manifestScenes("ci")) expectNativeMatchesCompute(ctx, loadScene(path), 96, 72);
+}
+
 // Rays aimed exactly at vertices and at points of shared edges of closed meshes must all
 // hit. Each ray comes from a random direction for which it enters the mesh through that
 // point (-dir lies inside the normal cone of every face there), so a miss can only be a

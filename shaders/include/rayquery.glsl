@@ -1,43 +1,19 @@
-// The ray-query interface for effect shaders, implemented by our compute BVH traversal
-// (shaders/shared/rayquery_traverse.h). The includer chooses where the BVH is bound by
-// defining RB_BVH_SET and RB_BVH_BINDING: nodes and triangles as RGBA32F uniform texel
-// buffers, then the instances as a storage buffer, at three consecutive bindings.
+// The ray-query interface of the effect shaders, mirroring GL_EXT_ray_query:
+//   RayQuery q; rqInitialize(q, flags, cullMask, origin, tMin, dir, tMax);
+//   while (rqProceed(q)) if (<candidate passes the alpha test>) rqConfirm(q);
+//   rqCommittedHit(q), rqCommittedT(q), rqCommittedObject/Primitive/Material(q),
+//   rqCommittedBarycentrics(q), rqCommittedFrontFace(q), rqCandidate*(q), rqWork(q).
+// Flags are RB_RQ_* (shared/bvh.h), equal to gl_RayFlags*EXT. Two implementations, chosen
+// when the shader is compiled (the build compiles each tracing shader twice): our compute
+// BVH (default) and, with RB_NATIVE_RAY_QUERY, the device's VK_KHR_ray_query. The includer
+// defines RB_BVH_SET and RB_BVH_BINDING (three consecutive bindings) first.
 //
-// Texel fetches rather than storage-buffer loads: on lavapipe they are 20-30% faster for
-// the node and triangle reads that dominate traversal (docs/TRACER.md).
-//
-// The traversal stack is a global of the invocation, not a member of RayQuery: GLSL passes
-// the query by copy-in/copy-out, and copying a 64-entry array at every call halved the
-// tracer's speed on lavapipe. So one query at a time per invocation (queries may follow
-// each other, not nest).
+// One query at a time per invocation: queries may follow each other, not nest.
 #ifndef RB_RAYQUERY_GLSL
 #define RB_RAYQUERY_GLSL
-#include "shared/bvh.h"
-
-layout(set = RB_BVH_SET, binding = RB_BVH_BINDING) uniform samplerBuffer bvhNodeTexels;
-layout(set = RB_BVH_SET, binding = RB_BVH_BINDING + 1) uniform samplerBuffer bvhTriangleTexels;
-layout(set = RB_BVH_SET, binding = RB_BVH_BINDING + 2, std430) readonly buffer BvhInstanceBlock { GpuInstance bvhInstances[]; };
-
-GpuBvhNode rqLoadNode(uint i) {
-  int t = int(i) * 4;
-  return GpuBvhNode(texelFetch(bvhNodeTexels, t), texelFetch(bvhNodeTexels, t + 1), texelFetch(bvhNodeTexels, t + 2),
-                    texelFetch(bvhNodeTexels, t + 3));
-}
-
-GpuTriangle rqLoadTriangle(uint i) {
-  int t = int(i) * 3;
-  return GpuTriangle(texelFetch(bvhTriangleTexels, t), texelFetch(bvhTriangleTexels, t + 1), texelFetch(bvhTriangleTexels, t + 2));
-}
-
-uint rqStack[RB_BVH_STACK_SIZE];
-
-#define RB_BVH_NODE(i) rqLoadNode(i)
-#define RB_BVH_TRIANGLE(i) rqLoadTriangle(i)
-#define RB_BVH_INSTANCE(i) bvhInstances[i]
-#define RB_RQ_EXTERNAL_STACK
-#define RB_RQ_STACK_READ(q, i) rqStack[i]
-#define RB_RQ_STACK_WRITE(q, i, v) rqStack[i] = (v)
-#define RB_BVH_TLAS_ROOT RB_BVH_TLAS_ROOT_NODE
-#include "shared/rayquery_traverse.h"
-
+#ifdef RB_NATIVE_RAY_QUERY
+#include "include/rayquery_native.glsl"
+#else
+#include "include/rayquery_compute.glsl"
+#endif
 #endif

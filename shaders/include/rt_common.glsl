@@ -57,16 +57,17 @@ HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec
 
 // Alpha test of a non-opaque candidate (alpha-masked material).
 bool candidateIsOpaque(RayQuery q) {
-  GpuMaterial m = materials[q.candidateMaterial];
-  GpuObject o = objects[q.candidateObject];
-  uint base = o.ids.y + q.candidatePrimitive * 3u;
-  float w0 = 1.0 - q.candidateBary.x - q.candidateBary.y;
+  GpuMaterial m = materials[rqCandidateMaterial(q)];
+  GpuObject o = objects[rqCandidateObject(q)];
+  uint base = o.ids.y + rqCandidatePrimitive(q) * 3u;
+  vec2 bary = rqCandidateBarycentrics(q);
+  float w0 = 1.0 - bary.x - bary.y;
   GpuVertex v0 = vertices[o.ids.z + meshIndices[base]];
   GpuVertex v1 = vertices[o.ids.z + meshIndices[base + 1u]];
   GpuVertex v2 = vertices[o.ids.z + meshIndices[base + 2u]];
-  vec2 uv = w0 * vec2(v0.positionU.w, v0.normalV.w) + q.candidateBary.x * vec2(v1.positionU.w, v1.normalV.w) +
-            q.candidateBary.y * vec2(v2.positionU.w, v2.normalV.w);
-  float alpha = m.baseColorFactor.a * (w0 * v0.color.a + q.candidateBary.x * v1.color.a + q.candidateBary.y * v2.color.a);
+  vec2 uv = w0 * vec2(v0.positionU.w, v0.normalV.w) + bary.x * vec2(v1.positionU.w, v1.normalV.w) +
+            bary.y * vec2(v2.positionU.w, v2.normalV.w);
+  float alpha = m.baseColorFactor.a * (w0 * v0.color.a + bary.x * v1.color.a + bary.y * v2.color.a);
   if (m.textures.x >= 0) alpha *= textureLod(textures[nonuniformEXT(m.textures.x)], uv, 0.0).a;
   return alpha >= m.emissiveAlphaCutoff.w;
 }
@@ -77,8 +78,9 @@ float traceVisibility(vec3 origin, vec3 dir, float tMax, inout uint work) {
   rqInitialize(q, RB_RQ_TERMINATE_ON_FIRST_HIT, 0xFFu, origin, 0.0, dir, tMax);
   while (rqProceed(q))
     if (candidateIsOpaque(q)) rqConfirm(q);
-  work += q.nodesVisited + q.trianglesTested;
-  return q.committedType == RB_RQ_HIT_NONE ? 1.0 : 0.0;
+  uvec2 w = rqWork(q);
+  work += w.x + w.y;
+  return rqCommittedHit(q) ? 0.0 : 1.0;
 }
 
 // Direction to the light, distance and unshadowed radiance scale of light `i` at `p`.

@@ -2,7 +2,9 @@
 
 #include <cstring>
 
+#include "passes/native_accel.h"
 #include "trace_rays_comp.h"
+#include "trace_rays_comp_native.h"
 #include "vk/check.h"
 #include "vk/pipelines.h"
 #include "vk/resources.h"
@@ -11,46 +13,75 @@
 namespace raybudget::passes {
 namespace {
 
-constexpr uint32_t kBindings = 5;  // nodes, triangles, instances, rays, hits
+// Bindings of trace_rays.comp: the tracer's three (rayquery.glsl), then rays and hits.
+constexpr uint32_t kRays = 3, kHits = 4;
 constexpr uint32_t kGroupSize = 64;
-constexpr uint32_t kTexelBindings = 2;  // nodes and triangles are read as texels (rayquery.glsl)
-constexpr VkBufferUsageFlags kTexels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-
-VkDescriptorType bindingType(uint32_t binding) {
-  return binding < kTexelBindings ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-}
 
 struct Push {
   uint32_t count;
   uint32_t flags;
 };
 
+// One descriptor of the set: what it is and what it points at.
+struct Binding {
+  uint32_t binding;
+  VkDescriptorType type;
+  VkDescriptorBufferInfo buffer{};
+  VkBufferView texels = VK_NULL_HANDLE;
+  VkAccelerationStructureKHR accel = VK_NULL_HANDLE;
+};
+
 }  // namespace
 
 struct BatchTracer::Impl {
   const vk::Context& ctx;
+  // Compute tracer: the BVH as texel buffers and instances. Native: acceleration structures.
   vk::Buffer nodes, triangles, instances;
   vk::Owned<VkBufferView> nodeTexels, triangleTexels;
+  std::unique_ptr<NativeAccel> native;
+  std::vector<Binding> bindings;  // the tracer's; rays and hits are added per batch
   vk::Owned<VkDescriptorSetLayout> setLayout;
   vk::Owned<VkPipelineLayout> layout;
   vk::Owned<VkPipeline> pipeline;
   vk::Owned<VkDescriptorPool> pool;
   vk::TimestampPool timestamps;
   double gpuMs = 0.0;
+  size_t accelBytes = 0;
 
-  Impl(const vk::Context& c, const bvh::SceneBvh& bvh)
-      : ctx(c),
-        nodes(vk::createDeviceBuffer(c, bvh.nodes, kTexels)),
-        triangles(vk::createDeviceBuffer(c, bvh.triangles, kTexels)),
-        instances(vk::createDeviceBuffer(c, bvh.instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)),
-        nodeTexels(vk::createTexelView(c, nodes, VK_FORMAT_R32G32B32A32_SFLOAT, 16)),
-        triangleTexels(vk::createTexelView(c, triangles, VK_FORMAT_R32G32B32A32_SFLOAT, 16)),
-        timestamps(c, 1, 1) {
-    const VkDevice device = c.device();
+  Impl(const vk::Context& c, const bvh::SceneBvh& bvh) : ctx(c), timestamps(c, 1, 1) {
+    nodes = vk::createDeviceBuffer(c, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    triangles = vk::createDeviceBuffer(c, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    instances = vk::createDeviceBuffer(c, bvh.instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    nodeTexels = vk::createTexelView(c, nodes, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+    triangleTexels = vk::createTexelView(c, triangles, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+    accelBytes = size_t(nodes.size + triangles.size + instances.size);
+    Binding n{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}, t{1, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
+    n.texels = nodeTexels;
+    t.texels = triangleTexels;
+    bindings = {n, t, {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {instances.buffer, 0, VK_WHOLE_SIZE}}};
+    createPipeline(kSpirv_trace_rays_comp);
+  }
+
+  Impl(const vk::Context& c, const Scene& scene) : ctx(c), native(std::make_unique<NativeAccel>(c, scene)), timestamps(c, 1, 1) {
+    accelBytes = native->memoryBytes();
+    Binding tlas{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR};
+    tlas.accel = native->tlas();
+    bindings = {tlas, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {native->geometryTable().buffer, 0, VK_WHOLE_SIZE}}};
+    createPipeline(kSpirv_trace_rays_comp_native);
+  }
+
+  void createPipeline(vk::Spirv shader) {
+    const VkDevice device = ctx.device();
     std::vector<VkDescriptorSetLayoutBinding> b;
-    for (uint32_t i = 0; i < kBindings; ++i) b.push_back({i, bindingType(i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (const Binding& x : bindings) {
+      b.push_back({x.binding, x.type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+      sizes.push_back({x.type, 1});
+    }
+    for (uint32_t i : {kRays, kHits}) b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2});
     VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    lci.bindingCount = kBindings;
+    lci.bindingCount = uint32_t(b.size());
     lci.pBindings = b.data();
     VkDescriptorSetLayout sl = VK_NULL_HANDLE;
     VK_CHECK(vkCreateDescriptorSetLayout(device, &lci, nullptr, &sl));
@@ -64,27 +95,19 @@ struct BatchTracer::Impl {
     VkPipelineLayout pl = VK_NULL_HANDLE;
     VK_CHECK(vkCreatePipelineLayout(device, &pci, nullptr, &pl));
     layout = vk::Owned<VkPipelineLayout>(pl, [device](VkPipelineLayout x) { vkDestroyPipelineLayout(device, x, nullptr); });
-    pipeline = vk::createComputePipeline(c, layout, kSpirv_trace_rays_comp);
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kTexelBindings},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings - kTexelBindings}};
+    pipeline = vk::createComputePipeline(ctx, layout, shader);
     VkDescriptorPoolCreateInfo dci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dci.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
     dci.maxSets = 1;
-    dci.poolSizeCount = 2;
-    dci.pPoolSizes = sizes;
+    dci.poolSizeCount = uint32_t(sizes.size());
+    dci.pPoolSizes = sizes.data();
     VkDescriptorPool p = VK_NULL_HANDLE;
     VK_CHECK(vkCreateDescriptorPool(device, &dci, nullptr, &p));
     pool = vk::Owned<VkDescriptorPool>(p, [device](VkDescriptorPool x) { vkDestroyDescriptorPool(device, x, nullptr); });
   }
 
-  std::vector<gpu::GpuHit> trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags) {
-    if (rays.empty()) return {};
-    const VkDeviceSize rayBytes = rays.size() * sizeof(gpu::GpuRay), hitBytes = rays.size() * sizeof(gpu::GpuHit);
-    vk::Buffer rayBuffer = vk::createDeviceBuffer(ctx, rays.data(), rayBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    vk::Buffer hitBuffer = vk::createBuffer(ctx, hitBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    vk::Buffer readback = vk::createBuffer(ctx, hitBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-
-    // The set is rewritten per batch (its buffers are new); the pool holds exactly one.
+  // The set is rewritten per batch (its ray and hit buffers are new); the pool holds one.
+  VkDescriptorSet writeSet(const vk::Buffer& rays, const vk::Buffer& hits) {
     VK_CHECK(vkResetDescriptorPool(ctx.device(), pool, 0));
     VkDescriptorSetLayout sl = setLayout;
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -93,24 +116,40 @@ struct BatchTracer::Impl {
     ai.pSetLayouts = &sl;
     VkDescriptorSet set = VK_NULL_HANDLE;
     VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &ai, &set));
-    const VkBufferView texelViews[kTexelBindings] = {nodeTexels, triangleTexels};
-    const VkDescriptorBufferInfo infos[kBindings] = {{},
-                                                     {},
-                                                     {instances.buffer, 0, VK_WHOLE_SIZE},
-                                                     {rayBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                                     {hitBuffer.buffer, 0, VK_WHOLE_SIZE}};
-    VkWriteDescriptorSet writes[kBindings];
-    for (uint32_t i = 0; i < kBindings; ++i) {
-      writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-      writes[i].dstSet = set;
-      writes[i].dstBinding = i;
-      writes[i].descriptorCount = 1;
-      writes[i].descriptorType = bindingType(i);
-      if (i < kTexelBindings) writes[i].pTexelBufferView = &texelViews[i];
-      else writes[i].pBufferInfo = &infos[i];
+    std::vector<Binding> all = bindings;
+    all.push_back({kRays, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {rays.buffer, 0, VK_WHOLE_SIZE}});
+    all.push_back({kHits, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {hits.buffer, 0, VK_WHOLE_SIZE}});
+    std::vector<VkWriteDescriptorSet> writes(all.size());
+    std::vector<VkWriteDescriptorSetAccelerationStructureKHR> accels(all.size());
+    for (size_t i = 0; i < all.size(); ++i) {
+      VkWriteDescriptorSet& w = writes[i];
+      w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      w.dstSet = set;
+      w.dstBinding = all[i].binding;
+      w.descriptorCount = 1;
+      w.descriptorType = all[i].type;
+      if (all[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+        w.pTexelBufferView = &all[i].texels;
+      } else if (all[i].type == VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR) {
+        accels[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+        accels[i].accelerationStructureCount = 1;
+        accels[i].pAccelerationStructures = &all[i].accel;
+        w.pNext = &accels[i];
+      } else {
+        w.pBufferInfo = &all[i].buffer;
+      }
     }
-    vkUpdateDescriptorSets(ctx.device(), kBindings, writes, 0, nullptr);
+    vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
+    return set;
+  }
 
+  std::vector<gpu::GpuHit> trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags) {
+    if (rays.empty()) return {};
+    const VkDeviceSize rayBytes = rays.size() * sizeof(gpu::GpuRay), hitBytes = rays.size() * sizeof(gpu::GpuHit);
+    vk::Buffer rayBuffer = vk::createDeviceBuffer(ctx, rays.data(), rayBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    vk::Buffer hitBuffer = vk::createBuffer(ctx, hitBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    vk::Buffer readback = vk::createBuffer(ctx, hitBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const VkDescriptorSet set = writeSet(rayBuffer, hitBuffer);
     const Push push{uint32_t(rays.size()), flags};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
@@ -134,8 +173,11 @@ struct BatchTracer::Impl {
 };
 
 BatchTracer::BatchTracer(const vk::Context& ctx, const bvh::SceneBvh& bvh) : impl_(std::make_unique<Impl>(ctx, bvh)) {}
+BatchTracer::BatchTracer(const vk::Context& ctx, const Scene& scene) : impl_(std::make_unique<Impl>(ctx, scene)) {}
 BatchTracer::~BatchTracer() = default;
 std::vector<gpu::GpuHit> BatchTracer::trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags) { return impl_->trace(rays, flags); }
 double BatchTracer::lastGpuMs() const { return impl_->gpuMs; }
+double BatchTracer::buildMs() const { return impl_->native ? impl_->native->buildMs() : 0.0; }
+size_t BatchTracer::accelBytes() const { return impl_->accelBytes; }
 
 }  // namespace raybudget::passes

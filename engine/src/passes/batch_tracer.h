@@ -1,11 +1,12 @@
-// Traces a batch of rays from a buffer on the GPU with the compute tracer
-// (shaders/trace_rays.comp): the oracle tests compare its hits with Embree's, and the
-// throughput benchmark times it with GPU timestamps.
+// Traces a batch of rays from a buffer on the GPU (shaders/trace_rays.comp) with either
+// tracer: our compute BVH or the device's VK_KHR_ray_query. The oracle tests compare its
+// hits with Embree's, and the throughput benchmark times it with GPU timestamps.
 #pragma once
 #include <memory>
 #include <vector>
 
 #include "bvh/scene_bvh.h"
+#include "raybudget/scene.h"
 #include "shared/bvh.h"
 #include "vk/context.h"
 
@@ -13,7 +14,11 @@ namespace raybudget::passes {
 
 class BatchTracer {
  public:
+  // The compute tracer over `bvh`.
   BatchTracer(const vk::Context& ctx, const bvh::SceneBvh& bvh);
+  // The native tracer: builds Vulkan acceleration structures for `scene` (throws when the
+  // device has no VK_KHR_ray_query).
+  BatchTracer(const vk::Context& ctx, const Scene& scene);
   ~BatchTracer();
   BatchTracer(const BatchTracer&) = delete;
   BatchTracer& operator=(const BatchTracer&) = delete;
@@ -22,6 +27,10 @@ class BatchTracer {
   std::vector<gpu::GpuHit> trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags);
   // GPU milliseconds of the last trace's dispatch (timestamps).
   double lastGpuMs() const;
+  // Acceleration-structure build time (native: BLAS + TLAS on the device; compute: 0,
+  // the CPU build happens before) and device memory it takes.
+  double buildMs() const;
+  size_t accelBytes() const;
 
  private:
   struct Impl;

@@ -17,6 +17,14 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBit
   return VK_FALSE;
 }
 
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  uint32_t n = 0;
+  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, nullptr));
+  std::vector<VkExtensionProperties> exts(n);
+  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, exts.data()));
+  return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
 bool hasLayer(const char* name) {
   uint32_t n = 0;
   VK_CHECK(vkEnumerateInstanceLayerProperties(&n, nullptr));
@@ -136,7 +144,15 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   queueFamily_ = uint32_t(family - families.begin());
 
   // Features we rely on: dynamic rendering and sync2 (1.3), bindless textures (1.2).
+  VkPhysicalDeviceRayQueryFeaturesKHR fRq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR fAs{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  const std::vector<const char*> rayQueryExtensions = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                                       VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+  const bool rayQueryExts = std::all_of(rayQueryExtensions.begin(), rayQueryExtensions.end(),
+                                        [&](const char* e) { return hasDeviceExtension(physical_, e); });
+  fAs.pNext = &fRq;
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  if (rayQueryExts) f13.pNext = &fAs;
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   f12.pNext = &f13;
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -151,7 +167,14 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   require(f12.runtimeDescriptorArray, "runtimeDescriptorArray");
   require(f12.shaderSampledImageArrayNonUniformIndexing, "shaderSampledImageArrayNonUniformIndexing");
   require(f2.features.imageCubeArray, "imageCubeArray");
+  rayQuery_ = rayQueryExts && fRq.rayQuery && fAs.accelerationStructure && f12.bufferDeviceAddress;
+  VkPhysicalDeviceRayQueryFeaturesKHR eRq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  eRq.rayQuery = VK_TRUE;
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR eAs{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  eAs.accelerationStructure = VK_TRUE;
+  eAs.pNext = &eRq;
   VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  if (rayQuery_) e13.pNext = &eAs;
   e13.dynamicRendering = VK_TRUE;
   e13.synchronization2 = VK_TRUE;
   e13.maintenance4 = VK_TRUE;
@@ -160,6 +183,7 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   e12.runtimeDescriptorArray = VK_TRUE;
   e12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
   e12.hostQueryReset = f12.hostQueryReset;
+  e12.bufferDeviceAddress = rayQuery_ ? VK_TRUE : VK_FALSE;
   VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   e2.pNext = &e12;
   e2.features.imageCubeArray = VK_TRUE;
@@ -175,10 +199,22 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   dci.pNext = &e2;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
+  if (rayQuery_) {
+    dci.enabledExtensionCount = uint32_t(rayQueryExtensions.size());
+    dci.ppEnabledExtensionNames = rayQueryExtensions.data();
+  }
   VkDevice device = VK_NULL_HANDLE;
   VK_CHECK(vkCreateDevice(physical_, &dci, nullptr, &device));
   device_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
   vkGetDeviceQueue(device, queueFamily_, 0, &queue_);
+  if (rayQuery_) {
+    accel_ = loadAccelFunctions(device);
+    VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    p2.pNext = &asProps;
+    vkGetPhysicalDeviceProperties2(physical_, &p2);
+    accelScratchAlignment_ = std::max<VkDeviceSize>(1, asProps.minAccelerationStructureScratchOffsetAlignment);
+  }
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

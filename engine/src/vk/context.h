@@ -8,6 +8,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vk/accel_functions.h"
 #include "vk/owned.h"
 
 namespace raybudget::vk {
@@ -32,6 +33,12 @@ class Context {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   bool validationEnabled() const { return validation_; }
 
+  // VK_KHR_ray_query with acceleration structures and buffer device addresses: enabled
+  // whenever the device offers them (lavapipe from Mesa 24+, current GPUs).
+  bool rayQuerySupported() const { return rayQuery_; }
+  const AccelFunctions& accel() const { return accel_; }
+  VkDeviceSize accelScratchAlignment() const { return accelScratchAlignment_; }
+
   // Index of a memory type with `flags` among `typeBits`; throws when there is none.
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
 
@@ -44,6 +51,9 @@ class Context {
 
  private:
   bool validation_ = false;
+  bool rayQuery_ = false;
+  AccelFunctions accel_;
+  VkDeviceSize accelScratchAlignment_ = 1;
   Owned<VkInstance> instance_;
   Owned<VkDebugUtilsMessengerEXT> messenger_;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;

@@ -8,8 +8,11 @@
 namespace raybudget::vk {
 namespace {
 
-Owned<VkDeviceMemory> allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags flags) {
+Owned<VkDeviceMemory> allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, bool deviceAddress = false) {
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  VkMemoryAllocateFlagsInfo fi{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  fi.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  if (deviceAddress) ai.pNext = &fi;
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, flags);
   VkDeviceMemory mem = VK_NULL_HANDLE;
@@ -34,10 +37,17 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(device, buf, &req);
   b.memory = allocate(ctx, req,
-                      hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+                      hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT,
+                      (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0);
   VK_CHECK(vkBindBufferMemory(device, buf, b.memory, 0));
   if (hostVisible) VK_CHECK(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   return b;
+}
+
+VkDeviceAddress bufferAddress(const Context& ctx, const Buffer& buffer) {
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = buffer.buffer;
+  return vkGetBufferDeviceAddress(ctx.device(), &info);
 }
 
 Buffer createDeviceBuffer(const Context& ctx, const void* bytes, VkDeviceSize size, VkBufferUsageFlags usage) {

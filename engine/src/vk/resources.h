@@ -20,6 +20,10 @@ struct Buffer {
 
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
 
+// The device address of a buffer created with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT
+// (createBuffer then allocates its memory with the device-address flag).
+VkDeviceAddress bufferAddress(const Context& ctx, const Buffer& buffer);
+
 // A device-local buffer filled with `bytes` through a staging buffer.
 Buffer createDeviceBuffer(const Context& ctx, const void* bytes, VkDeviceSize size, VkBufferUsageFlags usage);
 
