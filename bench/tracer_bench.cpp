@@ -1,8 +1,9 @@
 // Rays per second of the compute tracer (lavapipe or a GPU) against Embree on this CPU,
 // same scene, same rays, in one run: coherent primary rays (8x8 tile order), shadow rays
 // to a point light, and incoherent rays (one cosine-distributed bounce per primary hit).
-// Prints median Mrays/s of `repeats` runs and the ratio to Embree's 2-thread single-ray
-// rate; plus BVH build time, SAH cost, memory per triangle and traversal work per ray.
+// Prints median Mrays/s of `repeats` runs, the ratio to Embree's 2-thread single-ray rate
+// and to the device's own VK_KHR_ray_query (same rays, same device) where it has one; plus
+// BVH build time, SAH cost, memory per triangle and traversal work per ray.
 //
 // usage: tracer_bench [--size N] [--repeats R] [SCENE...]
 //   default scenes: data/default/court.gltf and, when ../shared is there, the bench scenes
@@ -52,7 +53,7 @@ void parallel(size_t n, unsigned threads, const std::function<void(size_t, size_
 struct Row {
   std::string kind;
   size_t rays;
-  double embree1, embree2, packets2, compute;  // Mrays/s
+  double embree1, embree2, packets2, compute, native;  // Mrays/s (native 0: none)
   double nodes, triangles;                     // per ray, compute tracer
 };
 
@@ -82,12 +83,17 @@ int main(int argc, char** argv) {
       const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
       const bvh::EmbreeOracle oracle(scene);
       passes::BatchTracer tracer(ctx, bvh);
+      std::unique_ptr<passes::BatchTracer> native;
+      if (ctx.rayQuerySupported()) native = std::make_unique<passes::BatchTracer>(ctx, scene);
       float blasSah = 0.0f;
       for (const auto& b : bvh.blas) blasSah = std::max(blasSah, b.sahCost);
       std::printf("\n%s: %zu triangles, %zu objects; BVH build %.1f ms (BLAS) + %.2f ms (TLAS), %zu nodes, %.1f bytes/triangle, "
                   "SAH cost: TLAS %.1f, largest BLAS %.1f\n",
                   std::filesystem::path(path).filename().c_str(), bvh.stats.triangles, scene.objects.size(), bvh.stats.blasMs,
                   bvh.stats.tlasMs, bvh.stats.nodes, bvh.stats.bytesPerTriangle, bvh.tlasSahCost, blasSah);
+      if (native)
+        std::printf("native VK_KHR_ray_query: build %.1f ms on the device, %.1f bytes/triangle\n", native->buildMs(),
+                    double(native->accelBytes()) / double(std::max<size_t>(1, bvh.stats.triangles)));
       const Camera cam = defaultCamera(scene, 1.0f);
       const auto primary = bvh::primaryRays(cam, size, size);
       const glm::vec3 extent = scene.boundsMax - scene.boundsMin;
@@ -117,7 +123,7 @@ int main(int argc, char** argv) {
             for (size_t i = b; i < e; i += 8) oracle.intersect8(&rays[i], std::min<size_t>(8, e - i), &hits[i]);
           }
         };
-        std::vector<double> e1, e2, p2, gpu;
+        std::vector<double> e1, e2, p2, gpu, nat;
         std::vector<gpu::GpuHit> gpuHits;
         for (uint32_t r = 0; r < repeats; ++r) {
           e1.push_back(wallMs([&] { single(0, rays.size()); }));
@@ -125,6 +131,10 @@ int main(int argc, char** argv) {
           p2.push_back(wallMs([&] { parallel(rays.size() / 8 * 8, 2, packets); }));
           gpuHits = tracer.trace(gpuRays, any ? RB_RQ_TERMINATE_ON_FIRST_HIT : 0u);
           gpu.push_back(tracer.lastGpuMs());
+          if (native) {
+            native->trace(gpuRays, any ? RB_RQ_TERMINATE_ON_FIRST_HIT : 0u);
+            nat.push_back(native->lastGpuMs());
+          }
         }
         double nodes = 0.0, tris = 0.0;
         for (const auto& h : gpuHits) {
@@ -134,15 +144,15 @@ int main(int argc, char** argv) {
         const double n = double(rays.size());
         auto mrays = [&](const std::vector<double>& ms) { return n / (median(ms) * 1e3); };
         rows.push_back({kind == 0 ? "primary" : kind == 1 ? "shadow" : "incoherent", rays.size(), mrays(e1), mrays(e2), mrays(p2),
-                        mrays(gpu), nodes / n, tris / n});
+                        mrays(gpu), nat.empty() ? 0.0 : mrays(nat), nodes / n, tris / n});
       }
-      std::printf("%-11s %9s %10s %10s %12s %10s %7s %12s %10s\n", "rays", "count", "embree x1", "embree x2", "packets8 x2", "compute",
-                  "ratio", "nodes/ray", "tris/ray");
+      std::printf("%-11s %9s %10s %10s %12s %10s %7s %10s %9s %10s %9s\n", "rays", "count", "embree x1", "embree x2", "packets8 x2", "compute",
+                  "ratio", "native", "vs native", "nodes/ray", "tris/ray");
       for (const Row& r : rows)
-        std::printf("%-11s %9zu %10.2f %10.2f %12.2f %10.2f %6.2fx %12.1f %10.1f\n", r.kind.c_str(), r.rays, r.embree1, r.embree2, r.packets2,
-                    r.compute, r.compute / r.embree2, r.nodes, r.triangles);
+        std::printf("%-11s %9zu %10.2f %10.2f %12.2f %10.2f %6.2fx %10.2f %8.2fx %10.1f %9.1f\n", r.kind.c_str(), r.rays, r.embree1, r.embree2,
+                    r.packets2, r.compute, r.compute / r.embree2, r.native, r.native > 0.0 ? r.compute / r.native : 0.0, r.nodes, r.triangles);
     }
-    std::printf("\nMrays/s; ratio = compute / Embree single-ray on 2 threads.\n");
+    std::printf("\nMrays/s; ratio = compute / Embree single-ray on 2 threads; vs native = compute / VK_KHR_ray_query (0: device has none).\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tracer_bench: error: %s\n", e.what());
     return 1;

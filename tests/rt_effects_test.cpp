@@ -30,8 +30,9 @@ glm::vec3 geometricNormal(float packed) {
 }
 
 FrameImages renderScene(const Scene& scene, Policy policy, const Camera& camera, uint32_t w, uint32_t h, bool detail = false,
-                        float sky = 0.3f, std::vector<FrameTiming>* timings = nullptr) {
+                        float sky = 0.3f, std::vector<FrameTiming>* timings = nullptr, Tracer tracer = Tracer::Compute) {
   RenderSettings s;
+  s.rayTracing.tracer = tracer;
   s.width = w;
   s.height = h;
   s.validation = true;
@@ -90,10 +91,35 @@ TEST(RtShadows, MaskEqualsEmbreeVisibilityAtTheGBufferPoints) {
   expectMaskMatchesEmbree(scene, renderScene(scene, Policy::All, cam, 192, 128, true));
 }
 
+// The native VK_KHR_ray_query tracer renders the frame the compute tracer renders.
+TEST(RtTracers, NativeAndComputeRenderTheSameFrame) {
+  if (!test::nativeTracerAvailable()) GTEST_SKIP() << "the device offers no VK_KHR_ray_query: native tracer not tested";
+  const Scene scene = loadScene(test::defaultScenePath());
+  const Camera cam = defaultCamera(scene, 1.5f);
+  const FrameImages compute = renderScene(scene, Policy::All, cam, 192, 128, true);
+  const FrameImages native = renderScene(scene, Policy::All, cam, 192, 128, true, 0.3f, nullptr, Tracer::Native);
+  expectMaskMatchesEmbree(scene, native);
+  size_t differ = 0, maskDiffer = 0;
+  for (uint32_t y = 0; y < compute.height; ++y)
+    for (uint32_t x = 0; x < compute.width; ++x) {
+      const glm::vec3 a = hdr(compute, x, y), b = hdr(native, x, y);
+      differ += glm::length(a - b) > 1e-2f * (1.0f + glm::length(a));
+    }
+  for (size_t i = 0; i < compute.shadowMask.size(); ++i) maskDiffer += compute.shadowMask[i] != native.shadowMask[i];
+  const size_t pixels = size_t(compute.width) * compute.height;
+  EXPECT_LE(double(differ), 1e-3 * double(pixels)) << differ << " of " << pixels << " pixels differ";
+  EXPECT_LE(double(maskDiffer), 1e-4 * double(compute.shadowMask.size())) << maskDiffer << " shadow-mask texels differ";
+}
+
 // Moving an object rebuilds only the TLAS; the next frame traces it where it is now.
-TEST(RtShadows, MovedObjectIsTracedWhereItIsNow) {
+class RtMoved : public ::testing::TestWithParam<Tracer> {};
+
+TEST_P(RtMoved, MovedObjectIsTracedWhereItIsNow) {
+  if (GetParam() == Tracer::Native && !test::nativeTracerAvailable())
+    GTEST_SKIP() << "the device offers no VK_KHR_ray_query: native tracer not tested";
   Scene scene = loadScene(test::defaultScenePath());
   RenderSettings s;
+  s.rayTracing.tracer = GetParam();
   s.width = 192;
   s.height = 128;
   s.validation = true;
@@ -117,6 +143,9 @@ TEST(RtShadows, MovedObjectIsTracedWhereItIsNow) {
   EXPECT_THROW(renderer.setObjectTransform(9999, moved), Error);
   EXPECT_THROW(renderer.setObjectTransform(chrome, glm::mat4(0.0f)), Error);
 }
+
+INSTANTIATE_TEST_SUITE_P(Tracers, RtMoved, ::testing::Values(Tracer::Compute, Tracer::Native),
+                         [](const ::testing::TestParamInfo<Tracer>& p) { return std::string(tracerName(p.param)); });
 
 // A mirror floor seen from straight above shows what hangs above the camera: with ray
 // tracing the red emitter, with the raster fallback only the (black) sky.

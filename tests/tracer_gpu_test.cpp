@@ -91,7 +91,7 @@ void expectNativeMatchesCompute(const vk::Context& ctx, const Scene& scene, uint
       embreeMismatch += hb != e.hit || (hb && std::fabs(b[i].t - e.t) > 1e-4f * e.t + 1e-5f * (glm::length(set[i].origin) + e.t));
       if (ha && hb &&
           (a[i].object != b[i].object || a[i].primitive != b[i].primitive || (a[i].flags & 2u) != (b[i].flags & 2u) ||
-           std::fabs(a[i].t - b[i].t) > 1e-4f * a[i].t + 1e-5f * (glm::length(set[i].origin) + a[i].t) || glm::length(glm::vec2(a[i].baryWork) - glm::vec2(b[i].baryWork)) > 1e-3f)) 
+           std::fabs(a[i].t - b[i].t) > 1e-4f * a[i].t + 1e-5f * (glm::length(set[i].origin) + a[i].t) || glm::length(glm::vec2(a[i].baryWork) - glm::vec2(b[i].baryWork)) > 1e-3f))
         ++attributeMismatch;
     }
     const double allowed = 1e-4 * double(set.size()) + 1.0;  // a ray grazing an edge may go either way

@@ -28,6 +28,9 @@ render options:
   --policy none|all     which objects get ray-traced shadows, reflections and refractions:
                         none (all raster fallbacks, the default) or all (the full-RT reference)
   --depth D             reflection/refraction bounces, 1..4 (default 1)
+  --tracer compute|native
+                        compute: our BVH in compute shaders (default); native: the device's
+                        VK_KHR_ray_query with Vulkan acceleration structures
   --no-rt-shadows, --no-rt-reflections, --no-rt-refractions
                         keep that effect on its raster fallback even where traced
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
@@ -82,6 +85,11 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       if (p == "none") c.settings.policy = Policy::None;
       else if (p == "all") c.settings.policy = Policy::All;
       else throw Error("--policy must be none or all (the budgeted policies come with the GPU heuristic), got '" + p + "'");
+    } else if (a == "--tracer") {
+      const std::string t = value();
+      if (t == "compute") c.settings.rayTracing.tracer = Tracer::Compute;
+      else if (t == "native") c.settings.rayTracing.tracer = Tracer::Native;
+      else throw Error("--tracer must be compute or native, got '" + t + "'");
     } else if (a == "--depth") c.settings.rayTracing.depth = parseUint(a, value(), 1, 4);
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;

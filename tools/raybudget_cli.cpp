@@ -17,7 +17,8 @@ int render(const raybudget::cli::RenderCommand& c) {
   std::cout << c.scene << ": " << scene.objects.size() << " objects, " << scene.stats.triangles << " triangles, " << scene.lights.size()
             << " lights" << (scene.usesDefaultSun ? " (default sun)" : "") << ", " << scene.materials.size() << " materials\n";
   Renderer renderer(scene, c.settings);
-  std::cout << "device: " << renderer.deviceName() << ", policy " << policyName(c.settings.policy) << '\n';
+  std::cout << "device: " << renderer.deviceName() << ", policy " << policyName(c.settings.policy) << ", tracer "
+            << tracerName(c.settings.rayTracing.tracer) << '\n';
   std::filesystem::create_directories(c.out);
   StatsCsv stats(std::filesystem::path(c.out) / "stats.csv");
   std::vector<FrameTiming> all;

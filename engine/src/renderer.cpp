@@ -8,7 +8,9 @@
 
 #include "compose_comp.h"
 #include "rt_effects_comp.h"
+#include "rt_effects_comp_native.h"
 #include "rt_shadows_comp.h"
+#include "rt_shadows_comp_native.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
 #include "passes/descriptors.h"
@@ -27,6 +29,7 @@
 namespace raybudget {
 
 const char* policyName(Policy policy) { return policy == Policy::All ? "all" : "none"; }
+const char* tracerName(Tracer tracer) { return tracer == Tracer::Native ? "native" : "compute"; }
 
 const char* passName(Pass pass) {
   switch (pass) {
@@ -108,9 +111,9 @@ struct Renderer::Impl {
         scene(passes::uploadScene(ctx, s, rs)),
         targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount)),
         samplers(passes::createSamplers(ctx)),
-        setLayout(passes::createSetLayout(ctx, uint32_t(scene.textures.size()))),
+        setLayout(passes::createSetLayout(ctx, uint32_t(scene.textures.size()), native())),
         pipelineLayout(makePipelineLayout()),
-        pool(passes::createPool(ctx, kFramesInFlight, uint32_t(scene.textures.size()))),
+        pool(passes::createPool(ctx, kFramesInFlight, uint32_t(scene.textures.size()), native())),
         commandPool(makeCommandPool()),
         timestamps(ctx, kFramesInFlight, kPassCount),
         gbuffer(ctx, pipelineLayout),
@@ -119,8 +122,8 @@ struct Renderer::Impl {
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
         envFallback(ctx, pipelineLayout, kSpirv_env_fallback_comp),
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
-        traceShadows(ctx, pipelineLayout, kSpirv_rt_shadows_comp),
-        traceEffects(ctx, pipelineLayout, kSpirv_rt_effects_comp) {
+        traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
+        traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
@@ -234,9 +237,12 @@ struct Renderer::Impl {
   // Rebuilds the TLAS for moved objects on the CPU and stages it with the new object records
   // in the slot's staging buffer; record() copies them at the start of the frame, after
   // the previous frame's reads (the frame-start barrier orders them).
+  bool native() const { return scene.native != nullptr; }
+
   std::vector<VkBufferCopy> stageMovedObjects(Slot& slot) {
     if (!objectsMoved) return {};
     objectsMoved = false;
+    if (native()) return stageMovedInstances(slot);
     const auto start = std::chrono::steady_clock::now();
     bvh::SceneBvh& b = scene.bvh;
     bvh::rebuildTlas(b, scene.shell.objects);
@@ -257,6 +263,23 @@ struct Renderer::Impl {
             {nodeBytes + tlasBytes + instBytes, 0, objBytes}};
   }
 
+  // The native tracer's version: object records and Vulkan instance records; the TLAS is
+  // rebuilt on the device (recordTlasBuild) in the frame.
+  std::vector<VkBufferCopy> stageMovedInstances(Slot& slot) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<gpu::GpuObject> objects;
+    for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
+    for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+    const VkDeviceSize instBytes = scene.native->instanceBytes(), objBytes = objects.size() * sizeof(gpu::GpuObject);
+    if (slot.updateStaging.size < instBytes + objBytes)
+      slot.updateStaging = vk::createBuffer(ctx, instBytes + objBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    auto* dst = static_cast<uint8_t*>(slot.updateStaging.mapped);
+    scene.native->writeInstances(scene.shell.objects, dst);
+    std::memcpy(dst + instBytes, objects.data(), objBytes);
+    slot.tlasRebuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return {{instBytes, 0, objBytes}};
+  }
+
   void record(Slot& slot, const glm::mat4& viewProj) {
     const uint32_t s = uint32_t(&slot - slots);
     VkCommandBuffer cmd = slot.cmd;
@@ -269,7 +292,12 @@ struct Renderer::Impl {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     const std::vector<VkBufferCopy> moved = stageMovedObjects(slot);
-    if (!moved.empty()) {
+    if (!moved.empty() && native()) {
+      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.objects.buffer, 1, &moved[0]);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                        VK_ACCESS_2_MEMORY_READ_BIT);
+      scene.native->recordTlasBuild(cmd, slot.updateStaging.buffer, 0);
+    } else if (!moved.empty()) {
       vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhNodes.buffer, 2, moved.data());
       vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhInstances.buffer, 1, &moved[2]);
       vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.objects.buffer, 1, &moved[3]);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "raybudget/raybudget.h"
+#include "vk/context.h"
 
 namespace raybudget::test {
 
@@ -31,6 +32,12 @@ inline RenderResult renderWithValidation(const Scene& scene, uint32_t width, uin
 }
 
 // Fails the test with every validation message.
+// Whether the device offers VK_KHR_ray_query (Tracer::Native); asked once.
+inline bool nativeTracerAvailable() {
+  static const bool available = vk::Context(vk::ContextOptions{false, ""}).rayQuerySupported();
+  return available;
+}
+
 inline void expectValidationClean(const std::vector<std::string>& messages) {
   EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
 }

@@ -18,11 +18,17 @@ namespace raybudget {
 enum class Policy { None, All };
 const char* policyName(Policy policy);
 
+// Which tracer the ray-traced effects use: our compute BVH, or the device's VK_KHR_ray_query
+// with Vulkan acceleration structures (Renderer throws when the device has none).
+enum class Tracer { Compute, Native };
+const char* tracerName(Tracer tracer);
+
 struct RayTracingSettings {
   bool shadows = true;       // any-hit rays per light instead of shadow maps
   bool reflections = true;   // mirror rays on surfaces with roughness <= 0.35
   bool refractions = true;   // rays through transmissive surfaces
   uint32_t depth = 1;        // reflection / refraction bounces, 1..4
+  Tracer tracer = Tracer::Compute;
 };
 
 struct RenderSettings {

@@ -12,7 +12,11 @@ struct BindingInfo {
   uint32_t count;
 };
 
-BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount) {
+BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
+  // The tracer's three bindings (rayquery.glsl): compute BVH texels and instances, or the
+  // TLAS and the geometry table (the third binding then unused, kept for one layout shape).
+  if (native && binding == kBvhNodes) return {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1};
+  if (native && (binding == kBvhTriangles || binding == kBvhInstances)) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kFrameUniforms) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding == kLights) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
@@ -50,10 +54,10 @@ Samplers createSamplers(const vk::Context& ctx) {
   return s;
 }
 
-vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount) {
+vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount, bool nativeTracer) {
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (uint32_t b = 0; b < kBindingCount; ++b) {
-    const BindingInfo info = bindingInfo(b, textureCount);
+    const BindingInfo info = bindingInfo(b, textureCount, nativeTracer);
     bindings.push_back({b, info.type, info.count, VK_SHADER_STAGE_ALL, nullptr});
   }
   VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
@@ -65,10 +69,10 @@ vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_
   return vk::Owned<VkDescriptorSetLayout>(layout, [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
 }
 
-vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount) {
+vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount, bool nativeTracer) {
   std::vector<VkDescriptorPoolSize> sizes;
   for (uint32_t b = 0; b < kBindingCount; ++b) {
-    const BindingInfo info = bindingInfo(b, textureCount);
+    const BindingInfo info = bindingInfo(b, textureCount, nativeTracer);
     sizes.push_back({info.type, info.count * sets});
   }
   VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -111,6 +115,7 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   std::vector<VkDescriptorImageInfo> envMips;
   for (const auto& v : t.envMipViews) envMips.push_back({VK_NULL_HANDLE, v, g});
 
+  const bool native = scene.native != nullptr;
   std::vector<VkWriteDescriptorSet> writes;
   auto write = [&](uint32_t binding, uint32_t count, const VkDescriptorBufferInfo* b, const VkDescriptorImageInfo* i,
                    const VkBufferView* texels = nullptr) {
@@ -118,7 +123,7 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
     w.dstSet = set;
     w.dstBinding = binding;
     w.descriptorCount = count;
-    w.descriptorType = bindingInfo(binding, count).type;
+    w.descriptorType = bindingInfo(binding, count, native).type;
     w.pBufferInfo = b;
     w.pImageInfo = i;
     w.pTexelBufferView = texels;
@@ -132,10 +137,23 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   const VkDescriptorImageInfo envSource{samplers.equirect, t.envSource.view, ro};
   write(kEnvSource, 1, nullptr, &envSource);
   const VkBufferView bvhTexels[] = {scene.bvhNodeTexels, scene.bvhTriangleTexels};
-  write(kBvhNodes, 1, nullptr, nullptr, &bvhTexels[0]);
-  write(kBvhTriangles, 1, nullptr, nullptr, &bvhTexels[1]);
-  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhInstances.buffer, 0, VK_WHOLE_SIZE}, {scene.indices.buffer, 0, VK_WHOLE_SIZE}};
-  write(kBvhInstances, 1, &rtBuffers[0], nullptr);
+  const VkAccelerationStructureKHR tlas = native ? scene.native->tlas() : VK_NULL_HANDLE;
+  VkWriteDescriptorSetAccelerationStructureKHR tlasWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+  tlasWrite.accelerationStructureCount = 1;
+  tlasWrite.pAccelerationStructures = &tlas;
+  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhInstances.buffer, 0, VK_WHOLE_SIZE},
+                                              {scene.indices.buffer, 0, VK_WHOLE_SIZE},
+                                              {native ? VkBuffer(scene.native->geometryTable().buffer) : VK_NULL_HANDLE, 0, VK_WHOLE_SIZE}};
+  if (native) {
+    write(kBvhNodes, 1, nullptr, nullptr);
+    writes.back().pNext = &tlasWrite;
+    write(kBvhTriangles, 1, &rtBuffers[2], nullptr);
+    write(kBvhInstances, 1, &rtBuffers[2], nullptr);
+  } else {
+    write(kBvhNodes, 1, nullptr, nullptr, &bvhTexels[0]);
+    write(kBvhTriangles, 1, nullptr, nullptr, &bvhTexels[1]);
+    write(kBvhInstances, 1, &rtBuffers[0], nullptr);
+  }
   write(kIndices, 1, &rtBuffers[1], nullptr);
   const VkDescriptorImageInfo mask{VK_NULL_HANDLE, t.shadowMaskArray, g};
   write(kShadowMask, 1, nullptr, &mask);

@@ -20,8 +20,8 @@ struct Samplers {
 
 Samplers createSamplers(const vk::Context& ctx);
 
-vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount);
-vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount);
+vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount, bool nativeTracer);
+vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount, bool nativeTracer);
 VkDescriptorSet allocateSet(const vk::Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout);
 
 // Points every binding of `set` at its resource; `uniforms` is the slot's FrameUniforms.

@@ -186,16 +186,26 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   }
   gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 
-  // The BVH for the ray-traced effects (static scenes: built once, here).
-  gpu.bvh = bvh::buildSceneBvh(scene);
+  // The acceleration structure for the ray-traced effects (static scenes: built once, here):
+  // the device's for the native tracer, else our BVH.
+  if (settings.rayTracing.tracer == Tracer::Native) {
+    gpu.native = std::make_unique<NativeAccel>(ctx, scene);
+    gpu.bvhStats.blasMs = gpu.native->buildMs();
+    gpu.bvhStats.triangles = 0;
+    for (const Mesh& m : scene.meshes) gpu.bvhStats.triangles += m.indices.size() / 3;
+    gpu.bvhStats.bytesPerTriangle = double(gpu.native->memoryBytes()) / double(std::max<size_t>(1, gpu.bvhStats.triangles));
+  } else {
+    gpu.bvh = bvh::buildSceneBvh(scene);
+  }
   // Nodes and triangles are read as RGBA32F texels (shaders/include/rayquery.glsl).
   const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  // (Native: empty one-element buffers keep the descriptor set's shape.)
   gpu.bvhNodes = vk::createDeviceBuffer(ctx, gpu.bvh.nodes, texels | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   gpu.bvhTriangles = vk::createDeviceBuffer(ctx, gpu.bvh.triangles, texels);
   gpu.bvhInstances = vk::createDeviceBuffer(ctx, gpu.bvh.instances, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   gpu.bvhNodeTexels = vk::createTexelView(ctx, gpu.bvhNodes, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
   gpu.bvhTriangleTexels = vk::createTexelView(ctx, gpu.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
-  gpu.bvhStats = gpu.bvh.stats;
+  if (!gpu.native) gpu.bvhStats = gpu.bvh.stats;
   gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
   gpu.bvh.triangles.shrink_to_fit();
   gpu.shell = scene;

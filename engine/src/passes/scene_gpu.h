@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bvh/scene_bvh.h"
+#include "passes/native_accel.h"
 #include "raybudget/renderer.h"
 #include "raybudget/scene.h"
 #include "shared/types.h"
@@ -42,6 +43,8 @@ struct SceneGpu {
   vk::Buffer bvhTriangles;
   vk::Buffer bvhInstances;
   vk::Owned<VkBufferView> bvhNodeTexels, bvhTriangleTexels;
+  // With Tracer::Native, the Vulkan acceleration structures instead of the compute BVH.
+  std::unique_ptr<NativeAccel> native;
   bvh::BuildStats bvhStats;
   vk::Buffer vertices;
   vk::Buffer indices;
