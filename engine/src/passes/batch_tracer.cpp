@@ -52,8 +52,8 @@ struct BatchTracer::Impl {
     nodes = vk::createDeviceBuffer(c, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     triangles = vk::createDeviceBuffer(c, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     instances = vk::createDeviceBuffer(c, bvh.instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    nodeTexels = vk::createTexelView(c, nodes, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
-    triangleTexels = vk::createTexelView(c, triangles, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+    nodeTexels = vk::createTexelView(c, nodes, VK_FORMAT_R32G32B32A32_UINT, 16);
+    triangleTexels = vk::createTexelView(c, triangles, VK_FORMAT_R32G32B32A32_UINT, 16);
     accelBytes = size_t(nodes.size + triangles.size + instances.size);
     Binding n{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}, t{1, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
     n.texels = nodeTexels;
