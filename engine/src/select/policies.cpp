@@ -1,0 +1,167 @@
+#include "select/policies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "raybudget/error.h"
+#include "select/paper_graph.h"
+
+namespace raybudget::select {
+namespace {
+
+// Adds candidates in `order` while they fit what is left of the budget (fill-in: one that
+// does not fit is skipped, later cheaper ones may still go in). Float arithmetic in
+// selection order, as the GPU does it.
+std::vector<uint32_t> greedyFit(std::span<const Candidate> c, const std::vector<uint32_t>& order, float budget) {
+  std::vector<uint32_t> chosen;
+  float remaining = budget;
+  for (uint32_t i : order)
+    if (c[i].cost <= remaining) {
+      chosen.push_back(i);
+      remaining -= c[i].cost;
+    }
+  return chosen;
+}
+
+std::vector<uint32_t> indices(size_t n) {
+  std::vector<uint32_t> v(n);
+  std::iota(v.begin(), v.end(), 0u);
+  return v;
+}
+
+// splitmix64: a small seeded generator whose sequence is the same everywhere.
+uint64_t splitmix(uint64_t& state) {
+  uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// Greedy by value density with fill-in, then the better of that and the most valuable
+// single candidate that fits: the classic 1/2-approximation of the 0/1 knapsack
+// (Funkhouser and Séquin 1993 use the greedy part for level-of-detail selection).
+std::vector<uint32_t> density(std::span<const Candidate> c, float budget) {
+  std::vector<uint32_t> order = indices(c.size());
+  // value / cost compared as value_a * cost_b > value_b * cost_a, so zero cost ranks first
+  // without a division by zero; in double, exact for float inputs.
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    const double l = double(c[a].value) * double(c[b].cost), r = double(c[b].value) * double(c[a].cost);
+    if (l != r) return l > r;
+    if (c[a].cost != c[b].cost) return c[a].cost < c[b].cost;
+    return c[a].id < c[b].id;
+  });
+  std::vector<uint32_t> greedy = greedyFit(c, order, budget);
+  double greedyValue = 0.0;
+  for (uint32_t i : greedy) greedyValue += c[i].value;
+  uint32_t best = UINT32_MAX;
+  for (uint32_t i = 0; i < c.size(); ++i)
+    if (c[i].cost <= budget && (best == UINT32_MAX || c[i].value > c[best].value)) best = i;
+  if (best != UINT32_MAX && double(c[best].value) > greedyValue) return {best};
+  return greedy;
+}
+
+// 0/1 knapsack by dynamic programming over the budget cut into `steps` units; each cost
+// rounded up (`roundUp`: the selection stays within the real budget) or down (an upper
+// bound on the value). Returns the chosen indices and the programme's best value.
+std::pair<std::vector<uint32_t>, double> knapsack(std::span<const Candidate> c, float budget, uint32_t steps, bool roundUp) {
+  if (steps == 0 || steps > (1u << 20)) throw Error("optimal selection: steps must be within 1..2^20");
+  const size_t n = c.size(), w = steps;
+  if (double(n) * double(w + 1) > 4e8) throw Error("optimal selection: " + std::to_string(n) + " candidates x " + std::to_string(steps) +
+                                                  " steps is beyond the benchmark-only dynamic programme");
+  std::vector<uint32_t> units(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double u = budget > 0.0f ? double(c[i].cost) / double(budget) * double(w) : (c[i].cost > 0.0f ? double(w) + 1.0 : 0.0);
+    units[i] = uint32_t(std::min(double(w) + 1.0, roundUp ? std::ceil(u) : std::floor(u)));
+  }
+  std::vector<double> best(w + 1, 0.0);
+  std::vector<char> take(n * (w + 1), 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (units[i] > w) continue;
+    for (size_t b = w + 1; b-- > units[i];) {
+      const double with = best[b - units[i]] + double(c[i].value);
+      if (with > best[b]) {
+        best[b] = with;
+        take[i * (w + 1) + b] = 1;
+      }
+    }
+  }
+  std::vector<uint32_t> chosen;
+  for (size_t i = n, b = w; i-- > 0;)
+    if (take[i * (w + 1) + b]) {
+      chosen.push_back(uint32_t(i));
+      b -= units[i];
+    }
+  return {chosen, best[w]};
+}
+
+void validate(std::span<const Candidate> c, float budget) {
+  if (!std::isfinite(budget) || budget < 0.0f) throw Error("selection budget must be a finite number >= 0, got " + std::to_string(budget));
+  for (const Candidate& x : c)
+    if (!std::isfinite(x.cost) || x.cost < 0.0f || !std::isfinite(x.value) || x.value < 0.0f)
+      throw Error("object " + std::to_string(x.id) + ": selection cost and value must be finite and >= 0 (cost " + std::to_string(x.cost) +
+                  ", value " + std::to_string(x.value) + ")");
+}
+
+}  // namespace
+
+const char* policyName(Policy policy) {
+  switch (policy) {
+    case Policy::None: return "none";
+    case Policy::All: return "all";
+    case Policy::Paper: return "paper";
+    case Policy::Density: return "density";
+    case Policy::Optimal: return "optimal";
+    case Policy::Nearest: return "nearest";
+    case Policy::Random: return "random";
+  }
+  return "?";
+}
+
+Policy parsePolicy(const std::string& name) {
+  for (Policy p : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Optimal, Policy::Nearest, Policy::Random})
+    if (name == policyName(p)) return p;
+  throw Error("unknown policy '" + name + "' (none, all, paper, density, optimal, nearest, random)");
+}
+
+Selection selectObjects(Policy policy, std::span<const Candidate> c, float budget, const PolicyOptions& options) {
+  validate(c, budget);
+  std::vector<uint32_t> chosen;
+  switch (policy) {
+    case Policy::None: break;
+    case Policy::All: chosen = indices(c.size()); break;
+    case Policy::Paper: chosen = walkPaperGraph(buildPaperGraph(c, options.graphPointers), c, budget); break;
+    case Policy::Density: chosen = density(c, budget); break;
+    case Policy::Optimal: chosen = knapsack(c, budget, options.optimalSteps, true).first; break;
+    case Policy::Nearest: {
+      std::vector<uint32_t> order = indices(c.size());
+      std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return c[a].distance != c[b].distance ? c[a].distance < c[b].distance : c[a].id < c[b].id;
+      });
+      chosen = greedyFit(c, order, budget);
+      break;
+    }
+    case Policy::Random: {
+      std::vector<uint32_t> order = indices(c.size());
+      uint64_t state = options.seed;
+      for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[splitmix(state) % i]);  // Fisher-Yates
+      chosen = greedyFit(c, order, budget);
+      break;
+    }
+  }
+  Selection s;
+  for (uint32_t i : chosen) {
+    s.ids.push_back(c[i].id);
+    s.cost += c[i].cost;
+    s.value += c[i].value;
+  }
+  std::sort(s.ids.begin(), s.ids.end());
+  return s;
+}
+
+double optimalValueBound(std::span<const Candidate> c, float budget, uint32_t steps) {
+  validate(c, budget);
+  return knapsack(c, budget, steps, false).second;
+}
+
+}  // namespace raybudget::select

@@ -1,0 +1,44 @@
+// Which objects get ray-traced effects this frame: every policy of ../shared/DESIGN.md
+// section 1 as a CPU reference (the GPU select pass must reproduce these exactly). A policy
+// sees candidates with a cost in budget units and a value (the relevance R), and returns
+// the selected IDs; every policy but `all` keeps the summed cost within the budget.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace raybudget::select {
+
+enum class Policy { None, All, Paper, Density, Optimal, Nearest, Random };
+const char* policyName(Policy policy);
+// Throws raybudget::Error naming the valid policies.
+Policy parsePolicy(const std::string& name);
+
+struct Candidate {
+  uint32_t id = 0;
+  float cost = 0.0f;      // predicted trace time (budget units), >= 0
+  float value = 0.0f;     // relevance R, > 0
+  float distance = 0.0f;  // D, for `nearest`
+};
+
+struct PolicyOptions {
+  uint32_t graphPointers = 4;  // `paper`: N, the higher-relevance pointers per node
+  uint64_t seed = 1;           // `random`
+  uint32_t optimalSteps = 4096;  // `optimal`: the budget's resolution in the dynamic programme
+};
+
+struct Selection {
+  std::vector<uint32_t> ids;  // ascending
+  double cost = 0.0;
+  double value = 0.0;
+};
+
+// Throws raybudget::Error on a negative, NaN or infinite cost, value or budget.
+Selection selectObjects(Policy policy, std::span<const Candidate> candidates, float budget, const PolicyOptions& options = {});
+
+// An upper bound on the value any selection within the budget can reach: the 0/1 knapsack
+// with every cost rounded down to the dynamic programme's grid.
+double optimalValueBound(std::span<const Candidate> candidates, float budget, uint32_t steps = 4096);
+
+}  // namespace raybudget::select

@@ -1,0 +1,178 @@
+// The heuristic's CPU reference: the paper's quantities from coverage, and every selection
+// policy: semantics on hand-worked cases, and on thousands of random candidate sets the
+// budget holds, no policy beats the knapsack bound, and density keeps its 1/2 guarantee.
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "bvh/ray_sets.h"
+#include "raybudget/error.h"
+#include "select/metrics.h"
+#include "select/paper_graph.h"
+#include "select/policies.h"
+
+namespace raybudget {
+namespace {
+
+using select::Candidate;
+using select::Policy;
+
+// Coverage of the pixels [x0, x1) x [y0, y1).
+select::Coverage rect(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
+  select::Coverage c;
+  for (uint32_t y = y0; y < y1; ++y)
+    for (uint32_t x = x0; x < x1; ++x) {
+      ++c.pixels;
+      c.sumX += x;
+      c.sumY += y;
+    }
+  return c;
+}
+
+TEST(SelectionMetrics, FollowThePaperEquations) {
+  const select::ObjectParams params{2.0f, 3.0f, 0.5f};
+  // A centred 20x10 block of a 100x50 frame, 4 units away.
+  const select::Metrics m = select::objectMetrics(rect(40, 20, 60, 30), 100, 50, 4.0f, 0.1f, params, false);
+  EXPECT_FLOAT_EQ(m.A, 200.0f / 5000.0f);
+  EXPECT_FLOAT_EQ(m.P, 1.0f);
+  EXPECT_FLOAT_EQ(m.D, 4.0f);
+  EXPECT_FLOAT_EQ(m.V, m.A * m.P / 4.0f) << "V = A*P/D (the text; equation 1 misprints the divisor as P)";
+  EXPECT_FLOAT_EQ(m.C, m.V * 3.0f);
+  EXPECT_FLOAT_EQ(m.R, m.V * 2.0f);
+  EXPECT_TRUE(m.candidate);
+  const select::Metrics s = select::objectMetrics(rect(40, 20, 60, 30), 100, 50, 4.0f, 0.1f, params, true);
+  EXPECT_FLOAT_EQ(s.R, (0.5f + m.V) * 2.0f) << "R = (S*I + V)*K";
+  // Centrality falls linearly to 0 at the nearest edge: a block hugging the left edge.
+  const select::Metrics edge = select::objectMetrics(rect(0, 20, 2, 30), 100, 50, 4.0f, 0.1f, params, false);
+  EXPECT_NEAR(edge.P, 0.02f, 1e-6f);
+  const select::Metrics half = select::objectMetrics(rect(24, 20, 26, 30), 100, 50, 4.0f, 0.1f, params, false);
+  EXPECT_NEAR(half.P, 0.5f, 1e-6f);
+}
+
+TEST(SelectionMetrics, DegenerateInputsGiveNoNaNAndNoCandidate) {
+  const select::ObjectParams params;
+  // Camera inside the object: D clamps to the near plane.
+  const select::Metrics inside = select::objectMetrics(rect(0, 0, 100, 50), 100, 50, 0.0f, 0.05f, params, false);
+  EXPECT_FLOAT_EQ(inside.D, 0.05f);
+  EXPECT_TRUE(std::isfinite(inside.V) && inside.candidate);
+  // Not visible (A = 0), or behind the camera (no pixels either): never a candidate.
+  const select::Metrics hidden = select::objectMetrics({}, 100, 50, 3.0f, 0.05f, params, true);
+  EXPECT_EQ(hidden.A, 0.0f);
+  EXPECT_EQ(hidden.V, 0.0f);
+  EXPECT_FALSE(hidden.candidate) << "selected last frame but not visible now";
+  // Q = 0: nothing to trace; K = 0: nothing to gain.
+  EXPECT_FALSE(select::objectMetrics(rect(0, 0, 10, 10), 100, 50, 3.0f, 0.05f, {1.0f, 0.0f, 0.5f}, false).candidate);
+  EXPECT_FALSE(select::objectMetrics(rect(0, 0, 10, 10), 100, 50, 3.0f, 0.05f, {0.0f, 1.0f, 0.5f}, false).candidate);
+  // A NaN or infinite distance counts as far away: finite, tiny V.
+  for (float d : {NAN, INFINITY, 1e38f}) {
+    const select::Metrics far = select::objectMetrics(rect(40, 20, 60, 30), 100, 50, d, 0.05f, params, false);
+    EXPECT_TRUE(std::isfinite(far.V) && std::isfinite(far.C) && std::isfinite(far.R)) << d;
+  }
+}
+
+// The worked example of docs/SELECTION.md: costs A 5, B 4, C 3, D 1; relevance A 1, B 3,
+// C 2, D 4; budget 6. The cost chain is A, B, C, D; A points (N = 2) to B then C, B to D.
+TEST(SelectionPaper, WalksTheGraphAsTheDocumentSays) {
+  const std::vector<Candidate> c = {{0, 5, 1, 0}, {1, 4, 3, 0}, {2, 3, 2, 0}, {3, 1, 4, 0}};
+  const select::PaperGraph g = select::buildPaperGraph(c, 2);
+  EXPECT_EQ(g.byCost, (std::vector<uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(g.pointers[0 * 2 + 0], 1u);
+  EXPECT_EQ(g.pointers[0 * 2 + 1], 2u);
+  EXPECT_EQ(g.pointers[1 * 2 + 0], 3u);
+  EXPECT_EQ(g.pointers[1 * 2 + 1], UINT32_MAX);
+  EXPECT_EQ(g.pointers[3 * 2 + 0], UINT32_MAX) << "the most relevant node points nowhere";
+  // First pick: A fits, climb A -> B -> D; then A fits 5, climb to B (D is taken); then
+  // nothing fits the 1 left but D, which is taken.
+  EXPECT_EQ(select::walkPaperGraph(g, c, 6.0f), (std::vector<uint32_t>{3, 1}));
+  // Without pointers the walk takes the most costly node that fits, again and again.
+  EXPECT_EQ(select::walkPaperGraph(select::buildPaperGraph(c, 0), c, 6.0f), (std::vector<uint32_t>{0, 3}));
+  // Equal relevance is not "higher": no pointers between ties.
+  const std::vector<Candidate> tie = {{0, 2, 1, 0}, {1, 1, 1, 0}};
+  const select::PaperGraph t = select::buildPaperGraph(tie, 3);
+  for (uint32_t p : t.pointers) EXPECT_EQ(p, UINT32_MAX);
+}
+
+TEST(SelectionPolicies, BaselinesAndDensityDoWhatTheySay) {
+  const std::vector<Candidate> c = {{10, 4, 4, 9}, {11, 1, 3, 1}, {12, 2, 1, 2}, {13, 3, 3, 5}};
+  EXPECT_TRUE(select::selectObjects(Policy::None, c, 100.0f).ids.empty());
+  EXPECT_EQ(select::selectObjects(Policy::All, c, 0.0f).ids, (std::vector<uint32_t>{10, 11, 12, 13})) << "all ignores the budget";
+  EXPECT_EQ(select::selectObjects(Policy::Nearest, c, 4.0f).ids, (std::vector<uint32_t>{11, 12})) << "nearest first, skipping what does not fit";
+  // Density: 11 (3/1), 13 (1), 10 (1, costlier), 12 (0.5): 11 + 13 fit in 4.
+  EXPECT_EQ(select::selectObjects(Policy::Density, c, 4.0f).ids, (std::vector<uint32_t>{11, 13}));
+  EXPECT_EQ(select::selectObjects(Policy::Optimal, c, 4.0f).ids, (std::vector<uint32_t>{11, 13}));
+  // The single-item fallback: a tiny dense object would block the valuable one.
+  const std::vector<Candidate> trap = {{0, 0.1f, 1, 0}, {1, 10, 10, 0}};
+  EXPECT_EQ(select::selectObjects(Policy::Density, trap, 10.0f).ids, (std::vector<uint32_t>{1}));
+  // Random is reproducible by seed.
+  std::vector<Candidate> many;
+  for (uint32_t i = 0; i < 200; ++i) many.push_back({i, 1.0f, 1.0f, 0.0f});
+  const auto r1 = select::selectObjects(Policy::Random, many, 20.0f, {4, 7}), r2 = select::selectObjects(Policy::Random, many, 20.0f, {4, 7});
+  const auto r3 = select::selectObjects(Policy::Random, many, 20.0f, {4, 8});
+  EXPECT_EQ(r1.ids, r2.ids);
+  EXPECT_NE(r1.ids, r3.ids);
+  EXPECT_EQ(r1.ids.size(), 20u);
+}
+
+TEST(SelectionPolicies, RejectBadInput) {
+  const std::vector<Candidate> ok = {{0, 1, 1, 0}};
+  EXPECT_THROW(select::selectObjects(Policy::Paper, ok, -1.0f), Error);
+  EXPECT_THROW(select::selectObjects(Policy::Paper, ok, NAN), Error);
+  EXPECT_THROW(select::selectObjects(Policy::Paper, ok, INFINITY), Error);
+  for (const Candidate& bad : {Candidate{0, NAN, 1, 0}, Candidate{0, -1, 1, 0}, Candidate{0, 1, INFINITY, 0}, Candidate{0, 1, -2, 0}})
+    EXPECT_THROW(select::selectObjects(Policy::Density, std::vector<Candidate>{bad}, 1.0f), Error);
+  EXPECT_THROW(select::parsePolicy("greedy"), Error);
+  EXPECT_EQ(select::parsePolicy("paper"), Policy::Paper);
+}
+
+// Random candidate sets with ties, zeros, huge and tiny values.
+std::vector<Candidate> randomSet(bvh::Rng& rng, size_t n) {
+  std::vector<Candidate> c(n);
+  for (size_t i = 0; i < n; ++i) {
+    const float u = rng.next(), v = rng.next();
+    c[i].id = uint32_t(i * 3 + 1);
+    c[i].cost = u < 0.05f ? 0.0f : u < 0.1f ? 1.0f : u < 0.15f ? 1e-6f : u < 0.2f ? 1e4f : std::exp(rng.next() * 10.0f - 5.0f);
+    c[i].value = v < 0.1f ? 1.0f : v < 0.15f ? 1e-7f : v < 0.2f ? 1e5f : std::exp(rng.next() * 10.0f - 5.0f);
+    c[i].distance = rng.next() < 0.1f ? 1.0f : rng.next() * 100.0f;
+  }
+  return c;
+}
+
+TEST(SelectionPolicies, ThousandsOfRandomSetsKeepTheBudgetAndTheBounds) {
+  bvh::Rng rng(123);
+  size_t sets = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const size_t n = 1 + size_t(rng.next() * (trial % 10 == 0 ? 400.0f : 40.0f));
+    const std::vector<Candidate> c = randomSet(rng, n);
+    double total = 0.0;
+    for (const Candidate& x : c) total += x.cost;
+    const float budget = rng.next() < 0.1f ? 0.0f : float(total * rng.next() * 0.6);
+    const double bound = select::optimalValueBound(c, budget);
+    const select::Selection optimal = select::selectObjects(Policy::Optimal, c, budget);
+    for (Policy p : {Policy::Paper, Policy::Density, Policy::Optimal, Policy::Nearest, Policy::Random}) {
+      const select::Selection s = select::selectObjects(p, c, budget, {uint32_t(trial % 6), uint64_t(trial)});
+      ASSERT_LE(s.cost, double(budget) * (1.0 + 1e-5) + 1e-12) << select::policyName(p) << " overspends, trial " << trial;
+      ASSERT_EQ(std::set<uint32_t>(s.ids.begin(), s.ids.end()).size(), s.ids.size()) << "an object selected twice";
+      ASSERT_LE(s.value, bound * (1.0 + 1e-9) + 1e-9) << select::policyName(p) << " beats the knapsack bound, trial " << trial;
+      ASSERT_TRUE(std::isfinite(s.value));
+    }
+    const double densityValue = select::selectObjects(Policy::Density, c, budget).value;
+    ASSERT_GE(densityValue, 0.5 * optimal.value * (1.0 - 1e-9)) << "density lost its 1/2 guarantee, trial " << trial;
+    ++sets;
+  }
+  EXPECT_EQ(sets, 3000u);
+}
+
+TEST(SelectionPolicies, HundredThousandObjects) {
+  bvh::Rng rng(9);
+  const std::vector<Candidate> c = randomSet(rng, 100000);
+  for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
+    const select::Selection s = select::selectObjects(p, c, 5000.0f);
+    EXPECT_LE(s.cost, 5000.0 * (1.0 + 1e-5));
+    EXPECT_GT(s.ids.size(), 100u) << select::policyName(p);
+  }
+  EXPECT_THROW(select::selectObjects(Policy::Optimal, c, 5000.0f), Error) << "the dynamic programme is for benchmark-sized sets";
+}
+
+}  // namespace
+}  // namespace raybudget
