@@ -2,6 +2,7 @@
 // fallback -> compose, two frames in flight, every pass bracketed by timestamps.
 #include "raybudget/renderer.h"
 
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include "rt_shadows_comp_native.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
+#include "passes/coverage_pass.h"
 #include "passes/descriptors.h"
 #include "passes/environment.h"
 #include "passes/frame_targets.h"
@@ -21,6 +23,7 @@
 #include "passes/screen_pass.h"
 #include "passes/shadow_maps.h"
 #include "shared/config.h"
+#include "shared/selection.h"
 #include "shared/types.h"
 #include "vk/check.h"
 #include "vk/context.h"
@@ -34,6 +37,7 @@ const char* tracerName(Tracer tracer) { return tracer == Tracer::Native ? "nativ
 const char* passName(Pass pass) {
   switch (pass) {
     case Pass::GBuffer: return "gbuffer";
+    case Pass::Coverage: return "coverage";
     case Pass::ShadowMaps: return "shadow_maps";
     case Pass::Environment: return "environment";
     case Pass::TraceShadows: return "trace_shadows";
@@ -92,6 +96,7 @@ struct Renderer::Impl {
   vk::Owned<VkCommandPool> commandPool;
   vk::TimestampPool timestamps;
   passes::GBufferPass gbuffer;
+  passes::CoveragePass coverage;
   passes::ShadowMapPass shadowMaps;
   passes::EnvironmentPass environment;
   passes::ScreenPass lighting;
@@ -117,6 +122,7 @@ struct Renderer::Impl {
         commandPool(makeCommandPool()),
         timestamps(ctx, kFramesInFlight, kPassCount),
         gbuffer(ctx, pipelineLayout),
+        coverage(ctx, pipelineLayout),
         shadowMaps(ctx, pipelineLayout),
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
@@ -314,6 +320,7 @@ struct Renderer::Impl {
     // shadows, no trace dispatch when nothing is traced.
     const uint32_t traced = tracedEffects();
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
+    if (settings.objectMetrics) timed(Pass::Coverage, [&] { coverage.record(fc); });
     if (shadowMaps.needed(scene) && !(traced & RB_RT_SHADOWS)) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
     if (!environmentReady) {
       timed(Pass::Environment, [&] { environment.record(fc); });
@@ -376,6 +383,31 @@ std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
 void Renderer::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
   raybudget::setObjectTransform(impl_->scene.shell, objectId, transform);
   impl_->objectsMoved = true;
+}
+
+std::vector<ObjectMetrics> Renderer::objectMetrics() {
+  Impl& r = *impl_;
+  if (!r.settings.objectMetrics) throw Error("objectMetrics() needs RenderSettings::objectMetrics");
+  if (r.frameIndex == 0) throw Error("objectMetrics() before any frame was rendered");
+  VK_CHECK(vkQueueWaitIdle(r.ctx.queue()));
+  const size_t count = r.scene.objectSpheres.size();
+  const VkDeviceSize bytes = std::max<size_t>(1, count) * sizeof(gpu::GpuObjectRecord);
+  vk::Buffer host = vk::createBuffer(r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  r.ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+    const VkBufferCopy copy{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, r.scene.objectRecords.buffer, host.buffer, 1, &copy);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  });
+  const auto* records = static_cast<const gpu::GpuObjectRecord*>(host.mapped);
+  std::vector<ObjectMetrics> out(count);
+  for (size_t i = 0; i < count; ++i) {
+    const gpu::GpuObjectRecord& g = records[i];
+    out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w, g.crCandidatePixels.x, g.crCandidatePixels.y,
+              g.crCandidatePixels.z > 0.5f};
+  }
+  return out;
 }
 
 FrameImages Renderer::readback(bool gbufferDetail) {

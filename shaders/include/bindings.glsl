@@ -5,6 +5,7 @@
 #extension GL_EXT_nonuniform_qualifier : require
 #include "shared/config.h"
 #include "shared/types.h"
+#include "shared/selection.h"
 
 layout(set = 0, binding = 0) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1, std430) readonly buffer ObjectBlock { GpuObject objects[]; };
@@ -46,5 +47,10 @@ layout(set = 0, binding = 23) uniform sampler2D envSource;
 layout(set = 0, binding = 27, std430) readonly buffer IndexBlock { uint meshIndices[]; };
 layout(set = 0, binding = 28, r32f) uniform image2DArray shadowMask;
 layout(set = 0, binding = 29) uniform sampler2D gPosition;  // xyz world position, w packed geometric normal
+
+// The heuristic (shared/selection.h): per-object coverage, parameters and records.
+layout(set = 0, binding = 30, std430) buffer CoverageBlock { GpuCoverage coverage[]; };
+layout(set = 0, binding = 31, std430) readonly buffer ObjectParamsBlock { GpuObjectParams objectParams[]; };
+layout(set = 0, binding = 32, std430) buffer ObjectRecordBlock { GpuObjectRecord objectRecords[]; };
 
 #endif

@@ -42,10 +42,13 @@ struct RenderSettings {
   std::string environmentMap;      // equirectangular OpenEXR replacing the procedural sky
   Policy policy = Policy::None;
   RayTracingSettings rayTracing;
+  // Run the heuristic's per-object pass every frame (coverage, then A, P, D, V, C, R on the
+  // GPU), readable with Renderer::objectMetrics().
+  bool objectMetrics = false;
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.
-enum class Pass : uint32_t { GBuffer, ShadowMaps, Environment, TraceShadows, Lighting, EnvFallback, TraceEffects, Compose, Count };
+enum class Pass : uint32_t { GBuffer, Coverage, ShadowMaps, Environment, TraceShadows, Lighting, EnvFallback, TraceEffects, Compose, Count };
 inline constexpr size_t kPassCount = size_t(Pass::Count);
 const char* passName(Pass pass);
 
@@ -54,6 +57,14 @@ struct FrameTiming {
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
+};
+
+// The paper's per-object quantities as the GPU computed them (engine/src/select/metrics.h
+// is the CPU reference).
+struct ObjectMetrics {
+  uint32_t pixels = 0;
+  float A = 0.0f, P = 0.0f, D = 0.0f, V = 0.0f, C = 0.0f, R = 0.0f;
+  bool candidate = false;
 };
 
 struct FrameImages {
@@ -91,6 +102,10 @@ class Renderer {
   // The images of the last rendered frame (waits for it); `gbufferDetail` adds positions and
   // the shadow mask (for oracle tests).
   FrameImages readback(bool gbufferDetail = false);
+
+  // The per-object quantities of the last rendered frame (waits for it), indexed by object
+  // ID; needs RenderSettings::objectMetrics.
+  std::vector<ObjectMetrics> objectMetrics();
 
   std::string deviceName() const;
   std::vector<std::string> validationMessages() const;

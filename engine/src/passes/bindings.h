@@ -36,7 +36,10 @@ enum Binding : uint32_t {
   kIndices = 27,
   kShadowMask = 28,
   kGPosition = 29,
-  kBindingCount = 30,
+  kCoverage = 30,
+  kObjectParams = 31,
+  kObjectRecords = 32,
+  kBindingCount = 33,
 };
 
 }  // namespace raybudget::passes

@@ -55,6 +55,11 @@ struct SceneGpu {
   std::vector<GpuTexture> textures;            // at least one (white) so the array is never empty
   std::vector<Draw> draws;
   std::vector<glm::vec4> objectSpheres;  // world bounding spheres, for culling
+  // The heuristic's per-object buffers (shaders/shared/selection.h): coverage, K/Q/I/S,
+  // and the A, P, D, V, C, R records.
+  vk::Buffer coverage;
+  vk::Buffer objectParams;
+  vk::Buffer objectRecords;
   ShadowViews shadows;
   uint32_t lightCount = 0;
   bool hasTransmission = false;

@@ -1,0 +1,34 @@
+// GPU records of the heuristic's per-object pass (shaders/coverage.comp and
+// shaders/object_metrics.comp), shared by C++ and GLSL. The arithmetic matches
+// engine/src/select/metrics.cpp.
+#ifndef RAYBUDGET_SHARED_SELECTION_H
+#define RAYBUDGET_SHARED_SELECTION_H
+
+#ifdef __cplusplus
+#include "shared/types.h"
+namespace raybudget::gpu {
+#endif
+
+// 32 bytes: an object's pixels in the object-ID buffer and the 64-bit sums of their integer
+// coordinates, as lo/hi 32-bit words (portable: no 64-bit atomics needed).
+struct GpuCoverage {
+  uvec4 pixelsSumX;  // x pixels, y sum x lo, z sum x hi, w sum y lo
+  uvec4 sumYHi;      // x sum y hi, yzw unused
+};
+
+// 16 bytes: the object's authored or derived K, Q, I, and w = 1 when it was selected last
+// frame (S).
+struct GpuObjectParams {
+  vec4 kqiS;
+};
+
+// 32 bytes: A, P, D, V and C, R, candidate (1/0), pixels (uint bits).
+struct GpuObjectRecord {
+  vec4 apdv;
+  vec4 crCandidatePixels;
+};
+
+#ifdef __cplusplus
+}  // namespace raybudget::gpu
+#endif
+#endif

@@ -1,0 +1,79 @@
+// The heuristic's per-object pass on the GPU against its CPU reference: coverage counted
+// from the same object-ID image, and A, P, D, V, C, R from engine/src/select/metrics.h.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "select/metrics.h"
+#include "select/object_params.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+void expectNear(float gpu, float cpu, float rel, const std::string& what) {
+  EXPECT_LE(std::fabs(gpu - cpu), rel * std::fabs(cpu) + 1e-30f) << what << ": GPU " << gpu << ", CPU " << cpu;
+}
+
+void checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t h) {
+  RenderSettings s;
+  s.width = w;
+  s.height = h;
+  s.validation = true;
+  s.objectMetrics = true;
+  Renderer renderer(scene, s);
+  renderer.render(camera);
+  renderer.finish();
+  const FrameImages img = renderer.readback();
+  const std::vector<ObjectMetrics> gpu = renderer.objectMetrics();
+  test::expectValidationClean(renderer.validationMessages());
+  ASSERT_EQ(gpu.size(), scene.objects.size());
+  std::vector<select::Coverage> cov(scene.objects.size());
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const uint32_t id = img.objectIds[size_t(y) * w + x];
+      if (id == 0xFFFFFFFFu) continue;
+      ++cov[id].pixels;
+      cov[id].sumX += x;
+      cov[id].sumY += y;
+    }
+  size_t visible = 0;
+  for (const Object& o : scene.objects) {
+    const std::string name = scene.path.filename().string() + " object " + std::to_string(o.id) + " '" + o.name + "'";
+    const float distance = glm::length(0.5f * (o.boundsMin + o.boundsMax) - camera.position);
+    const select::Metrics cpu = select::objectMetrics(cov[o.id], w, h, distance, camera.znear, select::objectParams(scene, o), false);
+    const ObjectMetrics& g = gpu[o.id];
+    ASSERT_EQ(g.pixels, cov[o.id].pixels) << name;
+    visible += g.pixels > 0;
+    expectNear(g.A, cpu.A, 1e-6f, name + " A");
+    expectNear(g.P, cpu.P, 1e-5f, name + " P");
+    expectNear(g.D, cpu.D, 1e-5f, name + " D");
+    expectNear(g.V, cpu.V, 1e-4f, name + " V");
+    expectNear(g.C, cpu.C, 1e-4f, name + " C");
+    expectNear(g.R, cpu.R, 1e-4f, name + " R");
+    EXPECT_EQ(g.candidate, cpu.candidate) << name;
+  }
+  EXPECT_GT(visible, 0u) << scene.path.filename() << ": the camera should see something";
+}
+
+TEST(CoverageGpu, MatchesTheCpuReferenceOnTheDefaultScene) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  checkScene(scene, defaultCamera(scene, 1.5f), 240, 160);
+  // Close up and at an angle: objects cut by the screen edge, some behind the camera.
+  Camera close = defaultCamera(scene, 1.5f);
+  close.position = glm::mix(close.position, close.target, 0.7f);
+  checkScene(scene, close, 240, 160);
+}
+
+TEST(CoverageGpu, MatchesTheCpuReferenceOnTheCiScenes) {
+  RB_REQUIRE_SHARED_SCENES();
+  for (const auto& path : test::manifestScenes("ci")) {
+    const Scene scene = loadScene(path);
+    checkScene(scene, defaultCamera(scene, 4.0f / 3.0f), 96, 72);
+  }
+}
+
+}  // namespace
+}  // namespace raybudget
