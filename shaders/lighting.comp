@@ -35,8 +35,9 @@ void main() {
   vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
   vec3 N = s.normal;
   vec3 color = s.emissive;
-  // Ray-traced visibility replaces the shadow maps where the shadow pass traced.
-  bool rtShadows = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u;
+  // Ray-traced visibility replaces the shadow maps where the shadow pass traced: pixels of
+  // selected objects.
+  bool rtShadows = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && pixelSelected(s.objectId);
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
     uint type = uint(light.directionType.w);

@@ -103,10 +103,10 @@ bool transmittedRay(vec3 p, vec3 ng, vec3 V, vec3 n, float ior, uint materialId,
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = tilePixel();
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit) return;
+  if (!readSurface(pixel, s) || s.unlit || !pixelSelected(s.objectId)) return;
   uint effects = frame.rayTracing.x;
   float transmission = s.transmission * (1.0 - s.metallic);
   bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= RB_RT_MAX_ROUGHNESS;

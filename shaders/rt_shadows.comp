@@ -9,10 +9,10 @@
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = tilePixel();
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit) return;  // the lighting pass reads no mask there
+  if (!readSurface(pixel, s) || s.unlit || !pixelSelected(s.objectId)) return;  // the lighting pass reads no mask there
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
   vec3 origin = offsetRay(p, ng);

@@ -230,5 +230,39 @@ TEST(RtPolicy, NoneTracesNothingAndAllWithoutEffectsEqualsNone) {
   test::expectValidationClean(renderer.validationMessages());
 }
 
+// The trace passes run over the tile list only: exactly the 8x8 tiles holding pixels of
+// selected objects (with `all`, every object on screen), and none when the camera sees
+// only sky: an empty indirect dispatch.
+TEST(RtPolicy, TracesExactlyTheTilesOfSelectedPixels) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const uint32_t w = 200, h = 120;  // not multiples of 8: partial edge tiles count too
+  std::vector<FrameTiming> timings;
+  const FrameImages img = renderScene(scene, Policy::All, defaultCamera(scene, float(w) / float(h)), w, h, false, 0.3f, &timings);
+  size_t tiles = 0;
+  for (uint32_t ty = 0; ty < (h + 7) / 8; ++ty)
+    for (uint32_t tx = 0; tx < (w + 7) / 8; ++tx) {
+      bool any = false;
+      for (uint32_t y = ty * 8; y < std::min(h, ty * 8 + 8); ++y)
+        for (uint32_t x = tx * 8; x < std::min(w, tx * 8 + 8); ++x) any = any || img.objectIds[size_t(y) * w + x] != 0xFFFFFFFFu;
+      tiles += any;
+    }
+  ASSERT_EQ(timings.size(), 1u);
+  EXPECT_GT(tiles, 0u);
+  EXPECT_LT(tiles, size_t((w + 7) / 8) * ((h + 7) / 8)) << "the default view shows some sky";
+  EXPECT_EQ(timings[0].tracedTiles, tiles);
+  // Looking straight up from above the scene: only sky.
+  Camera up = defaultCamera(scene, float(w) / float(h));
+  up.position = glm::vec3(0.0f, 1000.0f, 0.0f);
+  up.target = up.position + glm::vec3(0.0f, 1.0f, 0.001f);
+  std::vector<FrameTiming> skyTimings;
+  const FrameImages sky = renderScene(scene, Policy::All, up, w, h, false, 0.3f, &skyTimings);
+  for (uint32_t id : sky.objectIds) ASSERT_EQ(id, 0xFFFFFFFFu);
+  ASSERT_EQ(skyTimings.size(), 1u);
+  EXPECT_EQ(skyTimings[0].tracedTiles, 0u);
+  // The empty dispatches still run (and are timed) but do no work.
+  ASSERT_TRUE(skyTimings[0].passMs[size_t(Pass::TraceShadows)].has_value());
+  EXPECT_LT(*skyTimings[0].passMs[size_t(Pass::TraceShadows)], 0.25 * *timings[0].passMs[size_t(Pass::TraceShadows)]);
+}
+
 }  // namespace
 }  // namespace raybudget

@@ -20,6 +20,7 @@
 #include "passes/frame_targets.h"
 #include "passes/gbuffer.h"
 #include "passes/scene_gpu.h"
+#include "passes/select_pass.h"
 #include "passes/screen_pass.h"
 #include "passes/shadow_maps.h"
 #include "shared/config.h"
@@ -38,6 +39,7 @@ const char* passName(Pass pass) {
   switch (pass) {
     case Pass::GBuffer: return "gbuffer";
     case Pass::Coverage: return "coverage";
+    case Pass::Select: return "select";
     case Pass::ShadowMaps: return "shadow_maps";
     case Pass::Environment: return "environment";
     case Pass::TraceShadows: return "trace_shadows";
@@ -82,6 +84,8 @@ struct Renderer::Impl {
     uint64_t frame = 0;
     double tlasRebuildMs = 0.0;
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
+    vk::Buffer tileCount;      // host-visible copy of the frame's tile-list header
+    bool selected = false;     // the frame ran the select pass
   };
 
   RenderSettings settings;
@@ -97,6 +101,7 @@ struct Renderer::Impl {
   vk::TimestampPool timestamps;
   passes::GBufferPass gbuffer;
   passes::CoveragePass coverage;
+  passes::SelectPass selectPass;
   passes::ShadowMapPass shadowMaps;
   passes::EnvironmentPass environment;
   passes::ScreenPass lighting;
@@ -123,6 +128,7 @@ struct Renderer::Impl {
         timestamps(ctx, kFramesInFlight, kPassCount),
         gbuffer(ctx, pipelineLayout),
         coverage(ctx, pipelineLayout),
+        selectPass(ctx, pipelineLayout),
         shadowMaps(ctx, pipelineLayout),
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
@@ -134,6 +140,7 @@ struct Renderer::Impl {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+      slot.tileCount = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.set = passes::allocateSet(ctx, pool, setLayout);
       passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, samplers);
     }
@@ -208,6 +215,7 @@ struct Renderer::Impl {
     FrameTiming t;
     t.frame = slot.frame;
     t.tlasRebuildMs = slot.tlasRebuildMs;
+    t.tracedTiles = slot.selected ? static_cast<const uint32_t*>(slot.tileCount.mapped)[0] : 0u;
     const auto ms = timestamps.read(uint32_t(&slot - slots));
     for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
     return t;
@@ -317,24 +325,32 @@ struct Renderer::Impl {
       timestamps.end(cmd, s, uint32_t(pass));
     };
     // Skip what the frame does not need: no shadow maps when every pixel traces its
-    // shadows, no trace dispatch when nothing is traced.
+    // shadows, no trace work when nothing is traced, and the trace passes run only over the
+    // tiles holding selected pixels (an empty tile list is an empty indirect dispatch).
     const uint32_t traced = tracedEffects();
+    slot.selected = traced != 0u;
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
-    if (settings.objectMetrics) timed(Pass::Coverage, [&] { coverage.record(fc); });
+    if (settings.objectMetrics || slot.selected) timed(Pass::Coverage, [&] { coverage.record(fc); });
+    if (slot.selected) {
+      computeToCompute(cmd);
+      timed(Pass::Select, [&] { selectPass.record(fc, passes::SelectMode::All); });
+      const VkBufferCopy header{0, 0, 16};
+      vkCmdCopyBuffer(cmd, targets.tileList.buffer, slot.tileCount.buffer, 1, &header);
+    }
     if (shadowMaps.needed(scene) && !(traced & RB_RT_SHADOWS)) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
     if (!environmentReady) {
       timed(Pass::Environment, [&] { environment.record(fc); });
       environmentReady = true;
     }
     if (traced & RB_RT_SHADOWS) {
-      timed(Pass::TraceShadows, [&] { traceShadows.record(fc); });
+      timed(Pass::TraceShadows, [&] { traceShadows.recordOverTiles(fc); });
       computeToCompute(cmd);
     }
     timed(Pass::Lighting, [&] { lighting.record(fc); });
     timed(Pass::EnvFallback, [&] { envFallback.record(fc); });
     if (traced & (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS)) {
       computeToCompute(cmd);
-      timed(Pass::TraceEffects, [&] { traceEffects.record(fc); });
+      timed(Pass::TraceEffects, [&] { traceEffects.recordOverTiles(fc); });
     }
     computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });

@@ -52,5 +52,15 @@ layout(set = 0, binding = 29) uniform sampler2D gPosition;  // xyz world positio
 layout(set = 0, binding = 30, std430) buffer CoverageBlock { GpuCoverage coverage[]; };
 layout(set = 0, binding = 31, std430) readonly buffer ObjectParamsBlock { GpuObjectParams objectParams[]; };
 layout(set = 0, binding = 32, std430) buffer ObjectRecordBlock { GpuObjectRecord objectRecords[]; };
+// The selection (1: the object's pixels get ray-traced effects) and the 8x8 tiles holding
+// selected pixels; tileList.x doubles as the trace passes' indirect dispatch (x, y, z).
+layout(set = 0, binding = 33, std430) buffer SelectionBlock { uint selected[]; };
+layout(set = 0, binding = 34, std430) buffer TileListBlock {
+  uvec4 tileDispatch;  // x tile count (= groups in x), y 1, z 1, w unused
+  uint tiles[];        // tile x | tile y << 16
+};
+
+// Whether the pixel's object was selected for ray tracing this frame.
+bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && selected[objectId] != 0u; }
 
 #endif

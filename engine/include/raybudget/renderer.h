@@ -48,13 +48,14 @@ struct RenderSettings {
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.
-enum class Pass : uint32_t { GBuffer, Coverage, ShadowMaps, Environment, TraceShadows, Lighting, EnvFallback, TraceEffects, Compose, Count };
+enum class Pass : uint32_t { GBuffer, Coverage, Select, ShadowMaps, Environment, TraceShadows, Lighting, EnvFallback, TraceEffects, Compose, Count };
 inline constexpr size_t kPassCount = size_t(Pass::Count);
 const char* passName(Pass pass);
 
 struct FrameTiming {
   uint64_t frame = 0;
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
+  uint32_t tracedTiles = 0;    // 8x8 tiles the trace passes ran over (0: none selected or nothing traced)
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
 };

@@ -39,7 +39,9 @@ enum Binding : uint32_t {
   kCoverage = 30,
   kObjectParams = 31,
   kObjectRecords = 32,
-  kBindingCount = 33,
+  kSelection = 33,
+  kTileList = 34,
+  kBindingCount = 35,
 };
 
 }  // namespace raybudget::passes

@@ -60,6 +60,7 @@ struct SceneGpu {
   vk::Buffer coverage;
   vk::Buffer objectParams;
   vk::Buffer objectRecords;
+  vk::Buffer selection;  // uint per object: 1 = traced this frame
   ShadowViews shadows;
   uint32_t lightCount = 0;
   bool hasTransmission = false;

@@ -1,5 +1,6 @@
 #include "passes/screen_pass.h"
 
+#include "passes/frame_targets.h"
 #include "shared/config.h"
 
 namespace raybudget::passes {
@@ -11,6 +12,12 @@ void ScreenPass::record(const FrameContext& fc) const {
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   vkCmdDispatch(fc.cmd, (fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE, (fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE, 1);
+}
+
+void ScreenPass::recordOverTiles(const FrameContext& fc) const {
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  vkCmdDispatchIndirect(fc.cmd, fc.targets.tileList.buffer, 0);
 }
 
 }  // namespace raybudget::passes

@@ -1,0 +1,37 @@
+#include "passes/select_pass.h"
+
+#include "passes/scene_gpu.h"
+#include "select_comp.h"
+#include "shared/config.h"
+#include "shared/types.h"
+#include "tile_list_comp.h"
+#include "vk/pipelines.h"
+#include "vk/resources.h"
+
+namespace raybudget::passes {
+
+SelectPass::SelectPass(const vk::Context& ctx, VkPipelineLayout layout)
+    : select_(vk::createComputePipeline(ctx, layout, kSpirv_select_comp)), tiles_(vk::createComputePipeline(ctx, layout, kSpirv_tile_list_comp)) {}
+
+void SelectPass::record(const FrameContext& fc, SelectMode mode) const {
+  const VkCommandBuffer cmd = fc.cmd;
+  const uint32_t emptyDispatch[4] = {0, 1, 1, 0};  // no tiles yet: x = 0 groups
+  vkCmdUpdateBuffer(cmd, fc.targets.tileList.buffer, 0, sizeof(emptyDispatch), emptyDispatch);
+  const uint32_t objects = uint32_t(fc.scene.objectSpheres.size());
+  gpu::DrawPush push{};
+  push.objectMaterial = glm::uvec4(objects, uint32_t(mode), 0, 0);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, select_);
+  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  vkCmdPushConstants(cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+  vkCmdDispatch(cmd, (objects + 63) / 64, 1, 1);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tiles_);
+  vkCmdDispatch(cmd, (fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE, (fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE, 1);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                    VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+}  // namespace raybudget::passes

@@ -1,0 +1,24 @@
+// The select pass: which objects get ray-traced effects (shaders/select.comp), then the list
+// of 8x8 tiles holding their pixels, whose count is the trace passes' indirect dispatch
+// (shaders/tile_list.comp). Reads the object records of the coverage pass.
+#pragma once
+#include "passes/frame_context.h"
+#include "vk/context.h"
+#include "vk/owned.h"
+
+namespace raybudget::passes {
+
+enum class SelectMode : uint32_t { None = 0, All = 1 };
+
+class SelectPass {
+ public:
+  SelectPass(const vk::Context& ctx, VkPipelineLayout layout);
+  // Barriers included: afterwards the tile list is ready for indirect dispatch and reads.
+  void record(const FrameContext& fc, SelectMode mode) const;
+
+ private:
+  vk::Owned<VkPipeline> select_;
+  vk::Owned<VkPipeline> tiles_;
+};
+
+}  // namespace raybudget::passes

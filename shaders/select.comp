@@ -1,0 +1,16 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The select pass: which objects get ray-traced effects this frame. Today the baselines:
+// push x = object count, y = 0 none, 1 all (every object with pixels on screen). The
+// budgeted policies (engine/src/select/policies.h is their CPU reference) come next.
+#include "include/bindings.glsl"
+
+layout(local_size_x = 64) in;
+layout(push_constant) uniform PushBlock { DrawPush push; };
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= push.objectMaterial.x) return;
+  bool all = push.objectMaterial.y == 1u;
+  selected[i] = all && floatBitsToUint(objectRecords[i].crCandidatePixels.w) > 0u ? 1u : 0u;
+}
