@@ -107,8 +107,8 @@ TEST(SelectionPolicies, BaselinesAndDensityDoWhatTheySay) {
   // Random is reproducible by seed.
   std::vector<Candidate> many;
   for (uint32_t i = 0; i < 200; ++i) many.push_back({i, 1.0f, 1.0f, 0.0f});
-  const auto r1 = select::selectObjects(Policy::Random, many, 20.0f, {4, 7}), r2 = select::selectObjects(Policy::Random, many, 20.0f, {4, 7});
-  const auto r3 = select::selectObjects(Policy::Random, many, 20.0f, {4, 8});
+  const auto r1 = select::selectObjects(Policy::Random, many, 20.0f, {4, 7u}), r2 = select::selectObjects(Policy::Random, many, 20.0f, {4, 7u});
+  const auto r3 = select::selectObjects(Policy::Random, many, 20.0f, {4, 8u});
   EXPECT_EQ(r1.ids, r2.ids);
   EXPECT_NE(r1.ids, r3.ids);
   EXPECT_EQ(r1.ids.size(), 20u);
@@ -150,7 +150,7 @@ TEST(SelectionPolicies, ThousandsOfRandomSetsKeepTheBudgetAndTheBounds) {
     const double bound = select::optimalValueBound(c, budget);
     const select::Selection optimal = select::selectObjects(Policy::Optimal, c, budget);
     for (Policy p : {Policy::Paper, Policy::Density, Policy::Optimal, Policy::Nearest, Policy::Random}) {
-      const select::Selection s = select::selectObjects(p, c, budget, {uint32_t(trial % 6), uint64_t(trial)});
+      const select::Selection s = select::selectObjects(p, c, budget, {uint32_t(trial % 6), uint32_t(trial)});
       ASSERT_LE(s.cost, double(budget) * (1.0 + 1e-5) + 1e-12) << select::policyName(p) << " overspends, trial " << trial;
       ASSERT_EQ(std::set<uint32_t>(s.ids.begin(), s.ids.end()).size(), s.ids.size()) << "an object selected twice";
       ASSERT_LE(s.value, bound * (1.0 + 1e-9) + 1e-9) << select::policyName(p) << " beats the knapsack bound, trial " << trial;

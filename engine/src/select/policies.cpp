@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "raybudget/error.h"
@@ -30,34 +31,44 @@ std::vector<uint32_t> indices(size_t n) {
   return v;
 }
 
-// splitmix64: a small seeded generator whose sequence is the same everywhere.
-uint64_t splitmix(uint64_t& state) {
-  uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+}  // namespace
+
+uint32_t randomRank(uint32_t seed, uint32_t id) {
+  // A 32-bit integer hash (lowbias32, Wellons) of the seed and the ID: the GPU computes it too.
+  uint32_t x = id ^ (seed * 0x9E3779B9u);
+  x ^= x >> 16;
+  x *= 0x7FEB352Du;
+  x ^= x >> 15;
+  x *= 0x846CA68Bu;
+  x ^= x >> 16;
+  return x;
 }
+
+float densityKey(const Candidate& c) { return c.cost > 0.0f ? c.value / c.cost : std::numeric_limits<float>::infinity(); }
+
+namespace {
 
 // Greedy by value density with fill-in, then the better of that and the most valuable
 // single candidate that fits: the classic 1/2-approximation of the 0/1 knapsack
 // (Funkhouser and Séquin 1993 use the greedy part for level-of-detail selection).
 std::vector<uint32_t> density(std::span<const Candidate> c, float budget) {
   std::vector<uint32_t> order = indices(c.size());
-  // value / cost compared as value_a * cost_b > value_b * cost_a, so zero cost ranks first
-  // without a division by zero; in double, exact for float inputs.
+  // The key is a float division (zero cost: +inf, first), one total order: key descending,
+  // then cost ascending, then ID; float sums in selection order. The GPU does the same.
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    const double l = double(c[a].value) * double(c[b].cost), r = double(c[b].value) * double(c[a].cost);
-    if (l != r) return l > r;
+    const float ka = densityKey(c[a]), kb = densityKey(c[b]);
+    if (ka != kb) return ka > kb;
     if (c[a].cost != c[b].cost) return c[a].cost < c[b].cost;
     return c[a].id < c[b].id;
   });
   std::vector<uint32_t> greedy = greedyFit(c, order, budget);
-  double greedyValue = 0.0;
+  float greedyValue = 0.0f;
   for (uint32_t i : greedy) greedyValue += c[i].value;
   uint32_t best = UINT32_MAX;
   for (uint32_t i = 0; i < c.size(); ++i)
-    if (c[i].cost <= budget && (best == UINT32_MAX || c[i].value > c[best].value)) best = i;
-  if (best != UINT32_MAX && double(c[best].value) > greedyValue) return {best};
+    if (c[i].cost <= budget && (best == UINT32_MAX || c[i].value > c[best].value || (c[i].value == c[best].value && c[i].id < c[best].id)))
+      best = i;
+  if (best != UINT32_MAX && c[best].value > greedyValue) return {best};
   return greedy;
 }
 
@@ -142,9 +153,13 @@ Selection selectObjects(Policy policy, std::span<const Candidate> c, float budge
       break;
     }
     case Policy::Random: {
+      // A seeded random order: by a hash of (seed, ID), ties by ID.
       std::vector<uint32_t> order = indices(c.size());
-      uint64_t state = options.seed;
-      for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[splitmix(state) % i]);  // Fisher-Yates
+      const uint32_t seed = uint32_t(options.seed);
+      std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const uint32_t ra = randomRank(seed, c[a].id), rb = randomRank(seed, c[b].id);
+        return ra != rb ? ra < rb : c[a].id < c[b].id;
+      });
       chosen = greedyFit(c, order, budget);
       break;
     }

@@ -24,7 +24,7 @@ struct Candidate {
 
 struct PolicyOptions {
   uint32_t graphPointers = 4;  // `paper`: N, the higher-relevance pointers per node
-  uint64_t seed = 1;           // `random`
+  uint32_t seed = 1;           // `random`
   uint32_t optimalSteps = 4096;  // `optimal`: the budget's resolution in the dynamic programme
 };
 
@@ -33,6 +33,10 @@ struct Selection {
   double cost = 0.0;
   double value = 0.0;
 };
+
+// The order keys the policies share with the GPU select pass.
+uint32_t randomRank(uint32_t seed, uint32_t id);
+float densityKey(const Candidate& candidate);  // value / cost, +inf for zero cost
 
 // Throws raybudget::Error on a negative, NaN or infinite cost, value or budget.
 Selection selectObjects(Policy policy, std::span<const Candidate> candidates, float budget, const PolicyOptions& options = {});
