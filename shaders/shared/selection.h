@@ -28,6 +28,14 @@ struct GpuObjectRecord {
   vec4 crCandidatePixels;
 };
 
+// 16 bytes: one candidate of the GPU selection (select::Candidate).
+struct GpuCandidate {
+  uint id;
+  float cost;
+  float value;
+  float distance;
+};
+
 #ifdef __cplusplus
 }  // namespace raybudget::gpu
 #endif

@@ -1,0 +1,139 @@
+#include "passes/gpu_selector.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+#include "select_bitonic_comp.h"
+#include "select_keys_comp.h"
+#include "select_walk_comp.h"
+#include "shared/selection.h"
+#include "vk/check.h"
+#include "vk/compute_set.h"
+#include "vk/pipelines.h"
+#include "vk/resources.h"
+#include "vk/timestamps.h"
+
+namespace raybudget::passes {
+namespace {
+
+struct SelectPush {
+  glm::uvec4 sizes;  // candidates, padded, policy, seed
+  glm::uvec4 stage;  // bitonic k, j, order, paper pointers
+  glm::vec4 budget;
+};
+
+constexpr uint32_t kBlock = 1024;  // the bitonic shader's shared-memory block
+
+uint32_t paddedSize(uint32_t n) { return std::max(kBlock, std::bit_ceil(std::max(n, 1u))); }
+
+}  // namespace
+
+struct GpuSelector::Impl {
+  const vk::Context& ctx;
+  uint32_t capacity, padded;
+  vk::Buffer candidates, order, relevance, scratch, flags, result, readback;
+  vk::ComputeSet set;
+  vk::Owned<VkPipeline> keys, bitonic, walk;
+  vk::TimestampPool timestamps;
+  double gpuMs = 0.0;
+
+  Impl(const vk::Context& c, uint32_t cap)
+      : ctx(c), capacity(cap), padded(paddedSize(cap)), timestamps(c, 1, 1) {
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    candidates = vk::createBuffer(c, std::max(cap, 1u) * sizeof(gpu::GpuCandidate), storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+    order = vk::createBuffer(c, padded * 16ull, storage, false);
+    relevance = vk::createBuffer(c, padded * 16ull, storage, false);
+    scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+    flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    result = vk::createBuffer(c, 16, storage, false);
+    readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const VkDescriptorType types[6] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    set = vk::createComputeSet(c, types, sizeof(SelectPush));
+    const VkBuffer buffers[6] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer, result.buffer};
+    vk::writeStorageBuffers(c, set.set, buffers);
+    keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
+    bitonic = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_bitonic_comp);
+    walk = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_walk_comp);
+  }
+
+  void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const SelectPush& push, uint32_t groups) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdPushConstants(cmd, set.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, groups, 1, 1);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+
+  // Keys then a bitonic sort of one order (0: the policy's, 1: `paper`'s relevance order).
+  void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which) {
+    push.stage = glm::uvec4(0, 0, which, push.stage.w);
+    dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
+    for (uint32_t k = 2; k <= push.sizes.y; k <<= 1) {
+      for (uint32_t j = k / 2; j >= kBlock; j >>= 1) {
+        push.stage.x = k;
+        push.stage.y = j;
+        dispatch(cmd, bitonic, push, push.sizes.y / 2 / 512);
+      }
+      push.stage.x = k;
+      push.stage.y = 0;  // every j below the block size, in shared memory
+      dispatch(cmd, bitonic, push, push.sizes.y / kBlock);
+    }
+  }
+
+  select::Selection run(std::span<const select::Candidate> c, select::Policy policy, float budget, const select::PolicyOptions& options) {
+    if (policy == select::Policy::Optimal) throw Error("the optimal policy runs on the CPU only (benchmarks)");
+    if (c.size() > capacity) throw Error("GPU selection of " + std::to_string(c.size()) + " candidates exceeds its capacity " + std::to_string(capacity));
+    // Validation as on the CPU: the same errors for the same input.
+    (void)select::selectObjects(select::Policy::None, c, budget, options);
+    const uint32_t n = uint32_t(c.size()), pad = paddedSize(n);
+    std::vector<gpu::GpuCandidate> data;
+    for (const select::Candidate& x : c) data.push_back({x.id, x.cost, x.value, x.distance});
+    vk::Buffer staging = vk::createBuffer(ctx, std::max<size_t>(1, data.size()) * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    if (!data.empty()) std::memcpy(staging.mapped, data.data(), data.size() * sizeof(gpu::GpuCandidate));
+    SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0)};
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      timestamps.reset(cmd, 0);
+      if (n > 0) {
+        const VkBufferCopy copy{0, 0, n * sizeof(gpu::GpuCandidate)};
+        vkCmdCopyBuffer(cmd, staging.buffer, candidates.buffer, 1, &copy);
+      }
+      vkCmdFillBuffer(cmd, flags.buffer, 0, VK_WHOLE_SIZE, 0);
+      vkCmdFillBuffer(cmd, scratch.buffer, 0, VK_WHOLE_SIZE, 0);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
+      timestamps.begin(cmd, 0, 0);
+      const bool sorted = policy != select::Policy::None && policy != select::Policy::All;
+      if (sorted && n > 0) sortOrder(cmd, push, 0);
+      if (policy == select::Policy::Paper && n > 0) sortOrder(cmd, push, 1);
+      dispatch(cmd, walk, push, 1);
+      timestamps.end(cmd, 0, 0);
+      const VkBufferCopy back{0, 0, std::max(n, 1u) * 4ull};
+      vkCmdCopyBuffer(cmd, flags.buffer, readback.buffer, 1, &back);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    });
+    gpuMs = timestamps.read(0)[0].value_or(0.0);
+    const auto* f = static_cast<const uint32_t*>(readback.mapped);
+    select::Selection s;
+    for (uint32_t i = 0; i < n; ++i)
+      if (f[i]) {
+        s.ids.push_back(c[i].id);
+        s.cost += c[i].cost;
+        s.value += c[i].value;
+      }
+    std::sort(s.ids.begin(), s.ids.end());
+    return s;
+  }
+};
+
+GpuSelector::GpuSelector(const vk::Context& ctx, uint32_t capacity) : impl_(std::make_unique<Impl>(ctx, capacity)) {}
+GpuSelector::~GpuSelector() = default;
+select::Selection GpuSelector::select(std::span<const select::Candidate> candidates, select::Policy policy, float budget,
+                                      const select::PolicyOptions& options) {
+  return impl_->run(candidates, policy, budget, options);
+}
+double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
+
+}  // namespace raybudget::passes

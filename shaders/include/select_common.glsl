@@ -1,0 +1,42 @@
+// Shared by the GPU selection shaders (shaders/select/select_*.comp): their own descriptor set
+// (engine/src/passes/gpu_selector.h) and push constants. The CPU reference is
+// engine/src/select/policies.cpp; these shaders reproduce it exactly.
+#ifndef RB_SELECT_COMMON_GLSL
+#define RB_SELECT_COMMON_GLSL
+#include "shared/selection.h"
+
+layout(set = 0, binding = 0, std430) readonly buffer CandidateBlock { GpuCandidate candidates[]; };
+layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec4 order[]; };       // sort keys k0, k1, k2, candidate index
+layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec4 relevance[]; };  // `paper`: the relevance order
+layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: taken, rank, group start
+layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
+layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; };        // x count, y cost bits, z value bits
+
+layout(push_constant) uniform SelectPush {
+  uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
+  uvec4 stage;   // x bitonic k, y bitonic j, z which order (0 main, 1 relevance), w `paper` pointers N
+  vec4 budget;   // x budget
+} push;
+
+// Policies, as in select::Policy.
+#define RB_SELECT_NONE 0u
+#define RB_SELECT_ALL 1u
+#define RB_SELECT_PAPER 2u
+#define RB_SELECT_DENSITY 3u
+#define RB_SELECT_NEAREST 5u
+#define RB_SELECT_RANDOM 6u
+
+// Float bits mapped so that unsigned order is float order (ascending).
+uint orderedBits(float f) {
+  uint u = floatBitsToUint(f);
+  return (u & 0x80000000u) != 0u ? ~u : (u | 0x80000000u);
+}
+
+bool keyLess(uvec4 a, uvec4 b) {
+  if (a.x != b.x) return a.x < b.x;
+  if (a.y != b.y) return a.y < b.y;
+  if (a.z != b.z) return a.z < b.z;
+  return a.w < b.w;
+}
+
+#endif

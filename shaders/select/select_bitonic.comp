@@ -1,0 +1,48 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// One step of a bitonic sort of the key array (order, or relevance with stage.z = 1),
+// ascending. stage.y = j >= 1024: one compare-exchange distance over the whole array;
+// stage.y = 0: every distance j < 1024 of stage k at once, inside 1024-element blocks in
+// shared memory (fewer dispatches: about 45 for 2^17 keys).
+#include "include/select_common.glsl"
+
+layout(local_size_x = 512) in;
+
+shared uvec4 block[1024];
+
+uvec4 load(uint i) { return push.stage.z == 0u ? order[i] : relevance[i]; }
+void store(uint i, uvec4 v) {
+  if (push.stage.z == 0u) order[i] = v;
+  else relevance[i] = v;
+}
+
+void main() {
+  uint k = push.stage.x, j = push.stage.y, t = gl_GlobalInvocationID.x;
+  if (j >= 1024u) {
+    uint i = 2u * j * (t / j) + (t % j), l = i + j;
+    if (l >= push.sizes.y) return;
+    uvec4 a = load(i), b = load(l);
+    bool ascending = (i & k) == 0u;
+    if (keyLess(b, a) == ascending) {
+      store(i, b);
+      store(l, a);
+    }
+    return;
+  }
+  uint base = gl_WorkGroupID.x * 1024u, lt = gl_LocalInvocationID.x;
+  block[lt] = load(base + lt);
+  block[lt + 512u] = load(base + lt + 512u);
+  for (uint jj = min(k / 2u, 512u); jj > 0u; jj /= 2u) {
+    barrier();
+    uint i = 2u * jj * (lt / jj) + (lt % jj), l = i + jj;
+    bool ascending = ((base + i) & k) == 0u;
+    uvec4 a = block[i], b = block[l];
+    if (keyLess(b, a) == ascending) {
+      block[i] = b;
+      block[l] = a;
+    }
+  }
+  barrier();
+  store(base + lt, block[lt]);
+  store(base + lt + 512u, block[lt + 512u]);
+}
