@@ -3,7 +3,10 @@
 // One step of a bitonic sort of the key array (order, or relevance with stage.z = 1),
 // ascending. stage.y = j >= 1024: one compare-exchange distance over the whole array;
 // stage.y = 0: every distance j < 1024 of stage k at once, inside 1024-element blocks in
-// shared memory (fewer dispatches: about 45 for 2^17 keys).
+// shared memory; stage.x = 0 as well: every stage k <= 1024 at once (sorts each block).
+// 36 dispatches for 2^17 keys, one for 1024 or fewer. (Blocks of 128 cost less per
+// dispatch on lavapipe, where barriers switch between the workgroup's SIMD batches, but
+// need more dispatches: slower from 1k keys on.)
 #include "include/select_common.glsl"
 
 layout(local_size_x = 512) in;
@@ -32,14 +35,17 @@ void main() {
   uint base = gl_WorkGroupID.x * 1024u, lt = gl_LocalInvocationID.x;
   block[lt] = load(base + lt);
   block[lt + 512u] = load(base + lt + 512u);
-  for (uint jj = min(k / 2u, 512u); jj > 0u; jj /= 2u) {
-    barrier();
-    uint i = 2u * jj * (lt / jj) + (lt % jj), l = i + jj;
-    bool ascending = ((base + i) & k) == 0u;
-    uvec4 a = block[i], b = block[l];
-    if (keyLess(b, a) == ascending) {
-      block[i] = b;
-      block[l] = a;
+  uint kFirst = k == 0u ? 2u : k, kLast = k == 0u ? 1024u : k;
+  for (uint kk = kFirst; kk <= kLast; kk *= 2u) {
+    for (uint jj = min(kk / 2u, 512u); jj > 0u; jj /= 2u) {
+      barrier();
+      uint i = 2u * jj * (lt / jj) + (lt % jj), l = i + jj;
+      bool ascending = ((base + i) & kk) == 0u;
+      uvec4 a = block[i], b = block[l];
+      if (keyLess(b, a) == ascending) {
+        block[i] = b;
+        block[l] = a;
+      }
     }
   }
   barrier();

@@ -70,7 +70,10 @@ struct GpuSelector::Impl {
   void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which) {
     push.stage = glm::uvec4(0, 0, which, push.stage.w);
     dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
-    for (uint32_t k = 2; k <= push.sizes.y; k <<= 1) {
+    push.stage.x = 0;  // every stage up to the block size in one dispatch
+    push.stage.y = 0;
+    dispatch(cmd, bitonic, push, push.sizes.y / kBlock);
+    for (uint32_t k = 2 * kBlock; k <= push.sizes.y; k <<= 1) {
       for (uint32_t j = k / 2; j >= kBlock; j >>= 1) {
         push.stage.x = k;
         push.stage.y = j;
