@@ -43,7 +43,7 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
     double total = 0.0;
     for (const Candidate& x : c) total += x.cost;
     const float budget = rng.next() < 0.1f ? 0.0f : float(total * rng.next() * 0.6);
-    const select::PolicyOptions options{uint32_t(trial % 6), uint32_t(trial * 31 + 1)};
+    const select::PolicyOptions options{uint32_t(trial % 6), uint32_t(trial * 31 + 1), uint32_t(trial % 3)};
     for (Policy p : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
       const select::Selection cpu = select::selectObjects(p, c, budget, options), g = gpu.select(c, p, budget, options);
       ASSERT_EQ(g.ids, cpu.ids) << select::policyName(p) << ", trial " << trial << ", " << n << " candidates, budget " << budget;

@@ -82,9 +82,12 @@ TEST(SelectionPaper, WalksTheGraphAsTheDocumentSays) {
   EXPECT_EQ(g.pointers[1 * 2 + 0], 3u);
   EXPECT_EQ(g.pointers[1 * 2 + 1], UINT32_MAX);
   EXPECT_EQ(g.pointers[3 * 2 + 0], UINT32_MAX) << "the most relevant node points nowhere";
-  // First pick: A fits, climb A -> B -> D; then A fits 5, climb to B (D is taken); then
-  // nothing fits the 1 left but D, which is taken.
-  EXPECT_EQ(select::walkPaperGraph(g, c, 6.0f), (std::vector<uint32_t>{3, 1}));
+  // Climbing while a pointer fits: A -> B -> D, select D, 5 left; A fits, climb to B (D is
+  // taken), select B; 1 left: nothing else fits.
+  EXPECT_EQ(select::walkPaperGraph(g, c, 6.0f, 0), (std::vector<uint32_t>{3, 1}));
+  // One hop per pick (the default): A fits, hop to B (4 fits): select B, 2 left; then A, B
+  // and C do not fit or are taken, D fits (no pointers): select D.
+  EXPECT_EQ(select::walkPaperGraph(g, c, 6.0f, 1), (std::vector<uint32_t>{1, 3}));
   // Without pointers the walk takes the most costly node that fits, again and again.
   EXPECT_EQ(select::walkPaperGraph(select::buildPaperGraph(c, 0), c, 6.0f), (std::vector<uint32_t>{0, 3}));
   // Equal relevance is not "higher": no pointers between ties.
@@ -150,7 +153,7 @@ TEST(SelectionPolicies, ThousandsOfRandomSetsKeepTheBudgetAndTheBounds) {
     const double bound = select::optimalValueBound(c, budget);
     const select::Selection optimal = select::selectObjects(Policy::Optimal, c, budget);
     for (Policy p : {Policy::Paper, Policy::Density, Policy::Optimal, Policy::Nearest, Policy::Random}) {
-      const select::Selection s = select::selectObjects(p, c, budget, {uint32_t(trial % 6), uint32_t(trial)});
+      const select::Selection s = select::selectObjects(p, c, budget, {uint32_t(trial % 6), uint32_t(trial), uint32_t(trial % 3)});
       ASSERT_LE(s.cost, double(budget) * (1.0 + 1e-5) + 1e-12) << select::policyName(p) << " overspends, trial " << trial;
       ASSERT_EQ(std::set<uint32_t>(s.ids.begin(), s.ids.end()).size(), s.ids.size()) << "an object selected twice";
       ASSERT_LE(s.value, bound * (1.0 + 1e-9) + 1e-9) << select::policyName(p) << " beats the knapsack bound, trial " << trial;

@@ -16,6 +16,7 @@ layout(push_constant) uniform SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
   uvec4 stage;   // x bitonic k, y bitonic j, z which order (0 main, 1 relevance), w `paper` pointers N
   vec4 budget;   // x budget
+  uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit)
 } push;
 
 // Policies, as in select::Policy.

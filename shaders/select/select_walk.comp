@@ -49,8 +49,8 @@ void selectPaper(uint n, float budget, uint pointers) {
     while (head < n && (scratch[order[head].w] != 0u || candidates[order[head].w].cost > remaining)) ++head;
     if (head == n) break;
     uint node = order[head].w;
-    for (bool climbed = true; climbed;) {
-      climbed = false;
+    for (uint hop = 0u; push.walk.x == 0u || hop < push.walk.x; ++hop) {
+      bool climbed = false;
       uint first = scratch[2u * n + scratch[n + node]];
       uint from = first > pointers ? first - pointers : 0u;
       for (uint pos = from; pos < first; ++pos) {  // most relevant first
@@ -60,6 +60,7 @@ void selectPaper(uint n, float budget, uint pointers) {
         climbed = true;
         break;
       }
+      if (!climbed) break;
     }
     scratch[node] = 1u;
     selectedFlags[node] = 1u;

@@ -21,6 +21,7 @@ struct SelectPush {
   glm::uvec4 sizes;  // candidates, padded, policy, seed
   glm::uvec4 stage;  // bitonic k, j, order, paper pointers
   glm::vec4 budget;
+  glm::uvec4 walk;   // paper hops
 };
 
 constexpr uint32_t kBlock = 1024;  // the bitonic shader's shared-memory block
@@ -95,7 +96,7 @@ struct GpuSelector::Impl {
     for (const select::Candidate& x : c) data.push_back({x.id, x.cost, x.value, x.distance});
     vk::Buffer staging = vk::createBuffer(ctx, std::max<size_t>(1, data.size()) * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!data.empty()) std::memcpy(staging.mapped, data.data(), data.size() * sizeof(gpu::GpuCandidate));
-    SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0)};
+    SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0), glm::uvec4(options.paperHops, 0, 0, 0)};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
       if (n > 0) {

@@ -32,7 +32,7 @@ PaperGraph buildPaperGraph(std::span<const Candidate> c, uint32_t n) {
   return g;
 }
 
-std::vector<uint32_t> walkPaperGraph(const PaperGraph& g, std::span<const Candidate> c, float budget) {
+std::vector<uint32_t> walkPaperGraph(const PaperGraph& g, std::span<const Candidate> c, float budget, uint32_t hops) {
   std::vector<uint32_t> chosen;
   std::vector<char> taken(c.size(), 0);
   float remaining = budget;
@@ -43,8 +43,8 @@ std::vector<uint32_t> walkPaperGraph(const PaperGraph& g, std::span<const Candid
     while (head < g.byCost.size() && (taken[g.byCost[head]] || c[g.byCost[head]].cost > remaining)) ++head;
     if (head == g.byCost.size()) break;
     uint32_t node = g.byCost[head];
-    for (bool climbed = true; climbed;) {
-      climbed = false;
+    for (uint32_t hop = 0; hops == 0 || hop < hops; ++hop) {
+      bool climbed = false;
       for (uint32_t slot = 0; slot < g.pointersPerNode; ++slot) {
         const uint32_t p = g.pointers[size_t(node) * g.pointersPerNode + slot];
         if (p == UINT32_MAX || taken[p] || c[p].cost > remaining) continue;
@@ -52,6 +52,7 @@ std::vector<uint32_t> walkPaperGraph(const PaperGraph& g, std::span<const Candid
         climbed = true;
         break;
       }
+      if (!climbed) break;
     }
     taken[node] = 1;
     remaining -= c[node].cost;

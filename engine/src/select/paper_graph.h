@@ -4,8 +4,9 @@
 //  - each node points to the N nodes just above it in relevance (ties: lower ID first), most
 //    relevant first;
 //  - the walk skips nodes that do not fit the remaining budget (they go to the graph of the
-//    next frame), takes the first that fits, then climbs its relevance pointers to the most
-//    relevant unselected node that fits, for as long as one does, and selects where it stops.
+//    next frame), takes the first that fits, then follows its relevance pointers to the most
+//    relevant unselected node that fits (one hop by default; optionally for as long as one
+//    fits), and selects where it stops.
 #pragma once
 #include <span>
 #include <vector>
@@ -22,7 +23,8 @@ struct PaperGraph {
 
 PaperGraph buildPaperGraph(std::span<const Candidate> candidates, uint32_t pointersPerNode);
 
-// Candidate indices selected by walking `graph` within `budget`, in selection order.
-std::vector<uint32_t> walkPaperGraph(const PaperGraph& graph, std::span<const Candidate> candidates, float budget);
+// Candidate indices selected by walking `graph` within `budget`, in selection order; each
+// pick follows at most `hops` relevance pointers (0: as many as keep fitting).
+std::vector<uint32_t> walkPaperGraph(const PaperGraph& graph, std::span<const Candidate> candidates, float budget, uint32_t hops = 1);
 
 }  // namespace raybudget::select

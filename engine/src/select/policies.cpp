@@ -141,7 +141,7 @@ Selection selectObjects(Policy policy, std::span<const Candidate> c, float budge
   switch (policy) {
     case Policy::None: break;
     case Policy::All: chosen = indices(c.size()); break;
-    case Policy::Paper: chosen = walkPaperGraph(buildPaperGraph(c, options.graphPointers), c, budget); break;
+    case Policy::Paper: chosen = walkPaperGraph(buildPaperGraph(c, options.graphPointers), c, budget, options.paperHops); break;
     case Policy::Density: chosen = density(c, budget); break;
     case Policy::Optimal: chosen = knapsack(c, budget, options.optimalSteps, true).first; break;
     case Policy::Nearest: {

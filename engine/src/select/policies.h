@@ -25,6 +25,7 @@ struct Candidate {
 struct PolicyOptions {
   uint32_t graphPointers = 4;  // `paper`: N, the higher-relevance pointers per node
   uint32_t seed = 1;           // `random`
+  uint32_t paperHops = 1;      // `paper`: pointer hops per pick (0: climb while one fits); docs/SELECTION.md
   uint32_t optimalSteps = 4096;  // `optimal`: the budget's resolution in the dynamic programme
 };
 
