@@ -7,6 +7,7 @@
 #include "bvh/ray_sets.h"
 #include "passes/gpu_selector.h"
 #include "select/policies.h"
+#include "support/random_candidates.h"
 #include "support/render_helpers.h"
 
 namespace raybudget {
@@ -15,23 +16,7 @@ namespace {
 using select::Candidate;
 using select::Policy;
 
-std::vector<Candidate> randomSet(bvh::Rng& rng, size_t n) {
-  std::vector<Candidate> c(n);
-  for (size_t i = 0; i < n; ++i) {
-    const float u = rng.next(), v = rng.next(), w = rng.next();
-    c[i].id = uint32_t(i * 7 + 3);
-    c[i].cost = u < 0.05f ? 0.0f : u < 0.15f ? 1.0f : u < 0.2f ? 1e-6f : u < 0.25f ? 1e4f : std::exp(rng.next() * 10.0f - 5.0f);
-    c[i].value = v < 0.1f ? 1.0f : v < 0.15f ? 1e-7f : v < 0.2f ? 1e5f : std::exp(rng.next() * 10.0f - 5.0f);
-    c[i].distance = w < 0.2f ? 2.0f : rng.next() * 100.0f;
-  }
-  return c;
-}
-
-class GpuSelection : public ::testing::Test {
- protected:
-  vk::Context ctx{vk::ContextOptions{true, ""}};
-  void TearDown() override { test::expectValidationClean(ctx.validationMessages()); }
-};
+using GpuSelection = test::ValidatedGpuTest;
 
 TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
   passes::GpuSelector gpu(ctx, 4096);
@@ -39,10 +24,8 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
   size_t compared = 0;
   for (int trial = 0; trial < 500; ++trial) {
     const size_t n = 1 + size_t(rng.next() * (trial % 25 == 0 ? 4000.0f : 60.0f));
-    const std::vector<Candidate> c = randomSet(rng, n);
-    double total = 0.0;
-    for (const Candidate& x : c) total += x.cost;
-    const float budget = rng.next() < 0.1f ? 0.0f : float(total * rng.next() * 0.6);
+    const std::vector<Candidate> c = test::randomCandidates(rng, n);
+    const float budget = test::randomBudget(rng, c);
     const select::PolicyOptions options{uint32_t(trial % 6), uint32_t(trial * 31 + 1), uint32_t(trial % 3)};
     for (Policy p : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
       const select::Selection cpu = select::selectObjects(p, c, budget, options), g = gpu.select(c, p, budget, options);
@@ -56,7 +39,7 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
 TEST_F(GpuSelection, EqualsTheCpuReferenceAtOneHundredThousand) {
   passes::GpuSelector gpu(ctx, 100000);
   bvh::Rng rng(5);
-  const std::vector<Candidate> c = randomSet(rng, 100000);
+  const std::vector<Candidate> c = test::randomCandidates(rng, 100000);
   for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
     const select::Selection cpu = select::selectObjects(p, c, 3000.0f), g = gpu.select(c, p, 3000.0f);
     EXPECT_EQ(g.ids, cpu.ids) << select::policyName(p);

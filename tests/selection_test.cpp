@@ -11,6 +11,7 @@
 #include "select/metrics.h"
 #include "select/paper_graph.h"
 #include "select/policies.h"
+#include "support/random_candidates.h"
 
 namespace raybudget {
 namespace {
@@ -128,28 +129,13 @@ TEST(SelectionPolicies, RejectBadInput) {
   EXPECT_EQ(select::parsePolicy("paper"), Policy::Paper);
 }
 
-// Random candidate sets with ties, zeros, huge and tiny values.
-std::vector<Candidate> randomSet(bvh::Rng& rng, size_t n) {
-  std::vector<Candidate> c(n);
-  for (size_t i = 0; i < n; ++i) {
-    const float u = rng.next(), v = rng.next();
-    c[i].id = uint32_t(i * 3 + 1);
-    c[i].cost = u < 0.05f ? 0.0f : u < 0.1f ? 1.0f : u < 0.15f ? 1e-6f : u < 0.2f ? 1e4f : std::exp(rng.next() * 10.0f - 5.0f);
-    c[i].value = v < 0.1f ? 1.0f : v < 0.15f ? 1e-7f : v < 0.2f ? 1e5f : std::exp(rng.next() * 10.0f - 5.0f);
-    c[i].distance = rng.next() < 0.1f ? 1.0f : rng.next() * 100.0f;
-  }
-  return c;
-}
-
 TEST(SelectionPolicies, ThousandsOfRandomSetsKeepTheBudgetAndTheBounds) {
   bvh::Rng rng(123);
   size_t sets = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     const size_t n = 1 + size_t(rng.next() * (trial % 10 == 0 ? 400.0f : 40.0f));
-    const std::vector<Candidate> c = randomSet(rng, n);
-    double total = 0.0;
-    for (const Candidate& x : c) total += x.cost;
-    const float budget = rng.next() < 0.1f ? 0.0f : float(total * rng.next() * 0.6);
+    const std::vector<Candidate> c = test::randomCandidates(rng, n);
+    const float budget = test::randomBudget(rng, c);
     const double bound = select::optimalValueBound(c, budget);
     const select::Selection optimal = select::selectObjects(Policy::Optimal, c, budget);
     for (Policy p : {Policy::Paper, Policy::Density, Policy::Optimal, Policy::Nearest, Policy::Random}) {
@@ -168,7 +154,7 @@ TEST(SelectionPolicies, ThousandsOfRandomSetsKeepTheBudgetAndTheBounds) {
 
 TEST(SelectionPolicies, HundredThousandObjects) {
   bvh::Rng rng(9);
-  const std::vector<Candidate> c = randomSet(rng, 100000);
+  const std::vector<Candidate> c = test::randomCandidates(rng, 100000);
   for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
     const select::Selection s = select::selectObjects(p, c, 5000.0f);
     EXPECT_LE(s.cost, 5000.0 * (1.0 + 1e-5));

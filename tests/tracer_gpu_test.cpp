@@ -22,11 +22,7 @@ std::vector<gpu::GpuRay> toGpu(const std::vector<bvh::OracleRay>& rays) {
   return out;
 }
 
-class TracerGpu : public ::testing::Test {
- protected:
-  vk::Context ctx{vk::ContextOptions{true, ""}};
-  void TearDown() override { test::expectValidationClean(ctx.validationMessages()); }
-};
+using TracerGpu = test::ValidatedGpuTest;
 
 TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
   const Scene scene = loadScene(test::defaultScenePath());

@@ -32,6 +32,13 @@ inline RenderResult renderWithValidation(const Scene& scene, uint32_t width, uin
 }
 
 // Fails the test with every validation message.
+// A test on its own Vulkan context with validation on; any validation message fails it.
+class ValidatedGpuTest : public ::testing::Test {
+ protected:
+  vk::Context ctx{vk::ContextOptions{true, ""}};
+  void TearDown() override;
+};
+
 // Whether the device offers VK_KHR_ray_query (Tracer::Native); asked once.
 inline bool nativeTracerAvailable() {
   static const bool available = vk::Context(vk::ContextOptions{false, ""}).rayQuerySupported();
@@ -41,5 +48,7 @@ inline bool nativeTracerAvailable() {
 inline void expectValidationClean(const std::vector<std::string>& messages) {
   EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
 }
+
+inline void ValidatedGpuTest::TearDown() { expectValidationClean(ctx.validationMessages()); }
 
 }  // namespace raybudget::test
