@@ -266,3 +266,50 @@ TEST(RtPolicy, TracesExactlyTheTilesOfSelectedPixels) {
 
 }  // namespace
 }  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+// One frame of a budgeted policy from the default camera; its stats.
+FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) {
+  RenderSettings s;
+  s.width = 160;
+  s.height = 96;
+  s.validation = true;
+  s.policy = policy;
+  s.budgetMs = budgetMs;
+  Renderer renderer(scene, s);
+  std::vector<FrameTiming> t = renderer.render(defaultCamera(scene, 160.0f / 96.0f));
+  for (const FrameTiming& f : renderer.finish()) t.push_back(f);
+  test::expectValidationClean(renderer.validationMessages());
+  EXPECT_EQ(t.size(), 1u);
+  return t.empty() ? FrameTiming{} : t[0];
+}
+
+// The budgeted policies in the frame: a budget below the cheapest object selects nothing
+// and dispatches nothing; a larger budget selects more; the prediction stays within T.
+TEST(RtBudget, SelectionFollowsTheBudget) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
+    const FrameTiming none = budgetedFrame(scene, p, 1e-7f);
+    EXPECT_EQ(none.selectedObjects, 0u) << policyName(p);
+    EXPECT_EQ(none.tracedTiles, 0u) << policyName(p);
+    const FrameTiming small = budgetedFrame(scene, p, 2.0f), large = budgetedFrame(scene, p, 4.0f);
+    EXPECT_GT(small.selectedObjects, 0u) << policyName(p);
+    EXPECT_LE(small.predictedTraceMs, 2.0 * (1.0 + 1e-5)) << policyName(p);
+    EXPECT_LE(large.predictedTraceMs, 4.0 * (1.0 + 1e-5)) << policyName(p);
+    if (p == Policy::Density || p == Policy::Paper)
+      EXPECT_GE(large.selectedValue, small.selectedValue) << policyName(p) << ": doubling T selected less value";
+    EXPECT_GE(large.tracedTiles, small.tracedTiles / 2) << policyName(p);
+  }
+  RenderSettings bad;
+  bad.policy = Policy::Density;
+  for (float t : {0.0f, -1.0f, NAN, INFINITY}) {
+    bad.budgetMs = t;
+    EXPECT_THROW(Renderer(scene, bad), Error) << t;
+  }
+  EXPECT_THROW(parsePolicy("greedy"), Error);
+}
+
+}  // namespace
+}  // namespace raybudget

@@ -25,8 +25,13 @@ render options:
   --exposure E          linear exposure before tonemapping (default 1)
   --sky S               sky radiance scale (default 0.3)
   --env FILE.exr        equirectangular HDR environment instead of the procedural sky
-  --policy none|all     which objects get ray-traced shadows, reflections and refractions:
-                        none (all raster fallbacks, the default) or all (the full-RT reference)
+  --policy P            which objects get ray-traced shadows, reflections and refractions:
+                        none (all raster fallbacks, the default), all (the full-RT
+                        reference), or within --budget-ms: paper (the paper's selection
+                        graph), density (relevance per predicted cost), nearest, random
+  --budget-ms T         the trace passes' time budget in milliseconds (default 4)
+  --seed S              the random policy's seed (default 1)
+  --graph-pointers N    the paper's higher-relevance pointers per node, 0..64 (default 4)
   --depth D             reflection/refraction bounces, 1..4 (default 1)
   --tracer compute|native
                         compute: our BVH in compute shaders (default); native: the device's
@@ -80,12 +85,11 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--exposure") c.settings.exposure = parsePositive(a, value());
     else if (a == "--sky") c.settings.skyIntensity = parsePositive(a, value());
     else if (a == "--env") c.settings.environmentMap = value();
-    else if (a == "--policy") {
-      const std::string p = value();
-      if (p == "none") c.settings.policy = Policy::None;
-      else if (p == "all") c.settings.policy = Policy::All;
-      else throw Error("--policy must be none or all (the budgeted policies come with the GPU heuristic), got '" + p + "'");
-    } else if (a == "--tracer") {
+    else if (a == "--policy") c.settings.policy = parsePolicy(value());
+    else if (a == "--budget-ms") c.settings.budgetMs = parsePositive(a, value());
+    else if (a == "--seed") c.settings.seed = parseUint(a, value(), 0, 0xFFFFFFFFu);
+    else if (a == "--graph-pointers") c.settings.graphPointers = parseUint(a, value(), 0, 64);
+    else if (a == "--tracer") {
       const std::string t = value();
       if (t == "compute") c.settings.rayTracing.tracer = Tracer::Compute;
       else if (t == "native") c.settings.rayTracing.tracer = Tracer::Native;

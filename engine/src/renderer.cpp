@@ -16,6 +16,7 @@
 #include "lighting_comp.h"
 #include "passes/coverage_pass.h"
 #include "passes/descriptors.h"
+#include "passes/gpu_selector.h"
 #include "passes/environment.h"
 #include "passes/frame_targets.h"
 #include "passes/gbuffer.h"
@@ -32,7 +33,25 @@
 
 namespace raybudget {
 
-const char* policyName(Policy policy) { return policy == Policy::All ? "all" : "none"; }
+const char* policyName(Policy policy) {
+  switch (policy) {
+    case Policy::None: return "none";
+    case Policy::All: return "all";
+    case Policy::Paper: return "paper";
+    case Policy::Density: return "density";
+    case Policy::Nearest: return "nearest";
+    case Policy::Random: return "random";
+  }
+  return "?";
+}
+
+Policy parsePolicy(const std::string& name) {
+  for (Policy p : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random})
+    if (name == policyName(p)) return p;
+  throw Error("unknown policy '" + name + "' (none, all, paper, density, nearest, random)");
+}
+
+bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All; }
 const char* tracerName(Tracer tracer) { return tracer == Tracer::Native ? "native" : "compute"; }
 
 const char* passName(Pass pass) {
@@ -68,6 +87,9 @@ void validateSettings(const RenderSettings& s) {
   if (s.shadowMapSize < 16 || s.shadowMapSize > 8192) throw Error("shadow map size must be within 16..8192");
   if (!std::isfinite(s.exposure) || s.exposure <= 0.0f) throw Error("exposure must be a positive finite number");
   if (!std::isfinite(s.skyIntensity) || s.skyIntensity < 0.0f) throw Error("sky intensity must be a non-negative finite number");
+  if (isBudgeted(s.policy) && (!std::isfinite(s.budgetMs) || s.budgetMs <= 0.0f || s.budgetMs > 1e6f))
+    throw Error("the trace budget must be a positive number of milliseconds (at most 1e6), got " + std::to_string(s.budgetMs));
+  if (s.graphPointers > 64) throw Error("the paper's graph takes at most 64 relevance pointers per node");
   if (s.rayTracing.depth < 1 || s.rayTracing.depth > RB_RT_MAX_DEPTH)
     throw Error("ray-tracing depth must be within 1.." + std::to_string(RB_RT_MAX_DEPTH));
 }
@@ -85,7 +107,10 @@ struct Renderer::Impl {
     double tlasRebuildMs = 0.0;
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
     vk::Buffer tileCount;      // host-visible copy of the frame's tile-list header
+    vk::Buffer selectResult;   // host-visible copy of the GPU selection's result
     bool selected = false;     // the frame ran the select pass
+    bool budgeted = false;     // ... with a budgeted policy
+    double kappa = 0.0;        // the cost model the frame was selected with
   };
 
   RenderSettings settings;
@@ -102,6 +127,10 @@ struct Renderer::Impl {
   passes::GBufferPass gbuffer;
   passes::CoveragePass coverage;
   passes::SelectPass selectPass;
+  passes::GpuSelector selector;
+  // The cost model: trace milliseconds per unit of work (rays = pixels * Q, or the paper's
+  // C), learned from the trace passes' timestamps.
+  double kappa = 0.0;
   passes::ShadowMapPass shadowMaps;
   passes::EnvironmentPass environment;
   passes::ScreenPass lighting;
@@ -129,6 +158,7 @@ struct Renderer::Impl {
         gbuffer(ctx, pipelineLayout),
         coverage(ctx, pipelineLayout),
         selectPass(ctx, pipelineLayout),
+        selector(ctx, std::max<uint32_t>(1, uint32_t(scene.objectSpheres.size()))),
         shadowMaps(ctx, pipelineLayout),
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
@@ -136,11 +166,16 @@ struct Renderer::Impl {
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
         traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
         traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
+    selector.bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer);
+    // A prior until the first measurement: 1e-4 ms per ray (10 Mrays/s); the paper's C is
+    // about rays per pixel of the screen, so per unit of C, 1e-4 ms times the pixel count.
+    kappa = settings.policy == Policy::Paper ? 1e-4 * double(rs.width) * double(rs.height) : 1e-4;
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
       slot.tileCount = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      slot.selectResult = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.set = passes::allocateSet(ctx, pool, setLayout);
       passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, samplers);
     }
@@ -218,7 +253,25 @@ struct Renderer::Impl {
     t.tracedTiles = slot.selected ? static_cast<const uint32_t*>(slot.tileCount.mapped)[0] : 0u;
     const auto ms = timestamps.read(uint32_t(&slot - slots));
     for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
+    if (slot.budgeted) learnCost(slot, t);
     return t;
+  }
+
+  // The frame's selection stats, and the cost model's update: kappa moves towards measured
+  // trace time over predicted work (exponential moving average; frames with too little
+  // traced to measure are skipped).
+  void learnCost(const Slot& slot, FrameTiming& t) {
+    const auto* r = static_cast<const uint32_t*>(slot.selectResult.mapped);
+    const double predicted = std::bit_cast<float>(r[1]);
+    t.budgetMs = settings.budgetMs;
+    t.predictedTraceMs = predicted;
+    t.selectedValue = std::bit_cast<float>(r[2]);
+    t.selectedObjects = r[3];
+    t.measuredTraceMs = t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
+    if (predicted > 1e-3 && t.measuredTraceMs > 1e-3) {
+      const double observed = slot.kappa * t.measuredTraceMs / predicted;
+      kappa = 0.7 * kappa + 0.3 * observed;
+    }
   }
 
   void writeUniforms(Slot& slot, const Camera& camera) {
@@ -252,6 +305,16 @@ struct Renderer::Impl {
   // in the slot's staging buffer; record() copies them at the start of the frame, after
   // the previous frame's reads (the frame-start barrier orders them).
   bool native() const { return scene.native != nullptr; }
+
+  select::Policy selectPolicy() const {
+    switch (settings.policy) {
+      case Policy::Paper: return select::Policy::Paper;
+      case Policy::Density: return select::Policy::Density;
+      case Policy::Nearest: return select::Policy::Nearest;
+      case Policy::Random: return select::Policy::Random;
+      default: return select::Policy::None;
+    }
+  }
 
   std::vector<VkBufferCopy> stageMovedObjects(Slot& slot) {
     if (!objectsMoved) return {};
@@ -331,13 +394,28 @@ struct Renderer::Impl {
     slot.selected = traced != 0u;
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
     if (settings.objectMetrics || slot.selected) timed(Pass::Coverage, [&] { coverage.record(fc); });
+    slot.budgeted = isBudgeted(settings.policy);
+    slot.kappa = kappa;
     if (slot.selected) {
       computeToCompute(cmd);
-      timed(Pass::Select, [&] { selectPass.record(fc, passes::SelectMode::All); });
+      timed(Pass::Select, [&] {
+        if (slot.budgeted) {
+          const select::PolicyOptions options{settings.graphPointers, settings.seed, 1, 4096};
+          selector.recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), settings.budgetMs, float(kappa), options);
+          vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                            VK_ACCESS_2_TRANSFER_READ_BIT);
+          const VkBufferCopy copy{0, 0, 16};
+          vkCmdCopyBuffer(cmd, selector.resultBuffer(), slot.selectResult.buffer, 1, &copy);
+          computeToCompute(cmd);
+        }
+        selectPass.record(fc, slot.budgeted ? passes::SelectMode::Keep : passes::SelectMode::All);
+      });
       const VkBufferCopy header{0, 0, 16};
       vkCmdCopyBuffer(cmd, targets.tileList.buffer, slot.tileCount.buffer, 1, &header);
     }
-    if (shadowMaps.needed(scene) && !(traced & RB_RT_SHADOWS)) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
+    // With a budgeted policy unselected objects keep the shadow maps.
+    const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All;
+    if (shadowMaps.needed(scene) && !everyPixelTracesShadows) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
     if (!environmentReady) {
       timed(Pass::Environment, [&] { environment.record(fc); });
       environmentReady = true;

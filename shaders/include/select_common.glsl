@@ -5,19 +5,26 @@
 #define RB_SELECT_COMMON_GLSL
 #include "shared/selection.h"
 
-layout(set = 0, binding = 0, std430) readonly buffer CandidateBlock { GpuCandidate candidates[]; };
+layout(set = 0, binding = 0, std430) buffer CandidateBlock { GpuCandidate candidates[]; };
 layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec4 order[]; };       // sort keys k0, k1, k2, candidate index
 layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec4 relevance[]; };  // `paper`: the relevance order
 layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: taken, rank, group start
 layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
-layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; };        // x count, y cost bits, z value bits
+layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; };        // x frame mode: candidate count; y predicted cost (float bits)
+// Frame mode: the renderer's per-object records, selection and K/Q/I/S (shared/selection.h).
+layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectRecord records[]; };
+layout(set = 0, binding = 7, std430) buffer SelectedBlock { uint selected[]; };
+layout(set = 0, binding = 8, std430) buffer ParamsBlock { GpuObjectParams params[]; };
 
 layout(push_constant) uniform SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
   uvec4 stage;   // x bitonic k, y bitonic j, z which order (0 main, 1 relevance), w `paper` pointers N
-  vec4 budget;   // x budget
-  uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit)
+  vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work)
+  uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects
 } push;
+
+// Candidates: given (push) or, in frame mode, counted on the GPU by select_candidates.comp.
+uint candidateCount() { return push.walk.y != 0u ? result.x : push.sizes.x; }
 
 // Policies, as in select::Policy.
 #define RB_SELECT_NONE 0u

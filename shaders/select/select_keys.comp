@@ -21,7 +21,7 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.sizes.y) return;
   uvec4 key = uvec4(0xFFFFFFFFu);
-  if (i < push.sizes.x) {
+  if (i < candidateCount()) {
     GpuCandidate c = candidates[i];
     uint policy = push.sizes.z;
     if (policy == RB_SELECT_DENSITY) {

@@ -69,7 +69,7 @@ void selectPaper(uint n, float budget, uint pointers) {
 }
 
 void main() {
-  uint n = push.sizes.x, policy = push.sizes.z;
+  uint n = candidateCount(), policy = push.sizes.z;
   float budget = push.budget.x;
   if (policy == RB_SELECT_ALL) {
     for (uint ci = 0u; ci < n; ++ci) selectedFlags[ci] = 1u;
@@ -78,4 +78,14 @@ void main() {
   } else if (policy != RB_SELECT_NONE) {
     selectGreedy(n, budget);
   }
+  // What was selected, for the stats and the cost model: predicted cost and value.
+  float cost = 0.0, value = 0.0;
+  uint count = 0u;
+  for (uint ci = 0u; ci < n; ++ci)
+    if (selectedFlags[ci] != 0u) {
+      cost += candidates[ci].cost;
+      value += candidates[ci].value;
+      ++count;
+    }
+  result.yzw = uvec3(floatBitsToUint(cost), floatBitsToUint(value), count);
 }

@@ -13,10 +13,14 @@
 
 namespace raybudget {
 
-// Which objects get ray-traced effects. The budgeted heuristics (the paper's selection graph
-// and ours) come with the GPU heuristic; today: none or all.
-enum class Policy { None, All };
+// Which objects get ray-traced effects: none, all (the full-RT reference), or, within
+// RenderSettings::budgetMs, the paper's selection graph, ours (density), or the nearest /
+// random baselines (docs/SELECTION.md).
+enum class Policy { None, All, Paper, Density, Nearest, Random };
 const char* policyName(Policy policy);
+// Throws raybudget::Error naming the policies.
+Policy parsePolicy(const std::string& name);
+bool isBudgeted(Policy policy);
 
 // Which tracer the ray-traced effects use: our compute BVH, or the device's VK_KHR_ray_query
 // with Vulkan acceleration structures (Renderer throws when the device has none).
@@ -41,6 +45,9 @@ struct RenderSettings {
   float skyIntensity = 0.3f;       // sky radiance scale (ambient, reflections, background)
   std::string environmentMap;      // equirectangular OpenEXR replacing the procedural sky
   Policy policy = Policy::None;
+  float budgetMs = 4.0f;           // the trace passes' time budget T, budgeted policies only
+  uint32_t graphPointers = 4;      // `paper`: N
+  uint32_t seed = 1;               // `random`
   RayTracingSettings rayTracing;
   // Run the heuristic's per-object pass every frame (coverage, then A, P, D, V, C, R on the
   // GPU), readable with Renderer::objectMetrics().
@@ -56,6 +63,13 @@ struct FrameTiming {
   uint64_t frame = 0;
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   uint32_t tracedTiles = 0;    // 8x8 tiles the trace passes ran over (0: none selected or nothing traced)
+  // Budgeted policies: the budget, the cost model's prediction for the selection and the
+  // measured trace time (the trace passes' sum), objects selected and their summed R.
+  double budgetMs = 0.0;
+  double predictedTraceMs = 0.0;
+  double measuredTraceMs = 0.0;
+  uint32_t selectedObjects = 0;
+  double selectedValue = 0.0;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
 };

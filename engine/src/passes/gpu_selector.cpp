@@ -4,7 +4,9 @@
 #include <bit>
 #include <cstring>
 
+#include "select_apply_comp.h"
 #include "select_bitonic_comp.h"
+#include "select_candidates_comp.h"
 #include "select_keys_comp.h"
 #include "select_walk_comp.h"
 #include "shared/selection.h"
@@ -21,7 +23,7 @@ struct SelectPush {
   glm::uvec4 sizes;  // candidates, padded, policy, seed
   glm::uvec4 stage;  // bitonic k, j, order, paper pointers
   glm::vec4 budget;
-  glm::uvec4 walk;   // paper hops
+  glm::uvec4 walk;   // paper hops, frame mode, objects
 };
 
 constexpr uint32_t kBlock = 1024;  // the bitonic shader's shared-memory block
@@ -33,11 +35,12 @@ uint32_t paddedSize(uint32_t n) { return std::max(kBlock, std::bit_ceil(std::max
 struct GpuSelector::Impl {
   const vk::Context& ctx;
   uint32_t capacity, padded;
-  vk::Buffer candidates, order, relevance, scratch, flags, result, readback;
+  vk::Buffer candidates, order, relevance, scratch, flags, result, readback, placeholder;
   vk::ComputeSet set;
-  vk::Owned<VkPipeline> keys, bitonic, walk;
+  vk::Owned<VkPipeline> keys, bitonic, walk, candidatesFromObjects, apply;
   vk::TimestampPool timestamps;
   double gpuMs = 0.0;
+  VkBuffer frameSelection = VK_NULL_HANDLE;
 
   Impl(const vk::Context& c, uint32_t cap)
       : ctx(c), capacity(cap), padded(paddedSize(cap)), timestamps(c, 1, 1) {
@@ -47,16 +50,48 @@ struct GpuSelector::Impl {
     relevance = vk::createBuffer(c, padded * 16ull, storage, false);
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    result = vk::createBuffer(c, 16, storage, false);
+    result = vk::createBuffer(c, 16, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-    const VkDescriptorType types[6] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-8 until bindFrame
+    const std::vector<VkDescriptorType> types(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
-    const VkBuffer buffers[6] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer, result.buffer};
-    vk::writeStorageBuffers(c, set.set, buffers);
+    bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer);
+    candidatesFromObjects = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_candidates_comp);
+    apply = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_apply_comp);
     keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
     bitonic = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_bitonic_comp);
     walk = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_walk_comp);
+  }
+
+  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params) {
+    const VkBuffer buffers[9] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,
+                                 result.buffer,     records,      selection,        params};
+    vk::writeStorageBuffers(ctx, set.set, buffers);
+  }
+
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa, const select::PolicyOptions& options,
+                   VkBuffer selection) {
+    if (objects > capacity) throw Error("GPU selection of " + std::to_string(objects) + " objects exceeds its capacity " + std::to_string(capacity));
+    if (policy == select::Policy::Optimal || policy == select::Policy::All || policy == select::Policy::None)
+      throw Error(std::string("frame selection runs the budgeted policies, not ") + select::policyName(policy));
+    SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
+                    glm::vec4(budget, kappa, 0, 0), glm::uvec4(options.paperHops, 1, objects, 0)};
+    vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, flags.buffer, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, scratch.buffer, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, selection, 0, VK_WHOLE_SIZE, 0);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
+    dispatch(cmd, candidatesFromObjects, push, (objects + 63) / 64);
+    sortOrder(cmd, push, 0);
+    if (policy == select::Policy::Paper) sortOrder(cmd, push, 1);
+    dispatch(cmd, walk, push, 1);
+    push.stage.z = 0;
+    dispatch(cmd, apply, push, (capacity + 63) / 64);
+    push.stage.z = 1;
+    dispatch(cmd, apply, push, (objects + 63) / 64);
   }
 
   void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const SelectPush& push, uint32_t groups) {
@@ -96,7 +131,8 @@ struct GpuSelector::Impl {
     for (const select::Candidate& x : c) data.push_back({x.id, x.cost, x.value, x.distance});
     vk::Buffer staging = vk::createBuffer(ctx, std::max<size_t>(1, data.size()) * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!data.empty()) std::memcpy(staging.mapped, data.data(), data.size() * sizeof(gpu::GpuCandidate));
-    SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0), glm::uvec4(options.paperHops, 0, 0, 0)};
+    SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0),
+                    glm::uvec4(options.paperHops, 0, 0, 0)};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
       if (n > 0) {
@@ -139,5 +175,14 @@ select::Selection GpuSelector::select(std::span<const select::Candidate> candida
   return impl_->run(candidates, policy, budget, options);
 }
 double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
+void GpuSelector::bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params) {
+  impl_->frameSelection = selection;
+  impl_->bindFrame(records, selection, params);
+}
+void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
+                              const select::PolicyOptions& options) const {
+  impl_->recordFrame(cmd, objects, policy, budget, kappa, options, impl_->frameSelection);
+}
+VkBuffer GpuSelector::resultBuffer() const { return impl_->result.buffer; }
 
 }  // namespace raybudget::passes

@@ -25,6 +25,16 @@ class GpuSelector {
   // GPU milliseconds of the last select() (keys, sort, walk; timestamps).
   double lastGpuMs() const;
 
+  // Frame mode. The renderer's per-object buffers (shared/selection.h): records in, the
+  // selection out (uint per object, zeroed here), K/Q/I with S updated for the next frame.
+  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params);
+  // Records, into the frame's command buffer, the selection among the objects' candidates
+  // with costs kappa * work (the paper's C for `paper`, pixels * Q otherwise). Afterwards
+  // resultBuffer() holds uvec4(candidates, predicted cost bits, value bits, selected).
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
+                   const select::PolicyOptions& options) const;
+  VkBuffer resultBuffer() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

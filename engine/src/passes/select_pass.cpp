@@ -20,10 +20,12 @@ void SelectPass::record(const FrameContext& fc, SelectMode mode) const {
   const uint32_t objects = uint32_t(fc.scene.objectSpheres.size());
   gpu::DrawPush push{};
   push.objectMaterial = glm::uvec4(objects, uint32_t(mode), 0, 0);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, select_);
   bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdPushConstants(cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
-  vkCmdDispatch(cmd, (objects + 63) / 64, 1, 1);
+  if (mode != SelectMode::Keep) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, select_);
+    vkCmdPushConstants(cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, (objects + 63) / 64, 1, 1);
+  }
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);

@@ -8,7 +8,8 @@
 
 namespace raybudget::passes {
 
-enum class SelectMode : uint32_t { None = 0, All = 1 };
+// None / All write the selection; Keep leaves the one the GPU selector wrote.
+enum class SelectMode : uint32_t { None = 0, All = 1, Keep = 2 };
 
 class SelectPass {
  public:
