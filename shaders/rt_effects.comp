@@ -1,5 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
 
@@ -144,4 +147,5 @@ void main() {
     color += traceRadiance(origin, dir, depth, work) * weight;
   }
   imageStore(indirectImage, pixel, vec4(color, 1.0));
+  addObjectWork(s.objectId, work);
 }

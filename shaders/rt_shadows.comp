@@ -1,5 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
 
@@ -24,4 +27,5 @@ void main() {
     if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) visible = traceVisibility(origin, L, dist, work);
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }
+  addObjectWork(s.objectId, work);
 }

@@ -2,6 +2,7 @@
 // fallback -> compose, two frames in flight, every pass bracketed by timestamps.
 #include "raybudget/renderer.h"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -166,10 +167,11 @@ struct Renderer::Impl {
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
         traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
         traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
-    selector.bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer);
-    // A prior until the first measurement: 1e-4 ms per ray (10 Mrays/s); the paper's C is
-    // about rays per pixel of the screen, so per unit of C, 1e-4 ms times the pixel count.
-    kappa = settings.policy == Policy::Paper ? 1e-4 * double(rs.width) * double(rs.height) : 1e-4;
+    selector.bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer, scene.objectCosts.buffer);
+    // A prior until the first measurement: 1e-4 ms per ray (10 Mrays/s) of
+    // RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the
+    // screen, so per unit of C, 1e-4 ms times the pixel count.
+    kappa = settings.policy == Policy::Paper ? 1e-4 * double(rs.width) * double(rs.height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
@@ -259,7 +261,8 @@ struct Renderer::Impl {
 
   // The frame's selection stats, and the cost model's update: kappa moves towards measured
   // trace time over predicted work (exponential moving average; frames with too little
-  // traced to measure are skipped).
+  // traced to measure are skipped). Per-object work per pixel is learned on the GPU
+  // (shaders/select/select_candidates.comp); kappa only sets the scale.
   void learnCost(const Slot& slot, FrameTiming& t) {
     const auto* r = static_cast<const uint32_t*>(slot.selectResult.mapped);
     const double predicted = std::bit_cast<float>(r[1]);
@@ -269,8 +272,13 @@ struct Renderer::Impl {
     t.selectedObjects = r[3];
     t.measuredTraceMs = t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
     if (predicted > 1e-3 && t.measuredTraceMs > 1e-3) {
-      const double observed = slot.kappa * t.measuredTraceMs / predicted;
+      // One frame moves kappa by at most 1.3x (the measurement arrives two frames late, a
+      // bigger step overshoots), and a shader compiled on first use or a busy machine
+      // must not wreck the model.
+      const double observed = slot.kappa * std::clamp(t.measuredTraceMs / predicted, 0.5, 2.0);
       kappa = 0.7 * kappa + 0.3 * observed;
+    } else if (r[0] > 0 && r[3] == 0) {
+      kappa *= 0.9;  // candidates but none fit: nothing to measure, so let the model relax
     }
   }
 

@@ -60,6 +60,8 @@ layout(set = 0, binding = 34, std430) buffer TileListBlock {
   uint tiles[];        // tile x | tile y << 16
 };
 
+layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost objectCosts[]; };
+
 // Whether the pixel's object was selected for ray tracing this frame.
 bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && selected[objectId] != 0u; }
 

@@ -15,6 +15,20 @@ ivec2 tilePixel() {
   return ivec2(t & 0xFFFFu, t >> 16) * RB_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
 }
 
+// Adds this invocation's traversal work to its object's counter: lanes of the subgroup
+// that traced the same object are summed first, one atomic per object and subgroup. The
+// includer enables GL_KHR_shader_subgroup_basic, _vote and _arithmetic.
+void addObjectWork(uint objectId, uint work) {
+  bool pending = true;
+  while (subgroupAny(pending)) {
+    uint current = subgroupMin(pending ? objectId : RB_NO_OBJECT);
+    bool mine = pending && objectId == current;
+    uint sum = subgroupAdd(mine ? work : 0u);
+    if (mine && subgroupElect()) atomicAdd(objectCosts[current].work, sum);
+    pending = pending && !mine;
+  }
+}
+
 struct HitSurface {
   vec3 position;
   vec3 geometricNormal;  // faces the incoming ray

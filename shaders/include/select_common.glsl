@@ -15,6 +15,7 @@ layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; };      
 layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectRecord records[]; };
 layout(set = 0, binding = 7, std430) buffer SelectedBlock { uint selected[]; };
 layout(set = 0, binding = 8, std430) buffer ParamsBlock { GpuObjectParams params[]; };
+layout(set = 0, binding = 9, std430) buffer CostBlock { GpuObjectCost costs[]; };
 
 layout(push_constant) uniform SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed

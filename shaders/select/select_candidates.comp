@@ -1,8 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Frame mode: every candidate object (visible, something to trace, R > 0) becomes a
-// selection candidate with its predicted cost, kappa times its work: the paper's C for
-// `paper`, its pixels times Q (the rays it will shoot) for the other policies.
+// Frame mode: first each object's learned work per pixel takes in what the trace passes
+// counted for it last frame (when it was traced; the native tracer counts nothing, so its
+// objects keep the prior), and the counter restarts. Then every candidate object (visible,
+// something to trace, R > 0) becomes a selection candidate with its predicted cost, kappa
+// times its work: the paper's C for `paper`; for the other policies its pixels times its
+// work per pixel (Q times a prior per ray until measured).
 #include "include/select_common.glsl"
 
 layout(local_size_x = 64) in;
@@ -10,10 +13,17 @@ layout(local_size_x = 64) in;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.walk.z) return;
+  GpuObjectCost oc = costs[i];
+  if (oc.pixels > 0u && oc.work > 0u) {
+    float observed = float(oc.work) / float(oc.pixels);
+    oc.workPerPixel = oc.workPerPixel > 0.0 ? mix(oc.workPerPixel, observed, 0.5) : observed;
+  }
+  costs[i] = GpuObjectCost(oc.workPerPixel, 0u, 0u, 0u);
   GpuObjectRecord r = records[i];
   if (r.crCandidatePixels.z < 0.5) return;
   float pixels = float(floatBitsToUint(r.crCandidatePixels.w));
-  float work = push.sizes.z == RB_SELECT_PAPER ? r.crCandidatePixels.x : pixels * params[i].kqiS.y;
+  float perPixel = oc.workPerPixel > 0.0 ? oc.workPerPixel : params[i].kqiS.y * RB_PRIOR_WORK_PER_RAY;
+  float work = push.sizes.z == RB_SELECT_PAPER ? r.crCandidatePixels.x : pixels * perPixel;
   uint slot = atomicAdd(result.x, 1u);
   candidates[slot] = GpuCandidate(i, push.budget.y * work, r.crCandidatePixels.y, r.apdv.z);
 }

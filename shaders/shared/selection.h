@@ -28,6 +28,19 @@ struct GpuObjectRecord {
   vec4 crCandidatePixels;
 };
 
+// 16 bytes: what the cost model knows of an object: its learned traversal work per traced
+// pixel (0: not learned yet, Q times a prior is used), and the work the trace passes counted
+// for it this frame over the pixels it was traced on.
+struct GpuObjectCost {
+  float workPerPixel;
+  uint work;
+  uint pixels;
+  uint unused;
+};
+
+// Prior traversal work (BVH nodes + triangles) per ray, before an object was measured.
+#define RB_PRIOR_WORK_PER_RAY 32.0
+
 // 16 bytes: one candidate of the GPU selection (select::Candidate).
 struct GpuCandidate {
   uint id;

@@ -41,7 +41,8 @@ enum Binding : uint32_t {
   kObjectRecords = 32,
   kSelection = 33,
   kTileList = 34,
-  kBindingCount = 35,
+  kObjectCosts = 35,
+  kBindingCount = 36,
 };
 
 }  // namespace raybudget::passes

@@ -53,9 +53,9 @@ struct GpuSelector::Impl {
     result = vk::createBuffer(c, 16, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-8 until bindFrame
-    const std::vector<VkDescriptorType> types(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    const std::vector<VkDescriptorType> types(10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
-    bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer);
+    bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer, placeholder.buffer);
     candidatesFromObjects = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_candidates_comp);
     apply = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_apply_comp);
     keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
@@ -63,9 +63,9 @@ struct GpuSelector::Impl {
     walk = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_walk_comp);
   }
 
-  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params) {
-    const VkBuffer buffers[9] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,
-                                 result.buffer,     records,      selection,        params};
+  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
+    const VkBuffer buffers[10] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,
+                                  result.buffer,     records,      selection,        params,         costs};
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
@@ -175,9 +175,9 @@ select::Selection GpuSelector::select(std::span<const select::Candidate> candida
   return impl_->run(candidates, policy, budget, options);
 }
 double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
-void GpuSelector::bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params) {
+void GpuSelector::bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
   impl_->frameSelection = selection;
-  impl_->bindFrame(records, selection, params);
+  impl_->bindFrame(records, selection, params, costs);
 }
 void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
                               const select::PolicyOptions& options) const {

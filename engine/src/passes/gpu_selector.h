@@ -27,7 +27,7 @@ class GpuSelector {
 
   // Frame mode. The renderer's per-object buffers (shared/selection.h): records in, the
   // selection out (uint per object, zeroed here), K/Q/I with S updated for the next frame.
-  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params);
+  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs);
   // Records, into the frame's command buffer, the selection among the objects' candidates
   // with costs kappa * work (the paper's C for `paper`, pixels * Q otherwise). Afterwards
   // resultBuffer() holds uvec4(candidates, predicted cost bits, value bits, selected).

@@ -60,7 +60,8 @@ struct SceneGpu {
   vk::Buffer coverage;
   vk::Buffer objectParams;
   vk::Buffer objectRecords;
-  vk::Buffer selection;  // uint per object: 1 = traced this frame
+  vk::Buffer selection;    // uint per object: 1 = traced this frame
+  vk::Buffer objectCosts;  // GpuObjectCost per object: learned work per pixel, this frame's work
   ShadowViews shadows;
   uint32_t lightCount = 0;
   bool hasTransmission = false;
