@@ -313,3 +313,41 @@ TEST(RtBudget, SelectionFollowsTheBudget) {
 
 }  // namespace
 }  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+// Selection changes summed over an orbit, after warm-up, with every object's I set to `i`.
+uint32_t selectionChangesOnAnOrbit(Scene scene, float i) {
+  for (Object& o : scene.objects) o.params.hysteresisI = i;
+  RenderSettings s;
+  s.width = 160;
+  s.height = 96;
+  s.policy = Policy::Density;
+  s.budgetMs = 0.3f;          // binding: a few of the visible objects fit
+  s.learnTimeScale = false;  // timing-independent: the same selections on every run
+  Renderer renderer(scene, s);
+  Camera start = defaultCamera(scene, 160.0f / 96.0f);
+  start.position = glm::mix(start.target, start.position, 0.5f);  // inside the court's walls
+  std::vector<FrameTiming> t;
+  for (uint32_t f = 0; f < 36; ++f)
+    for (const FrameTiming& x : renderer.render(orbitCamera(start, f, 36))) t.push_back(x);
+  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  EXPECT_EQ(t.size(), 36u);
+  uint32_t changes = 0;
+  for (size_t f = 6; f < t.size(); ++f) changes += t[f].selectionChanges;
+  return changes;
+}
+
+// Hysteresis: weighting "selected last frame" makes the selection change less on the same
+// camera path.
+TEST(RtBudget, HysteresisReducesSelectionChanges) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const uint32_t without = selectionChangesOnAnOrbit(scene, 0.0f), with = selectionChangesOnAnOrbit(scene, 10.0f);
+  EXPECT_GT(without, 0u) << "the orbit should change the selection";
+  EXPECT_LT(with, without);
+  std::printf("selection changes over 30 frames: I = 0: %u, I = 10: %u\n", without, with);
+}
+
+}  // namespace
+}  // namespace raybudget

@@ -177,7 +177,7 @@ struct Renderer::Impl {
       slot.fence = makeFence();
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
       slot.tileCount = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      slot.selectResult = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      slot.selectResult = vk::createBuffer(ctx, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.set = passes::allocateSet(ctx, pool, setLayout);
       passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, samplers);
     }
@@ -270,7 +270,9 @@ struct Renderer::Impl {
     t.predictedTraceMs = predicted;
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
+    t.selectionChanges = r[4];
     t.measuredTraceMs = t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
+    if (!settings.learnTimeScale) return;
     if (predicted > 1e-3 && t.measuredTraceMs > 1e-3) {
       // One frame moves kappa by at most 1.3x (the measurement arrives two frames late, a
       // bigger step overshoots), and a shader compiled on first use or a busy machine
@@ -412,7 +414,7 @@ struct Renderer::Impl {
           selector.recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), settings.budgetMs, float(kappa), options);
           vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                             VK_ACCESS_2_TRANSFER_READ_BIT);
-          const VkBufferCopy copy{0, 0, 16};
+          const VkBufferCopy copy{0, 0, 32};
           vkCmdCopyBuffer(cmd, selector.resultBuffer(), slot.selectResult.buffer, 1, &copy);
           computeToCompute(cmd);
         }

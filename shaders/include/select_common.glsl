@@ -10,7 +10,9 @@ layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec4 order[]; };      
 layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec4 relevance[]; };  // `paper`: the relevance order
 layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: taken, rank, group start
 layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
-layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; };        // x frame mode: candidate count; y predicted cost (float bits)
+// Frame mode: x candidates, y predicted cost and z value (float bits), w selected; then
+// x objects whose selection changed since the last frame.
+layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; uvec4 result2; };
 // Frame mode: the renderer's per-object records, selection and K/Q/I/S (shared/selection.h).
 layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectRecord records[]; };
 layout(set = 0, binding = 7, std430) buffer SelectedBlock { uint selected[]; };

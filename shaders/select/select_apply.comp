@@ -12,7 +12,9 @@ void main() {
   if (push.stage.z == 0u) {
     if (i < candidateCount() && selectedFlags[i] != 0u) selected[candidates[i].id] = 1u;
   } else if (i < push.walk.z) {
-    params[i].kqiS.w = selected[i] != 0u ? 1.0 : 0.0;
+    float s = selected[i] != 0u ? 1.0 : 0.0;
+    if (s != params[i].kqiS.w) atomicAdd(result2.x, 1u);
+    params[i].kqiS.w = s;
     // The pixels the trace passes will count work over, for next frame's learning.
     costs[i].pixels = selected[i] != 0u ? floatBitsToUint(records[i].crCandidatePixels.w) : 0u;
   }

@@ -48,6 +48,10 @@ struct RenderSettings {
   float budgetMs = 4.0f;           // the trace passes' time budget T, budgeted policies only
   uint32_t graphPointers = 4;      // `paper`: N
   uint32_t seed = 1;               // `random`
+  // Learn the cost model's time scale from the trace timestamps (off: the prior stays, so a
+  // run selects the same objects on any machine; per-object work per pixel is learned from
+  // the deterministic work counters either way).
+  bool learnTimeScale = true;
   RayTracingSettings rayTracing;
   // Run the heuristic's per-object pass every frame (coverage, then A, P, D, V, C, R on the
   // GPU), readable with Renderer::objectMetrics().
@@ -69,6 +73,7 @@ struct FrameTiming {
   double predictedTraceMs = 0.0;
   double measuredTraceMs = 0.0;
   uint32_t selectedObjects = 0;
+  uint32_t selectionChanges = 0;  // objects selected or dropped since the previous frame
   double selectedValue = 0.0;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
