@@ -385,3 +385,38 @@ TEST(RtBudget, TraceTimeStaysWithinTheBudgetOnAnOrbit) {
 
 }  // namespace
 }  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+// The stats' optimal bound: no policy's selected value exceeds it, and on these frames
+// density comes within a factor two of it.
+TEST(RtBudget, SelectedValueStaysUnderTheOptimalBound) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
+    RenderSettings s;
+    s.width = 160;
+    s.height = 96;
+    s.validation = true;
+    s.policy = p;
+    s.budgetMs = 1.0f;
+    s.optimalBound = true;
+    s.learnTimeScale = false;
+    Renderer renderer(scene, s);
+    const Camera cam = defaultCamera(scene, 160.0f / 96.0f);
+    std::vector<FrameTiming> t;
+    for (int f = 0; f < 4; ++f)
+      for (const FrameTiming& x : renderer.render(cam)) t.push_back(x);
+    for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+    test::expectValidationClean(renderer.validationMessages());
+    ASSERT_EQ(t.size(), 4u);
+    for (const FrameTiming& f : t) {
+      EXPECT_GT(f.optimalValueBound, 0.0) << policyName(p);
+      EXPECT_LE(f.selectedValue, f.optimalValueBound * (1.0 + 1e-5)) << policyName(p) << " frame " << f.frame;
+      if (p == Policy::Density) EXPECT_GE(f.selectedValue, 0.5 * f.optimalValueBound * 0.99) << "frame " << f.frame;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace raybudget

@@ -32,6 +32,8 @@ render options:
   --budget-ms T         the trace passes' time budget in milliseconds (default 4)
   --seed S              the random policy's seed (default 1)
   --graph-pointers N    the paper's higher-relevance pointers per node, 0..64 (default 4)
+  --optimal-bound       write each frame's 0/1-knapsack bound on the selectable value
+                        (optimal_value_bound in stats.csv; CPU work, for benchmarks)
   --depth D             reflection/refraction bounces, 1..4 (default 1)
   --tracer compute|native
                         compute: our BVH in compute shaders (default); native: the device's
@@ -89,6 +91,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--budget-ms") c.settings.budgetMs = parsePositive(a, value());
     else if (a == "--seed") c.settings.seed = parseUint(a, value(), 0, 0xFFFFFFFFu);
     else if (a == "--graph-pointers") c.settings.graphPointers = parseUint(a, value(), 0, 64);
+    else if (a == "--optimal-bound") c.settings.optimalBound = true;
     else if (a == "--tracer") {
       const std::string t = value();
       if (t == "compute") c.settings.rayTracing.tracer = Tracer::Compute;

@@ -109,6 +109,7 @@ struct Renderer::Impl {
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
     vk::Buffer tileCount;      // host-visible copy of the frame's tile-list header
     vk::Buffer selectResult;   // host-visible copy of the GPU selection's result
+    vk::Buffer candidates;     // with optimalBound: host-visible copy of the candidates
     bool selected = false;     // the frame ran the select pass
     bool budgeted = false;     // ... with a budgeted policy
     double kappa = 0.0;        // the cost model the frame was selected with
@@ -178,6 +179,9 @@ struct Renderer::Impl {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
       slot.tileCount = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.selectResult = vk::createBuffer(ctx, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      if (rs.optimalBound)
+        slot.candidates = vk::createBuffer(ctx, std::max<size_t>(1, scene.objectSpheres.size()) * sizeof(gpu::GpuCandidate),
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.set = passes::allocateSet(ctx, pool, setLayout);
       passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, samplers);
     }
@@ -271,6 +275,12 @@ struct Renderer::Impl {
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
     t.selectionChanges = r[4];
+    if (settings.optimalBound) {
+      const auto* g = static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped);
+      std::vector<select::Candidate> c;
+      for (uint32_t i = 0; i < r[0]; ++i) c.push_back({g[i].id, g[i].cost, g[i].value, g[i].distance});
+      t.optimalValueBound = select::optimalValueBound(c, settings.budgetMs);
+    }
     t.measuredTraceMs = t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
     if (!settings.learnTimeScale) return;
     if (predicted > 1e-3 && t.measuredTraceMs > 1e-3) {
@@ -416,6 +426,10 @@ struct Renderer::Impl {
                             VK_ACCESS_2_TRANSFER_READ_BIT);
           const VkBufferCopy copy{0, 0, 32};
           vkCmdCopyBuffer(cmd, selector.resultBuffer(), slot.selectResult.buffer, 1, &copy);
+          if (settings.optimalBound) {
+            const VkBufferCopy all{0, 0, slot.candidates.size};
+            vkCmdCopyBuffer(cmd, selector.candidateBuffer(), slot.candidates.buffer, 1, &all);
+          }
           computeToCompute(cmd);
         }
         selectPass.record(fc, slot.budgeted ? passes::SelectMode::Keep : passes::SelectMode::All);

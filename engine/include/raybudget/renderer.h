@@ -52,6 +52,9 @@ struct RenderSettings {
   // run selects the same objects on any machine; per-object work per pixel is learned from
   // the deterministic work counters either way).
   bool learnTimeScale = true;
+  // Benchmarks: read each frame's candidates back and compute the 0/1-knapsack bound on the
+  // value any selection within T could reach (FrameTiming::optimalValueBound).
+  bool optimalBound = false;
   RayTracingSettings rayTracing;
   // Run the heuristic's per-object pass every frame (coverage, then A, P, D, V, C, R on the
   // GPU), readable with Renderer::objectMetrics().
@@ -74,6 +77,7 @@ struct FrameTiming {
   double measuredTraceMs = 0.0;
   uint32_t selectedObjects = 0;
   uint32_t selectionChanges = 0;  // objects selected or dropped since the previous frame
+  double optimalValueBound = 0.0;  // with RenderSettings::optimalBound: the knapsack bound on the value
   double selectedValue = 0.0;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;

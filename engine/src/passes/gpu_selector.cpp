@@ -45,7 +45,8 @@ struct GpuSelector::Impl {
   Impl(const vk::Context& c, uint32_t cap)
       : ctx(c), capacity(cap), padded(paddedSize(cap)), timestamps(c, 1, 1) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    candidates = vk::createBuffer(c, std::max(cap, 1u) * sizeof(gpu::GpuCandidate), storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+    candidates = vk::createBuffer(c, std::max(cap, 1u) * sizeof(gpu::GpuCandidate),
+                                  storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     order = vk::createBuffer(c, padded * 16ull, storage, false);
     relevance = vk::createBuffer(c, padded * 16ull, storage, false);
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
@@ -184,5 +185,6 @@ void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Pol
   impl_->recordFrame(cmd, objects, policy, budget, kappa, options, impl_->frameSelection);
 }
 VkBuffer GpuSelector::resultBuffer() const { return impl_->result.buffer; }
+VkBuffer GpuSelector::candidateBuffer() const { return impl_->candidates.buffer; }
 
 }  // namespace raybudget::passes

@@ -35,6 +35,8 @@ class GpuSelector {
   void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
                    const select::PolicyOptions& options) const;
   VkBuffer resultBuffer() const;
+  // The frame's candidates (GpuCandidate, resultBuffer().x of them) for CPU-side stats.
+  VkBuffer candidateBuffer() const;
 
  private:
   struct Impl;
