@@ -1,6 +1,8 @@
 // Cost of the GPU selection (keys, bitonic sort, sequential walk) per policy for 10, 1k,
 // 10k and 100k candidates, against the CPU reference, median of `repeats`. Candidates are
 // random (log-uniform costs and relevance), the budget a third of their total cost.
+// Then the coverage and select passes in the frame on generated scenes of 10 to 100k
+// cubes (640x360, density, T = 4 ms, median of frames 3-9).
 //
 // usage: select_bench [--repeats R]
 #include <algorithm>
@@ -11,6 +13,8 @@
 #include <cstring>
 #include <random>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "passes/gpu_selector.h"
 #include "raybudget/raybudget.h"
 #include "select/policies.h"
@@ -19,6 +23,42 @@
 using namespace raybudget;
 
 namespace {
+
+// A square grid of `n` unit cubes on the ground, one mesh instanced, lit by the default sun.
+Scene cubeGrid(uint32_t n) {
+  Scene s;
+  s.path = "generated-" + std::to_string(n) + "-cubes";
+  s.materials.push_back(Material{});
+  Mesh cube;
+  cube.name = "cube";
+  for (int i = 0; i < 8; ++i) {
+    Vertex v;
+    v.position = glm::vec3(i & 1 ? 0.4f : -0.4f, i & 2 ? 0.8f : 0.0f, i & 4 ? 0.4f : -0.4f);
+    v.normal = glm::normalize(v.position - glm::vec3(0.0f, 0.4f, 0.0f));
+    cube.vertices.push_back(v);
+  }
+  cube.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  cube.primitives.push_back({0, uint32_t(cube.indices.size()), 0});
+  cube.boundsMin = glm::vec3(-0.4f, 0.0f, -0.4f);
+  cube.boundsMax = glm::vec3(0.4f, 0.8f, 0.4f);
+  s.meshes.push_back(cube);
+  const uint32_t side = uint32_t(std::ceil(std::sqrt(double(n))));
+  for (uint32_t i = 0; i < n; ++i) {
+    Object o;
+    o.id = i;
+    o.name = "cube" + std::to_string(i);
+    const glm::vec3 at(float(i % side) - 0.5f * float(side), 0.0f, float(i / side) - 0.5f * float(side));
+    o.transform = glm::translate(glm::mat4(1.0f), at);
+    o.boundsMin = at + cube.boundsMin;
+    o.boundsMax = at + cube.boundsMax;
+    s.objects.push_back(o);
+  }
+  s.boundsMin = glm::vec3(-0.5f * float(side) - 0.4f, 0.0f, -0.5f * float(side) - 0.4f);
+  s.boundsMax = glm::vec3(0.5f * float(side) + 0.4f, 0.8f, 0.5f * float(side) + 0.4f);
+  s.lights.push_back(defaultSun());
+  s.usesDefaultSun = true;
+  return s;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -66,6 +106,30 @@ int main(int argc, char** argv) {
         }
         std::printf("%-12s %10u %12.3f %12.3f %10zu\n", row == 1 ? "paper-climb" : select::policyName(p), n, median(g), median(cpu), selected);
       }
+    }
+    std::printf("\n%-12s %10s %12s %12s %10s\n", "in the frame", "objects", "coverage ms", "select ms", "visible");
+    for (uint32_t n : {10u, 1000u, 10000u, 100000u}) {
+      const Scene scene = cubeGrid(n);
+      RenderSettings s;
+      s.width = 640;
+      s.height = 360;
+      s.policy = Policy::Density;
+      s.budgetMs = 4.0f;
+      s.objectMetrics = true;
+      Renderer renderer(scene, s);
+      Camera cam = defaultCamera(scene, 640.0f / 360.0f);
+      std::vector<FrameTiming> t;
+      for (int f = 0; f < 10; ++f)
+        for (const FrameTiming& x : renderer.render(cam)) t.push_back(x);
+      for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+      size_t visible = 0;
+      for (const ObjectMetrics& m : renderer.objectMetrics()) visible += m.pixels > 0;
+      std::vector<double> cov, sel;
+      for (size_t f = 3; f < t.size(); ++f) {
+        cov.push_back(t[f].passMs[size_t(Pass::Coverage)].value_or(0.0));
+        sel.push_back(t[f].passMs[size_t(Pass::Select)].value_or(0.0));
+      }
+      std::printf("%-12s %10u %12.3f %12.3f %10zu\n", "density", n, median(cov), median(sel), visible);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "select_bench: error: %s\n", e.what());
