@@ -29,6 +29,15 @@ layout(push_constant) uniform SelectPush {
 // Candidates: given (push) or, in frame mode, counted on the GPU by select_candidates.comp.
 uint candidateCount() { return push.walk.y != 0u ? result.x : push.sizes.x; }
 
+// The part of the key array the sort must order: the candidates rounded up to a power of
+// two (at least one 1024-key block). In frame mode the dispatches cover every object; the
+// invocations beyond this size (usually most: only visible objects are candidates) exit.
+uint sortSize() {
+  uint n = max(candidateCount(), 1u);
+  uint p = n == 1u ? 1u : 1u << uint(findMSB(n - 1u) + 1);
+  return min(max(p, 1024u), push.sizes.y);
+}
+
 // Policies, as in select::Policy.
 #define RB_SELECT_NONE 0u
 #define RB_SELECT_ALL 1u

@@ -20,10 +20,11 @@ void store(uint i, uvec4 v) {
 }
 
 void main() {
-  uint k = push.stage.x, j = push.stage.y, t = gl_GlobalInvocationID.x;
+  uint k = push.stage.x, j = push.stage.y, t = gl_GlobalInvocationID.x, size = sortSize();
+  if (k > size) return;  // stages past the candidates' size: the prefix is sorted already
   if (j >= 1024u) {
     uint i = 2u * j * (t / j) + (t % j), l = i + j;
-    if (l >= push.sizes.y) return;
+    if (l >= size) return;
     uvec4 a = load(i), b = load(l);
     bool ascending = (i & k) == 0u;
     if (keyLess(b, a) == ascending) {
@@ -33,6 +34,7 @@ void main() {
     return;
   }
   uint base = gl_WorkGroupID.x * 1024u, lt = gl_LocalInvocationID.x;
+  if (base >= size) return;  // the whole workgroup: no barrier is left waiting
   block[lt] = load(base + lt);
   block[lt + 512u] = load(base + lt + 512u);
   uint kFirst = k == 0u ? 2u : k, kLast = k == 0u ? 1024u : k;
