@@ -34,22 +34,29 @@
 
 namespace raybudget {
 
-const char* policyName(Policy policy) {
+namespace {
+
+select::Policy toSelectPolicy(Policy policy) {
   switch (policy) {
-    case Policy::None: return "none";
-    case Policy::All: return "all";
-    case Policy::Paper: return "paper";
-    case Policy::Density: return "density";
-    case Policy::Nearest: return "nearest";
-    case Policy::Random: return "random";
+    case Policy::None: return select::Policy::None;
+    case Policy::All: return select::Policy::All;
+    case Policy::Paper: return select::Policy::Paper;
+    case Policy::Density: return select::Policy::Density;
+    case Policy::Nearest: return select::Policy::Nearest;
+    case Policy::Random: return select::Policy::Random;
   }
-  return "?";
+  return select::Policy::None;
 }
 
+}  // namespace
+
+const char* policyName(Policy policy) { return select::policyName(toSelectPolicy(policy)); }
+
 Policy parsePolicy(const std::string& name) {
-  for (Policy p : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random})
-    if (name == policyName(p)) return p;
-  throw Error("unknown policy '" + name + "' (none, all, paper, density, nearest, random)");
+  const select::Policy p = select::parsePolicy(name);
+  for (Policy q : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random})
+    if (toSelectPolicy(q) == p) return q;
+  throw Error("the optimal policy runs on the CPU for benchmarks only; render with another and --optimal-bound for its bound");
 }
 
 bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All; }
@@ -326,15 +333,7 @@ struct Renderer::Impl {
   // the previous frame's reads (the frame-start barrier orders them).
   bool native() const { return scene.native != nullptr; }
 
-  select::Policy selectPolicy() const {
-    switch (settings.policy) {
-      case Policy::Paper: return select::Policy::Paper;
-      case Policy::Density: return select::Policy::Density;
-      case Policy::Nearest: return select::Policy::Nearest;
-      case Policy::Random: return select::Policy::Random;
-      default: return select::Policy::None;
-    }
-  }
+  select::Policy selectPolicy() const { return toSelectPolicy(settings.policy); }
 
   std::vector<VkBufferCopy> stageMovedObjects(Slot& slot) {
     if (!objectsMoved) return {};
