@@ -20,6 +20,7 @@ vec3 prefiltered(vec3 dir, float roughness) { return textureLod(envMap, dir, rou
 
 // Closest hit along the ray, alpha masks respected.
 bool traceClosest(vec3 origin, vec3 dir, out RayQuery q, inout uint work) {
+  ++rbRays;
   rqInitialize(q, 0u, 0xFFu, origin, 0.0, dir, 1e30);
   while (rqProceed(q))
     if (candidateIsOpaque(q)) rqConfirm(q);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "bvh/embree_oracle.h"
+#include "shared/config.h"
 #include "shared/offset_ray.h"
 #include "support/procedural.h"
 #include "support/render_helpers.h"
@@ -250,6 +251,12 @@ TEST(RtPolicy, TracesExactlyTheTilesOfSelectedPixels) {
   EXPECT_GT(tiles, 0u);
   EXPECT_LT(tiles, size_t((w + 7) / 8) * ((h + 7) / 8)) << "the default view shows some sky";
   EXPECT_EQ(timings[0].tracedTiles, tiles);
+  // Every lit pixel of an object traces at least one shadow ray per light facing it, and at
+  // most a bounded number of rays in all.
+  size_t objectPixels = 0;
+  for (uint32_t id : img.objectIds) objectPixels += id != 0xFFFFFFFFu;
+  EXPECT_GE(timings[0].raysTraced, objectPixels / 2);
+  EXPECT_LE(timings[0].raysTraced, objectPixels * (2 * RB_RT_MAX_DEPTH + 1) * (scene.lights.size() + 1));
   // Looking straight up from above the scene: only sky.
   Camera up = defaultCamera(scene, float(w) / float(h));
   up.position = glm::vec3(0.0f, 1000.0f, 0.0f);
@@ -259,6 +266,7 @@ TEST(RtPolicy, TracesExactlyTheTilesOfSelectedPixels) {
   for (uint32_t id : sky.objectIds) ASSERT_EQ(id, 0xFFFFFFFFu);
   ASSERT_EQ(skyTimings.size(), 1u);
   EXPECT_EQ(skyTimings[0].tracedTiles, 0u);
+  EXPECT_EQ(skyTimings[0].raysTraced, 0u);
   // The empty dispatches still run (and are timed) but do no work.
   ASSERT_TRUE(skyTimings[0].passMs[size_t(Pass::TraceShadows)].has_value());
   EXPECT_LT(*skyTimings[0].passMs[size_t(Pass::TraceShadows)], 0.25 * *timings[0].passMs[size_t(Pass::TraceShadows)]);
@@ -298,8 +306,9 @@ TEST(RtBudget, SelectionFollowsTheBudget) {
     EXPECT_GT(small.selectedObjects, 0u) << policyName(p);
     EXPECT_LE(small.predictedTraceMs, 2.0 * (1.0 + 1e-5)) << policyName(p);
     EXPECT_LE(large.predictedTraceMs, 4.0 * (1.0 + 1e-5)) << policyName(p);
-    if (p == Policy::Density || p == Policy::Paper)
+    if (p == Policy::Density || p == Policy::Paper) {
       EXPECT_GE(large.selectedValue, small.selectedValue) << policyName(p) << ": doubling T selected less value";
+    }
     EXPECT_GE(large.tracedTiles, small.tracedTiles / 2) << policyName(p);
   }
   RenderSettings bad;
@@ -413,7 +422,9 @@ TEST(RtBudget, SelectedValueStaysUnderTheOptimalBound) {
     for (const FrameTiming& f : t) {
       EXPECT_GT(f.optimalValueBound, 0.0) << policyName(p);
       EXPECT_LE(f.selectedValue, f.optimalValueBound * (1.0 + 1e-5)) << policyName(p) << " frame " << f.frame;
-      if (p == Policy::Density) EXPECT_GE(f.selectedValue, 0.5 * f.optimalValueBound * 0.99) << "frame " << f.frame;
+      if (p == Policy::Density) {
+        EXPECT_GE(f.selectedValue, 0.5 * f.optimalValueBound * 0.99) << "frame " << f.frame;
+      }
     }
   }
 }

@@ -264,6 +264,7 @@ struct Renderer::Impl {
     t.frame = slot.frame;
     t.tlasRebuildMs = slot.tlasRebuildMs;
     t.tracedTiles = slot.selected ? static_cast<const uint32_t*>(slot.tileCount.mapped)[0] : 0u;
+    t.raysTraced = slot.selected ? static_cast<const uint32_t*>(slot.tileCount.mapped)[3] : 0u;
     const auto ms = timestamps.read(uint32_t(&slot - slots));
     for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
     if (slot.budgeted) learnCost(slot, t);
@@ -433,8 +434,6 @@ struct Renderer::Impl {
         }
         selectPass.record(fc, slot.budgeted ? passes::SelectMode::Keep : passes::SelectMode::All);
       });
-      const VkBufferCopy header{0, 0, 16};
-      vkCmdCopyBuffer(cmd, targets.tileList.buffer, slot.tileCount.buffer, 1, &header);
     }
     // With a budgeted policy unselected objects keep the shadow maps.
     const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All;
@@ -455,6 +454,12 @@ struct Renderer::Impl {
     }
     computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });
+    if (slot.selected) {  // the tile list's header: tiles traced and rays counted
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
+      const VkBufferCopy header{0, 0, 16};
+      vkCmdCopyBuffer(cmd, targets.tileList.buffer, slot.tileCount.buffer, 1, &header);
+    }
     VK_CHECK(vkEndCommandBuffer(cmd));
   }
 

@@ -56,7 +56,7 @@ layout(set = 0, binding = 32, std430) buffer ObjectRecordBlock { GpuObjectRecord
 // selected pixels; tileList.x doubles as the trace passes' indirect dispatch (x, y, z).
 layout(set = 0, binding = 33, std430) buffer SelectionBlock { uint selected[]; };
 layout(set = 0, binding = 34, std430) buffer TileListBlock {
-  uvec4 tileDispatch;  // x tile count (= groups in x), y 1, z 1, w unused
+  uvec4 tileDispatch;  // x tile count (= groups in x), y 1, z 1, w rays the trace passes traced
   uint tiles[];        // tile x | tile y << 16
 };
 

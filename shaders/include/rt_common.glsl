@@ -15,10 +15,16 @@ ivec2 tilePixel() {
   return ivec2(t & 0xFFFFu, t >> 16) * RB_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
 }
 
+// Rays this invocation traced (every ray query counts one).
+uint rbRays = 0u;
+
 // Adds this invocation's traversal work to its object's counter: lanes of the subgroup
-// that traced the same object are summed first, one atomic per object and subgroup. The
-// includer enables GL_KHR_shader_subgroup_basic, _vote and _arithmetic.
+// that traced the same object are summed first, one atomic per object and subgroup; and its
+// rays to the frame's count (tileDispatch.w). The includer enables
+// GL_KHR_shader_subgroup_basic, _vote and _arithmetic.
 void addObjectWork(uint objectId, uint work) {
+  uint rays = subgroupAdd(rbRays);
+  if (subgroupElect()) atomicAdd(tileDispatch.w, rays);
   bool pending = true;
   while (subgroupAny(pending)) {
     uint current = subgroupMin(pending ? objectId : RB_NO_OBJECT);
@@ -95,6 +101,7 @@ bool candidateIsOpaque(RayQuery q) {
 
 // 1 when nothing blocks the segment origin + t * dir, t in (0, tMax); alpha masks respected.
 float traceVisibility(vec3 origin, vec3 dir, float tMax, inout uint work) {
+  ++rbRays;
   RayQuery q;
   rqInitialize(q, RB_RQ_TERMINATE_ON_FIRST_HIT, 0xFFu, origin, 0.0, dir, tMax);
   while (rqProceed(q))

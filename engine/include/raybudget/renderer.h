@@ -70,6 +70,7 @@ struct FrameTiming {
   uint64_t frame = 0;
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   uint32_t tracedTiles = 0;    // 8x8 tiles the trace passes ran over (0: none selected or nothing traced)
+  uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
   // Budgeted policies: the budget, the cost model's prediction for the selection and the
   // measured trace time (the trace passes' sum), objects selected and their summed R.
   double budgetMs = 0.0;
