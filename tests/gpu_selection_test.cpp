@@ -18,11 +18,13 @@ using select::Policy;
 
 using GpuSelection = test::ValidatedGpuTest;
 
+// Both sorts (the bitonic one of a GPU, the heapsort of a CPU device) on every set.
 TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
-  passes::GpuSelector gpu(ctx, 4096);
+  passes::GpuSelector bitonic(ctx, 4096, passes::SortMethod::Bitonic), sequential(ctx, 4096, passes::SortMethod::Sequential);
   bvh::Rng rng(77);
   size_t compared = 0;
   for (int trial = 0; trial < 500; ++trial) {
+    passes::GpuSelector& gpu = trial % 2 ? bitonic : sequential;
     const size_t n = 1 + size_t(rng.next() * (trial % 25 == 0 ? 4000.0f : 60.0f));
     const std::vector<Candidate> c = test::randomCandidates(rng, n);
     const float budget = test::randomBudget(rng, c);
@@ -36,8 +38,10 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
   EXPECT_EQ(compared, 3000u);
 }
 
-TEST_F(GpuSelection, EqualsTheCpuReferenceAtOneHundredThousand) {
-  passes::GpuSelector gpu(ctx, 100000);
+class GpuSelectionSort : public test::ValidatedGpuTest, public ::testing::WithParamInterface<passes::SortMethod> {};
+
+TEST_P(GpuSelectionSort, EqualsTheCpuReferenceAtOneHundredThousand) {
+  passes::GpuSelector gpu(ctx, 100000, GetParam());
   bvh::Rng rng(5);
   const std::vector<Candidate> c = test::randomCandidates(rng, 100000);
   for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
@@ -52,6 +56,11 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceAtOneHundredThousand) {
   for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random})
     EXPECT_EQ(gpu.select(ids, p, 100.0f).ids, select::selectObjects(p, ids, 100.0f).ids) << select::policyName(p);
 }
+
+INSTANTIATE_TEST_SUITE_P(Sorts, GpuSelectionSort, ::testing::Values(passes::SortMethod::Bitonic, passes::SortMethod::Sequential),
+                         [](const ::testing::TestParamInfo<passes::SortMethod>& p) {
+                           return std::string(p.param == passes::SortMethod::Bitonic ? "bitonic" : "sequential");
+                         });
 
 TEST_F(GpuSelection, RejectsWhatTheCpuRejects) {
   passes::GpuSelector gpu(ctx, 16);

@@ -7,6 +7,7 @@
 #include "select_apply_comp.h"
 #include "select_bitonic_comp.h"
 #include "select_candidates_comp.h"
+#include "select_heapsort_comp.h"
 #include "select_keys_comp.h"
 #include "select_walk_comp.h"
 #include "shared/selection.h"
@@ -37,12 +38,13 @@ struct GpuSelector::Impl {
   uint32_t capacity, padded;
   vk::Buffer candidates, order, relevance, scratch, flags, result, readback, placeholder;
   vk::ComputeSet set;
-  vk::Owned<VkPipeline> keys, bitonic, walk, candidatesFromObjects, apply;
+  vk::Owned<VkPipeline> keys, bitonic, heapsort, walk, candidatesFromObjects, apply;
+  bool sequentialSort = false;  // a CPU device: one invocation's heapsort beats the bitonic sort
   vk::TimestampPool timestamps;
   double gpuMs = 0.0;
   VkBuffer frameSelection = VK_NULL_HANDLE;
 
-  Impl(const vk::Context& c, uint32_t cap)
+  Impl(const vk::Context& c, uint32_t cap, SortMethod sort)
       : ctx(c), capacity(cap), padded(paddedSize(cap)), timestamps(c, 1, 1) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     candidates = vk::createBuffer(c, std::max(cap, 1u) * sizeof(gpu::GpuCandidate),
@@ -62,6 +64,8 @@ struct GpuSelector::Impl {
     keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
     bitonic = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_bitonic_comp);
     walk = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_walk_comp);
+    heapsort = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_heapsort_comp);
+    sequentialSort = sort == SortMethod::Sequential || (sort == SortMethod::Auto && c.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
   }
 
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
@@ -107,6 +111,10 @@ struct GpuSelector::Impl {
   void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which) {
     push.stage = glm::uvec4(0, 0, which, push.stage.w);
     dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
+    if (sequentialSort) {
+      dispatch(cmd, heapsort, push, 1);
+      return;
+    }
     push.stage.x = 0;  // every stage up to the block size in one dispatch
     push.stage.y = 0;
     dispatch(cmd, bitonic, push, push.sizes.y / kBlock);
@@ -169,7 +177,7 @@ struct GpuSelector::Impl {
   }
 };
 
-GpuSelector::GpuSelector(const vk::Context& ctx, uint32_t capacity) : impl_(std::make_unique<Impl>(ctx, capacity)) {}
+GpuSelector::GpuSelector(const vk::Context& ctx, uint32_t capacity, SortMethod sort) : impl_(std::make_unique<Impl>(ctx, capacity, sort)) {}
 GpuSelector::~GpuSelector() = default;
 select::Selection GpuSelector::select(std::span<const select::Candidate> candidates, select::Policy policy, float budget,
                                       const select::PolicyOptions& options) {

@@ -11,9 +11,14 @@
 
 namespace raybudget::passes {
 
+// How the candidates are ordered: a bitonic sort over the whole device, or one
+// invocation's heapsort (faster on a CPU device, where barriers are expensive). Auto picks
+// the heapsort on a CPU device. Both give the same order.
+enum class SortMethod { Auto, Bitonic, Sequential };
+
 class GpuSelector {
  public:
-  GpuSelector(const vk::Context& ctx, uint32_t capacity);
+  GpuSelector(const vk::Context& ctx, uint32_t capacity, SortMethod sort = SortMethod::Auto);
   ~GpuSelector();
   GpuSelector(const GpuSelector&) = delete;
   GpuSelector& operator=(const GpuSelector&) = delete;
