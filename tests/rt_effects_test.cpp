@@ -366,17 +366,19 @@ namespace {
 
 // Budget adherence on lavapipe, as a relation with a stated tolerance: after a 20-frame
 // warm-up of the cost model, the measured trace time of a 300-frame orbit stays within
-// 1.5 T in at least 95% of frames (measured: 1 of 280 frames above 1.5 T, 26 above T).
+// 1.5 T in at least 95% of frames. T = 5 ms binds at 320x180 (tracing everything costs about
+// 20 ms). Measured with a second render running beside it on the 2 cores: 6 and 7 of 280
+// frames above 1.5 T, 24-36 above T.
 TEST(RtBudget, TraceTimeStaysWithinTheBudgetOnAnOrbit) {
   const Scene scene = loadScene(test::defaultScenePath());
   RenderSettings s;
-  s.width = 160;
-  s.height = 96;
+  s.width = 320;
+  s.height = 180;
   s.validation = true;
   s.policy = Policy::Density;
-  s.budgetMs = 3.0f;
+  s.budgetMs = 5.0f;
   Renderer renderer(scene, s);
-  const Camera start = defaultCamera(scene, 160.0f / 96.0f);
+  const Camera start = defaultCamera(scene, 320.0f / 180.0f);
   std::vector<FrameTiming> t;
   for (uint32_t f = 0; f < 300; ++f)
     for (const FrameTiming& x : renderer.render(orbitCamera(start, f, 300))) t.push_back(x);
