@@ -395,8 +395,8 @@ struct Renderer::Impl {
                         VK_ACCESS_2_MEMORY_READ_BIT);
       scene.native->recordTlasBuild(cmd, slot.updateStaging.buffer, 0);
     } else if (!moved.empty()) {
-      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhNodes.buffer, 2, moved.data());
-      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhInstances.buffer, 1, &moved[2]);
+      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhBuffers.nodes.buffer, 2, moved.data());
+      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhBuffers.instances.buffer, 1, &moved[2]);
       vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.objects.buffer, 1, &moved[3]);
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                         VK_ACCESS_2_MEMORY_READ_BIT);

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "passes/bvh_buffers.h"
 #include "passes/native_accel.h"
 #include "trace_rays_comp.h"
 #include "trace_rays_comp_native.h"
@@ -35,9 +36,8 @@ struct Binding {
 
 struct BatchTracer::Impl {
   const vk::Context& ctx;
-  // Compute tracer: the BVH as texel buffers and instances. Native: acceleration structures.
-  vk::Buffer nodes, triangles, instances;
-  vk::Owned<VkBufferView> nodeTexels, triangleTexels;
+  // Compute tracer: our BVH. Native: acceleration structures.
+  BvhBuffers bvhBuffers;
   std::unique_ptr<NativeAccel> native;
   std::vector<Binding> bindings;  // the tracer's; rays and hits are added per batch
   vk::Owned<VkDescriptorSetLayout> setLayout;
@@ -49,16 +49,12 @@ struct BatchTracer::Impl {
   size_t accelBytes = 0;
 
   Impl(const vk::Context& c, const bvh::SceneBvh& bvh) : ctx(c), timestamps(c, 1, 1) {
-    nodes = vk::createDeviceBuffer(c, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    triangles = vk::createDeviceBuffer(c, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    instances = vk::createDeviceBuffer(c, bvh.instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    nodeTexels = vk::createTexelView(c, nodes, VK_FORMAT_R32G32B32A32_UINT, 16);
-    triangleTexels = vk::createTexelView(c, triangles, VK_FORMAT_R32G32B32A32_UINT, 16);
-    accelBytes = size_t(nodes.size + triangles.size + instances.size);
+    bvhBuffers = uploadBvh(c, bvh, false);
+    accelBytes = bvhBuffers.bytes();
     Binding n{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}, t{1, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
-    n.texels = nodeTexels;
-    t.texels = triangleTexels;
-    bindings = {n, t, {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {instances.buffer, 0, VK_WHOLE_SIZE}}};
+    n.texels = bvhBuffers.nodeTexels;
+    t.texels = bvhBuffers.triangleTexels;
+    bindings = {n, t, {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {bvhBuffers.instances.buffer, 0, VK_WHOLE_SIZE}}};
     createPipeline(kSpirv_trace_rays_comp);
   }
 

@@ -137,12 +137,12 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   write(kEnvStorage, uint32_t(envMips.size()), nullptr, envMips.data());
   const VkDescriptorImageInfo envSource{samplers.equirect, t.envSource.view, ro};
   write(kEnvSource, 1, nullptr, &envSource);
-  const VkBufferView bvhTexels[] = {scene.bvhNodeTexels, scene.bvhTriangleTexels};
+  const VkBufferView bvhTexels[] = {scene.bvhBuffers.nodeTexels, scene.bvhBuffers.triangleTexels};
   const VkAccelerationStructureKHR tlas = native ? scene.native->tlas() : VK_NULL_HANDLE;
   VkWriteDescriptorSetAccelerationStructureKHR tlasWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
   tlasWrite.accelerationStructureCount = 1;
   tlasWrite.pAccelerationStructures = &tlas;
-  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhInstances.buffer, 0, VK_WHOLE_SIZE},
+  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhBuffers.instances.buffer, 0, VK_WHOLE_SIZE},
                                               {scene.indices.buffer, 0, VK_WHOLE_SIZE},
                                               {native ? VkBuffer(scene.native->geometryTable().buffer) : VK_NULL_HANDLE, 0, VK_WHOLE_SIZE}};
   if (native) {

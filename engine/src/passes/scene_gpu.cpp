@@ -210,14 +210,8 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   } else {
     gpu.bvh = bvh::buildSceneBvh(scene);
   }
-  // Nodes and triangles are read as RGBA32UI texels (shaders/include/rayquery_compute.glsl).
-  const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
   // (Native: empty one-element buffers keep the descriptor set's shape.)
-  gpu.bvhNodes = vk::createDeviceBuffer(ctx, gpu.bvh.nodes, texels | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  gpu.bvhTriangles = vk::createDeviceBuffer(ctx, gpu.bvh.triangles, texels);
-  gpu.bvhInstances = vk::createDeviceBuffer(ctx, gpu.bvh.instances, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  gpu.bvhNodeTexels = vk::createTexelView(ctx, gpu.bvhNodes, VK_FORMAT_R32G32B32A32_UINT, 16);
-  gpu.bvhTriangleTexels = vk::createTexelView(ctx, gpu.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT, 16);
+  gpu.bvhBuffers = uploadBvh(ctx, gpu.bvh, true);
   if (!gpu.native) gpu.bvhStats = gpu.bvh.stats;
   gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
   gpu.bvh.triangles.shrink_to_fit();

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bvh/scene_bvh.h"
+#include "passes/bvh_buffers.h"
 #include "passes/native_accel.h"
 #include "raybudget/renderer.h"
 #include "raybudget/scene.h"
@@ -39,10 +40,7 @@ struct SceneGpu {
   Scene shell;
   bvh::SceneBvh bvh;
   std::vector<uint32_t> meshFirstIndex, meshVertexOffset;
-  vk::Buffer bvhNodes;
-  vk::Buffer bvhTriangles;
-  vk::Buffer bvhInstances;
-  vk::Owned<VkBufferView> bvhNodeTexels, bvhTriangleTexels;
+  BvhBuffers bvhBuffers;
   // With Tracer::Native, the Vulkan acceleration structures instead of the compute BVH.
   std::unique_ptr<NativeAccel> native;
   bvh::BuildStats bvhStats;
