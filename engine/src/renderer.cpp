@@ -329,13 +329,21 @@ struct Renderer::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
 
-  // Rebuilds the TLAS for moved objects on the CPU and stages it with the new object records
-  // in the slot's staging buffer; record() copies them at the start of the frame, after
-  // the previous frame's reads (the frame-start barrier orders them).
   bool native() const { return scene.native != nullptr; }
 
   select::Policy selectPolicy() const { return toSelectPolicy(settings.policy); }
 
+  // The object records for the moved objects' new transforms (and their culling spheres).
+  std::vector<gpu::GpuObject> refreshObjectRecords() {
+    std::vector<gpu::GpuObject> objects;
+    for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
+    for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+    return objects;
+  }
+
+  // Rebuilds the TLAS for moved objects on the CPU and stages it with the new object records
+  // in the slot's staging buffer; record() copies them at the start of the frame, after
+  // the previous frame's reads (the frame-start barrier orders them).
   std::vector<VkBufferCopy> stageMovedObjects(Slot& slot) {
     if (!objectsMoved) return {};
     objectsMoved = false;
@@ -343,9 +351,7 @@ struct Renderer::Impl {
     const auto start = std::chrono::steady_clock::now();
     bvh::SceneBvh& b = scene.bvh;
     bvh::rebuildTlas(b, scene.shell.objects);
-    std::vector<gpu::GpuObject> objects;
-    for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
-    for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+    const std::vector<gpu::GpuObject> objects = refreshObjectRecords();
     slot.tlasRebuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const VkDeviceSize nodeBytes = sizeof(gpu::GpuBvhNode), tlasBytes = b.tlasNodeCount * nodeBytes;
     const VkDeviceSize instBytes = b.instances.size() * sizeof(gpu::GpuInstance), objBytes = objects.size() * sizeof(gpu::GpuObject);
@@ -364,9 +370,7 @@ struct Renderer::Impl {
   // rebuilt on the device (recordTlasBuild) in the frame.
   std::vector<VkBufferCopy> stageMovedInstances(Slot& slot) {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<gpu::GpuObject> objects;
-    for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
-    for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+    const std::vector<gpu::GpuObject> objects = refreshObjectRecords();
     const VkDeviceSize instBytes = scene.native->instanceBytes(), objBytes = objects.size() * sizeof(gpu::GpuObject);
     if (slot.updateStaging.size < instBytes + objBytes)
       slot.updateStaging = vk::createBuffer(ctx, instBytes + objBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
