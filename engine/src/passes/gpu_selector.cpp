@@ -55,7 +55,7 @@ struct GpuSelector::Impl {
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-    placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-8 until bindFrame
+    placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9 until bindFrame
     const std::vector<VkDescriptorType> types(10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
     bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer, placeholder.buffer);
@@ -107,7 +107,8 @@ struct GpuSelector::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
 
-  // Keys then a bitonic sort of one order (0: the policy's, 1: `paper`'s relevance order).
+  // Keys then a sort (bitonic, or the one-invocation heapsort) of one order (0: the
+  // policy's, 1: `paper`'s relevance order).
   void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which) {
     push.stage = glm::uvec4(0, 0, which, push.stage.w);
     dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
@@ -133,8 +134,7 @@ struct GpuSelector::Impl {
   select::Selection run(std::span<const select::Candidate> c, select::Policy policy, float budget, const select::PolicyOptions& options) {
     if (policy == select::Policy::Optimal) throw Error("the optimal policy runs on the CPU only (benchmarks)");
     if (c.size() > capacity) throw Error("GPU selection of " + std::to_string(c.size()) + " candidates exceeds its capacity " + std::to_string(capacity));
-    // Validation as on the CPU: the same errors for the same input.
-    (void)select::selectObjects(select::Policy::None, c, budget, options);
+    select::validateCandidates(c, budget);  // the CPU reference's errors for the same input
     const uint32_t n = uint32_t(c.size()), pad = paddedSize(n);
     std::vector<gpu::GpuCandidate> data;
     for (const select::Candidate& x : c) data.push_back({x.id, x.cost, x.value, x.distance});

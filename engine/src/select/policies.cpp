@@ -106,15 +106,16 @@ std::pair<std::vector<uint32_t>, double> knapsack(std::span<const Candidate> c, 
   return {chosen, best[w]};
 }
 
-void validate(std::span<const Candidate> c, float budget) {
+
+}  // namespace
+
+void validateCandidates(std::span<const Candidate> c, float budget) {
   if (!std::isfinite(budget) || budget < 0.0f) throw Error("selection budget must be a finite number >= 0, got " + std::to_string(budget));
   for (const Candidate& x : c)
     if (!std::isfinite(x.cost) || x.cost < 0.0f || !std::isfinite(x.value) || x.value < 0.0f)
       throw Error("object " + std::to_string(x.id) + ": selection cost and value must be finite and >= 0 (cost " + std::to_string(x.cost) +
                   ", value " + std::to_string(x.value) + ")");
 }
-
-}  // namespace
 
 const char* policyName(Policy policy) {
   switch (policy) {
@@ -136,7 +137,7 @@ Policy parsePolicy(const std::string& name) {
 }
 
 Selection selectObjects(Policy policy, std::span<const Candidate> c, float budget, const PolicyOptions& options) {
-  validate(c, budget);
+  validateCandidates(c, budget);
   std::vector<uint32_t> chosen;
   switch (policy) {
     case Policy::None: break;
@@ -175,7 +176,7 @@ Selection selectObjects(Policy policy, std::span<const Candidate> c, float budge
 }
 
 double optimalValueBound(std::span<const Candidate> c, float budget, uint32_t steps) {
-  validate(c, budget);
+  validateCandidates(c, budget);
   return knapsack(c, budget, steps, false).second;
 }
 

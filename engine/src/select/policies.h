@@ -40,6 +40,9 @@ uint32_t randomRank(uint32_t seed, uint32_t id);
 float densityKey(const Candidate& candidate);  // value / cost, +inf for zero cost
 
 // Throws raybudget::Error on a negative, NaN or infinite cost, value or budget.
+void validateCandidates(std::span<const Candidate> candidates, float budget);
+
+// Validates as above, then selects.
 Selection selectObjects(Policy policy, std::span<const Candidate> candidates, float budget, const PolicyOptions& options = {});
 
 // An upper bound on the value any selection within the budget can reach: the 0/1 knapsack
