@@ -203,16 +203,11 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   // the device's for the native tracer, else our BVH.
   if (settings.rayTracing.tracer == Tracer::Native) {
     gpu.native = std::make_unique<NativeAccel>(ctx, scene);
-    gpu.bvhStats.blasMs = gpu.native->buildMs();
-    gpu.bvhStats.triangles = 0;
-    for (const Mesh& m : scene.meshes) gpu.bvhStats.triangles += m.indices.size() / 3;
-    gpu.bvhStats.bytesPerTriangle = double(gpu.native->memoryBytes()) / double(std::max<size_t>(1, gpu.bvhStats.triangles));
   } else {
     gpu.bvh = bvh::buildSceneBvh(scene);
   }
   // (Native: empty one-element buffers keep the descriptor set's shape.)
   gpu.bvhBuffers = uploadBvh(ctx, gpu.bvh, true);
-  if (!gpu.native) gpu.bvhStats = gpu.bvh.stats;
   gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
   gpu.bvh.triangles.shrink_to_fit();
   gpu.shell = scene;

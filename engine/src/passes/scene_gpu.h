@@ -43,7 +43,6 @@ struct SceneGpu {
   BvhBuffers bvhBuffers;
   // With Tracer::Native, the Vulkan acceleration structures instead of the compute BVH.
   std::unique_ptr<NativeAccel> native;
-  bvh::BuildStats bvhStats;
   vk::Buffer vertices;
   vk::Buffer indices;
   vk::Buffer objects;
