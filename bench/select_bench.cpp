@@ -6,7 +6,6 @@
 //
 // usage: select_bench [--repeats R]
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -88,13 +87,18 @@ int main(int argc, char** argv) {
       const float budget = float(total / 3.0);
       // "paper-climb": the paper's walk climbing relevance pointers while one fits (the
       // superlinear reading; up to 10k only, it takes seconds at 100k).
-      for (int row = 0; row < 5; ++row) {
-        const select::Policy p = row == 1 ? select::Policy::Paper
-                                          : std::array{select::Policy::Paper, select::Policy::Paper, select::Policy::Density, select::Policy::Nearest,
-                                                       select::Policy::Random}[size_t(row)];
+      struct Row {
+        const char* name;
+        select::Policy policy;
+        uint32_t paperHops;
+      };
+      for (const Row& row : {Row{"paper", select::Policy::Paper, 1}, Row{"paper-climb", select::Policy::Paper, 0},
+                             Row{"density", select::Policy::Density, 1}, Row{"nearest", select::Policy::Nearest, 1},
+                             Row{"random", select::Policy::Random, 1}}) {
+        const select::Policy p = row.policy;
         select::PolicyOptions options;
-        options.paperHops = row == 1 ? 0 : 1;
-        if (row == 1 && n > 10000) continue;
+        options.paperHops = row.paperHops;
+        if (row.paperHops == 0 && n > 10000) continue;
         std::vector<double> g, cpu;
         size_t selected = 0;
         for (uint32_t r = 0; r < repeats; ++r) {
@@ -104,7 +108,7 @@ int main(int argc, char** argv) {
           (void)select::selectObjects(p, c, budget, options);
           cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         }
-        std::printf("%-12s %10u %12.3f %12.3f %10zu\n", row == 1 ? "paper-climb" : select::policyName(p), n, median(g), median(cpu), selected);
+        std::printf("%-12s %10u %12.3f %12.3f %10zu\n", row.name, n, median(g), median(cpu), selected);
       }
     }
     std::printf("\n%-12s %10s %12s %12s %10s\n", "in the frame", "objects", "coverage ms", "select ms", "visible");
