@@ -1,4 +1,4 @@
-// Cost of the GPU selection (keys, bitonic sort, sequential walk) per policy for 10, 1k,
+// Cost of the GPU selection (keys, sort, sequential walk) per policy for 10, 1k,
 // 10k and 100k candidates, against the CPU reference, median of `repeats`. Candidates are
 // random (log-uniform costs and relevance), the budget a third of their total cost.
 // Then the coverage and select passes in the frame on generated scenes of 10 to 100k
@@ -112,12 +112,15 @@ int main(int argc, char** argv) {
       }
     }
     std::printf("\n%-12s %10s %12s %12s %10s\n", "in the frame", "objects", "coverage ms", "select ms", "visible");
+    // `all` runs the select pass without the GPU selector: its select time is the fixed
+    // part (marking objects, the tile list), the rest is the selection itself.
+    for (const Policy policy : {Policy::Density, Policy::All})
     for (uint32_t n : {10u, 1000u, 10000u, 100000u}) {
       const Scene scene = cubeGrid(n);
       RenderSettings s;
       s.width = 640;
       s.height = 360;
-      s.policy = Policy::Density;
+      s.policy = policy;
       s.budgetMs = 4.0f;
       s.objectMetrics = true;
       Renderer renderer(scene, s);
@@ -133,7 +136,7 @@ int main(int argc, char** argv) {
         cov.push_back(t[f].passMs[size_t(Pass::Coverage)].value_or(0.0));
         sel.push_back(t[f].passMs[size_t(Pass::Select)].value_or(0.0));
       }
-      std::printf("%-12s %10u %12.3f %12.3f %10zu\n", "density", n, median(cov), median(sel), visible);
+      std::printf("%-12s %10u %12.3f %12.3f %10zu\n", policyName(policy), n, median(cov), median(sel), visible);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "select_bench: error: %s\n", e.what());

@@ -18,13 +18,13 @@ using select::Policy;
 
 using GpuSelection = test::ValidatedGpuTest;
 
-// Both sorts (the bitonic one of a GPU, the heapsort of a CPU device) on every set.
+// Both sorts (the bitonic one of a GPU, the merge sort of a CPU device) on every set.
 TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
-  passes::GpuSelector bitonic(ctx, 4096, passes::SortMethod::Bitonic), sequential(ctx, 4096, passes::SortMethod::Sequential);
+  passes::GpuSelector bitonic(ctx, 4096, passes::SortMethod::Bitonic), merge(ctx, 4096, passes::SortMethod::Merge);
   bvh::Rng rng(77);
   size_t compared = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    passes::GpuSelector& gpu = trial % 2 ? bitonic : sequential;
+    passes::GpuSelector& gpu = trial % 2 ? bitonic : merge;
     const size_t n = 1 + size_t(rng.next() * (trial % 25 == 0 ? 4000.0f : 60.0f));
     const std::vector<Candidate> c = test::randomCandidates(rng, n);
     const float budget = test::randomBudget(rng, c);
@@ -57,9 +57,9 @@ TEST_P(GpuSelectionSort, EqualsTheCpuReferenceAtOneHundredThousand) {
     EXPECT_EQ(gpu.select(ids, p, 100.0f).ids, select::selectObjects(p, ids, 100.0f).ids) << select::policyName(p);
 }
 
-INSTANTIATE_TEST_SUITE_P(Sorts, GpuSelectionSort, ::testing::Values(passes::SortMethod::Bitonic, passes::SortMethod::Sequential),
+INSTANTIATE_TEST_SUITE_P(Sorts, GpuSelectionSort, ::testing::Values(passes::SortMethod::Bitonic, passes::SortMethod::Merge),
                          [](const ::testing::TestParamInfo<passes::SortMethod>& p) {
-                           return std::string(p.param == passes::SortMethod::Bitonic ? "bitonic" : "sequential");
+                           return std::string(p.param == passes::SortMethod::Bitonic ? "bitonic" : "merge");
                          });
 
 TEST_F(GpuSelection, RejectsWhatTheCpuRejects) {

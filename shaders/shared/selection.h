@@ -41,6 +41,9 @@ struct GpuObjectCost {
 // Prior traversal work (BVH nodes + triangles) per ray, before an object was measured.
 #define RB_PRIOR_WORK_PER_RAY 32.0
 
+// Keys per invocation in the first pass of the merge sort (shaders/select/select_merge.comp).
+#define RB_MERGE_CHUNK 8u
+
 // 16 bytes: one candidate of the GPU selection (select::Candidate).
 struct GpuCandidate {
   uint id;

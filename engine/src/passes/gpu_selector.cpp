@@ -7,8 +7,8 @@
 #include "select_apply_comp.h"
 #include "select_bitonic_comp.h"
 #include "select_candidates_comp.h"
-#include "select_heapsort_comp.h"
 #include "select_keys_comp.h"
+#include "select_merge_comp.h"
 #include "select_walk_comp.h"
 #include "shared/selection.h"
 #include "vk/check.h"
@@ -36,10 +36,10 @@ uint32_t paddedSize(uint32_t n) { return std::max(kBlock, std::bit_ceil(std::max
 struct GpuSelector::Impl {
   const vk::Context& ctx;
   uint32_t capacity, padded;
-  vk::Buffer candidates, order, relevance, scratch, flags, result, readback, placeholder;
+  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, placeholder;
   vk::ComputeSet set;
-  vk::Owned<VkPipeline> keys, bitonic, heapsort, walk, candidatesFromObjects, apply;
-  bool sequentialSort = false;  // a CPU device: one invocation's heapsort beats the bitonic sort
+  vk::Owned<VkPipeline> keys, bitonic, merge, walk, candidatesFromObjects, apply;
+  bool mergeSort = false;  // a CPU device: the barrier-free merge sort beats the bitonic sort
   vk::TimestampPool timestamps;
   double gpuMs = 0.0;
   VkBuffer frameSelection = VK_NULL_HANDLE;
@@ -51,12 +51,13 @@ struct GpuSelector::Impl {
                                   storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     order = vk::createBuffer(c, padded * 16ull, storage, false);
     relevance = vk::createBuffer(c, padded * 16ull, storage, false);
+    spare = vk::createBuffer(c, std::max(cap, 1u) * 16ull, storage, false);
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9 until bindFrame
-    const std::vector<VkDescriptorType> types(10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    const std::vector<VkDescriptorType> types(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
     bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer, placeholder.buffer);
     candidatesFromObjects = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_candidates_comp);
@@ -64,13 +65,13 @@ struct GpuSelector::Impl {
     keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
     bitonic = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_bitonic_comp);
     walk = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_walk_comp);
-    heapsort = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_heapsort_comp);
-    sequentialSort = sort == SortMethod::Sequential || (sort == SortMethod::Auto && c.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    merge = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_merge_comp);
+    mergeSort = sort == SortMethod::Merge || (sort == SortMethod::Auto && c.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
   }
 
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
-    const VkBuffer buffers[10] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,
-                                  result.buffer,     records,      selection,        params,         costs};
+    const VkBuffer buffers[11] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer, result.buffer,
+                                  records,           selection,    params,           costs,          spare.buffer};
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
@@ -90,8 +91,8 @@ struct GpuSelector::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
     dispatch(cmd, candidatesFromObjects, push, (objects + 63) / 64);
-    sortOrder(cmd, push, 0);
-    if (policy == select::Policy::Paper) sortOrder(cmd, push, 1);
+    sortOrder(cmd, push, 0, objects);
+    if (policy == select::Policy::Paper) sortOrder(cmd, push, 1, objects);
     dispatch(cmd, walk, push, 1);
     push.stage.z = 0;
     dispatch(cmd, apply, push, (capacity + 63) / 64);
@@ -107,13 +108,24 @@ struct GpuSelector::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
 
-  // Keys then a sort (bitonic, or the one-invocation heapsort) of one order (0: the
-  // policy's, 1: `paper`'s relevance order).
-  void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which) {
+  // Keys then a sort (bitonic, or the merge sort) of one order (0: the policy's, 1:
+  // `paper`'s relevance order) of up to `most` candidates.
+  void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which, uint32_t most) {
     push.stage = glm::uvec4(0, 0, which, push.stage.w);
     dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
-    if (sequentialSort) {
-      dispatch(cmd, heapsort, push, 1);
+    if (mergeSort) {
+      // Sorted chunks of RB_MERGE_CHUNK keys, merged while shorter than `most`. Each merge
+      // reads where the pass before wrote; the chunk pass writes to the spare buffer when
+      // the number of merges is odd, so that the last merge writes the keys.
+      uint32_t merges = 0;
+      for (uint32_t run = RB_MERGE_CHUNK; run < most; run *= 2) ++merges;
+      push.stage.y = merges % 2;
+      dispatch(cmd, merge, push, (most + RB_MERGE_CHUNK * 64 - 1) / (RB_MERGE_CHUNK * 64));
+      for (uint32_t run = RB_MERGE_CHUNK; run < most; run *= 2) {
+        if (run > RB_MERGE_CHUNK) push.stage.y = 1 - push.stage.y;
+        push.stage.x = run;
+        dispatch(cmd, merge, push, (most + RB_MERGE_CHUNK * 64 - 1) / (RB_MERGE_CHUNK * 64));
+      }
       return;
     }
     push.stage.x = 0;  // every stage up to the block size in one dispatch
@@ -155,8 +167,8 @@ struct GpuSelector::Impl {
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
       timestamps.begin(cmd, 0, 0);
       const bool sorted = policy != select::Policy::None && policy != select::Policy::All;
-      if (sorted && n > 0) sortOrder(cmd, push, 0);
-      if (policy == select::Policy::Paper && n > 0) sortOrder(cmd, push, 1);
+      if (sorted && n > 0) sortOrder(cmd, push, 0, n);
+      if (policy == select::Policy::Paper && n > 0) sortOrder(cmd, push, 1, n);
       dispatch(cmd, walk, push, 1);
       timestamps.end(cmd, 0, 0);
       const VkBufferCopy back{0, 0, std::max(n, 1u) * 4ull};

@@ -1,4 +1,4 @@
-// The selection policies on the GPU: sort keys, a bitonic sort (two orders for `paper`)
+// The selection policies on the GPU: sort keys, a sort (two orders for `paper`)
 // and the sequential walk (shaders/select/). Owns its buffers, sized for `capacity`
 // candidates, and its descriptor set. engine/src/select/policies.h is the CPU reference it
 // reproduces exactly; `optimal` is CPU-only (benchmarks).
@@ -11,10 +11,10 @@
 
 namespace raybudget::passes {
 
-// How the candidates are ordered: a bitonic sort over the whole device, or one
-// invocation's heapsort (faster on a CPU device, where barriers are expensive). Auto picks
-// the heapsort on a CPU device. Both give the same order.
-enum class SortMethod { Auto, Bitonic, Sequential };
+// How the candidates are ordered: a bitonic sort in shared-memory blocks, or a merge sort
+// without barriers (faster on a CPU device, where barriers are expensive). Auto picks the
+// merge sort on a CPU device. Both give the same order.
+enum class SortMethod { Auto, Bitonic, Merge };
 
 class GpuSelector {
  public:
