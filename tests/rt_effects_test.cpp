@@ -433,3 +433,55 @@ TEST(RtBudget, SelectedValueStaysUnderTheOptimalBound) {
 
 }  // namespace
 }  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+struct Picked {
+  uint32_t objects;
+  double value, predicted;
+  bool operator==(const Picked&) const = default;
+};
+
+// The selections of `frames` frames of an orbit (deterministic: the time scale is frozen).
+std::vector<Picked> orbitSelections(Renderer& renderer, const Camera& start, uint32_t frames) {
+  std::vector<FrameTiming> t;
+  for (uint32_t f = 0; f < frames; ++f)
+    for (const FrameTiming& x : renderer.render(orbitCamera(start, f, frames))) t.push_back(x);
+  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  std::vector<Picked> out;
+  for (const FrameTiming& x : t) out.push_back({x.selectedObjects, x.selectedValue, x.predictedTraceMs});
+  return out;
+}
+
+// restartSelection forgets S, the learned work per pixel and the time scale: after another
+// policy ran, a restarted renderer selects exactly what a new one does, frame by frame.
+TEST(RtBudget, RestartedSelectionEqualsANewRenderer) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s;
+  s.width = 160;
+  s.height = 96;
+  s.validation = true;
+  s.policy = Policy::Density;
+  s.budgetMs = 0.5f;
+  s.learnTimeScale = false;
+  Camera start = defaultCamera(scene, 160.0f / 96.0f);
+  start.position = glm::mix(start.target, start.position, 0.5f);
+  Renderer fresh(scene, s);
+  const std::vector<Picked> expected = orbitSelections(fresh, start, 8);
+
+  RenderSettings other = s;
+  other.policy = Policy::Paper;
+  other.budgetMs = 3.0f;
+  Renderer reused(scene, other);
+  const std::vector<Picked> before = orbitSelections(reused, start, 8);
+  EXPECT_NE(before, expected) << "the other policy should select differently, or the test shows nothing";
+  reused.restartSelection(Policy::Density, 0.5f);
+  EXPECT_EQ(orbitSelections(reused, start, 8), expected);
+  EXPECT_THROW(reused.restartSelection(Policy::Density, -1.0f), Error);
+  test::expectValidationClean(fresh.validationMessages());
+  test::expectValidationClean(reused.validationMessages());
+}
+
+}  // namespace
+}  // namespace raybudget

@@ -176,10 +176,7 @@ struct Renderer::Impl {
         traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
         traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
     selector.bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer, scene.objectCosts.buffer);
-    // A prior until the first measurement: 1e-4 ms per ray (10 Mrays/s) of
-    // RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the
-    // screen, so per unit of C, 1e-4 ms times the pixel count.
-    kappa = settings.policy == Policy::Paper ? 1e-4 * double(rs.width) * double(rs.height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
+    kappa = priorKappa();
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
@@ -484,6 +481,38 @@ struct Renderer::Impl {
     return done;
   }
 
+  // A prior until the first measurement: 1e-4 ms per ray (10 Mrays/s) of
+  // RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the screen,
+  // so per unit of C, 1e-4 ms times the pixel count.
+  double priorKappa() const {
+    return settings.policy == Policy::Paper ? 1e-4 * double(settings.width) * double(settings.height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
+  }
+
+  // Forgets what the selection learned (S, work per pixel, kappa) and switches policy and
+  // budget, as if a new renderer had been made for the same scene.
+  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs) {
+    RenderSettings next = settings;
+    next.policy = policy;
+    next.budgetMs = budgetMs;
+    validateSettings(next);
+    std::vector<FrameTiming> done = finish();
+    settings = next;
+    kappa = priorKappa();
+    const std::vector<gpu::GpuObjectParams> params = passes::initialObjectParams(scene.shell);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      constexpr size_t kPerUpdate = 65536 / sizeof(gpu::GpuObjectParams);  // vkCmdUpdateBuffer's limit
+      for (size_t first = 0; first < params.size(); first += kPerUpdate) {
+        const size_t count = std::min(kPerUpdate, params.size() - first);
+        vkCmdUpdateBuffer(cmd, scene.objectParams.buffer, first * sizeof(gpu::GpuObjectParams), count * sizeof(gpu::GpuObjectParams),
+                          &params[first]);
+      }
+      vkCmdFillBuffer(cmd, scene.objectCosts.buffer, 0, VK_WHOLE_SIZE, 0);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                        VK_ACCESS_2_MEMORY_READ_BIT);
+    });
+    return done;
+  }
+
   std::vector<FrameTiming> finish() {
     std::vector<FrameTiming> done;
     // Oldest first: the slot after the last-used one holds the older frame.
@@ -505,6 +534,8 @@ Renderer::~Renderer() {
 std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->render(camera); }
 
 std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
+
+std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs) { return impl_->restartSelection(policy, budgetMs); }
 
 void Renderer::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
   raybudget::setObjectTransform(impl_->scene.shell, objectId, transform);

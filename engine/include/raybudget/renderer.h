@@ -119,6 +119,12 @@ class Renderer {
   // Waits for every submitted frame and returns the timings not yet returned.
   std::vector<FrameTiming> finish();
 
+  // Switches to another policy and budget and forgets what the selection learned (S, each
+  // object's work per pixel, the time scale): the next frames select as a new Renderer on
+  // this scene would, without rebuilding its buffers and pipelines (benchmark sweeps).
+  // Finishes the frames in flight and returns their timings. Throws Error on a bad budget.
+  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs);
+
   // Moves an object (animation, the editor): from the next frame on, its raster draws, its
   // BVH instance (only the TLAS is rebuilt) and its bounds follow. Throws Error on a bad
   // ID or transform.

@@ -8,6 +8,7 @@
 #include "passes/native_accel.h"
 #include "raybudget/renderer.h"
 #include "raybudget/scene.h"
+#include "shared/selection.h"
 #include "shared/types.h"
 #include "vk/resources.h"
 
@@ -65,6 +66,9 @@ struct SceneGpu {
 };
 
 SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings);
+
+// Each object's K, Q, I (its glTF extras or the defaults) and S = 0, as the selection starts.
+std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene);
 
 // The GPU record of an object (transforms, bounds, IDs, where its mesh lives).
 gpu::GpuObject gpuObject(const SceneGpu& scene, const Object& o);
