@@ -19,6 +19,23 @@ TEST(Camera, OrbitKeepsHeightAndDistanceAndClosesTheCircle) {
   EXPECT_GT(glm::length(orbitCamera(start, 8, 16).position - start.position), 1.9f * radius);
 }
 
+TEST(Camera, FlythroughStartsAtTheStartPassesOverTheTargetAndEndsBeyondIt) {
+  Camera start;
+  start.position = {3.0f, 2.0f, 4.0f};
+  start.target = {1.0f, 0.5f, -1.0f};
+  const glm::vec3 offset = start.position - start.target;
+  EXPECT_LT(glm::length(flythroughCamera(start, 0, 9).position - start.position), 1e-5f);
+  const Camera middle = flythroughCamera(start, 4, 9), last = flythroughCamera(start, 8, 9);
+  EXPECT_LT(glm::length(glm::vec2(middle.position.x - start.target.x, middle.position.z - start.target.z)), 1e-4f);
+  EXPECT_GT(middle.position.y, start.target.y);
+  EXPECT_LT(glm::dot(last.position - start.target, offset), 0.0f) << "the path ends on the far side";
+  for (uint32_t f = 0; f < 9; ++f) {
+    const Camera c = flythroughCamera(start, f, 9);
+    EXPECT_GT(glm::length(c.target - c.position), 0.1f);
+    EXPECT_LT(glm::dot(c.target - c.position, offset), 0.0f) << "looks ahead, away from the start, frame " << f;
+  }
+}
+
 TEST(Camera, ProjectionIsVulkanClipSpace) {
   Camera c;
   c.position = {0, 0, 5};

@@ -11,6 +11,8 @@ const char* kUsage = R"(raybudget: ray-traced effects under a time budget for a 
 
 usage:
   raybudget render SCENE.gltf|SCENE.glb [options]   render frames, write images and stats
+  raybudget sweep SCENE.gltf|SCENE.glb [options]    run time against error over policies and
+                                                    budgets (raybudget sweep --help)
   raybudget devices                                 list the Vulkan devices
   raybudget --help
 
@@ -18,8 +20,10 @@ render options:
   --frames N            frames to render (default 1)
   --width W --height H  image size (default 1280x720)
   --out DIR             output folder (default ./out): frame.png, frame.exr, stats.csv
-  --camera static|orbit the scene's camera (or one framing the scene), or a full orbit
-                        around its target over the N frames (default static)
+  --camera static|orbit|flythrough
+                        the scene's camera (or one framing the scene), a full orbit
+                        around its target, or a fly-through over the target to the far
+                        side, over the N frames (default static)
   --device NAME         use the Vulkan device whose name contains NAME
   --validation          enable VK_LAYER_KHRONOS_validation (fails on any message)
   --exposure E          linear exposure before tonemapping (default 1)
@@ -43,8 +47,6 @@ render options:
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
 )";
 
-namespace {
-
 uint32_t parseUint(const std::string& option, const std::string& value, uint32_t lo, uint32_t hi) {
   uint32_t v = 0;
   const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
@@ -65,8 +67,6 @@ float parsePositive(const std::string& option, const std::string& value) {
   return v;
 }
 
-}  // namespace
-
 RenderCommand parseRender(const std::vector<std::string>& args) {
   RenderCommand c;
   for (size_t i = 0; i < args.size(); ++i) {
@@ -81,7 +81,8 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--out") c.out = value();
     else if (a == "--camera") {
       c.camera = value();
-      if (c.camera != "static" && c.camera != "orbit") throw Error("--camera must be static or orbit, got '" + c.camera + "'");
+      if (c.camera != "static" && c.camera != "orbit" && c.camera != "flythrough")
+        throw Error("--camera must be static, orbit or flythrough, got '" + c.camera + "'");
     } else if (a == "--device") c.settings.device = value();
     else if (a == "--validation") c.settings.validation = true;
     else if (a == "--exposure") c.settings.exposure = parsePositive(a, value());

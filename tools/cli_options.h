@@ -13,7 +13,7 @@ struct RenderCommand {
   std::string scene;
   uint32_t frames = 1;
   std::string out = "out";
-  std::string camera = "static";  // static | orbit
+  std::string camera = "static";  // static | orbit | flythrough
   RenderSettings settings;
 };
 
@@ -21,5 +21,10 @@ struct RenderCommand {
 RenderCommand parseRender(const std::vector<std::string>& args);
 
 extern const char* kUsage;
+
+// `option`'s value as a whole number in lo..hi, or a positive finite number; throws
+// raybudget::Error naming the option otherwise.
+uint32_t parseUint(const std::string& option, const std::string& value, uint32_t lo, uint32_t hi);
+float parsePositive(const std::string& option, const std::string& value);
 
 }  // namespace raybudget::cli

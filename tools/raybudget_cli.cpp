@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "cli_options.h"
+#include "sweep.h"
 #include "raybudget/raybudget.h"
 #include "vk/context.h"
 
@@ -22,14 +23,19 @@ int render(const raybudget::cli::RenderCommand& c) {
   std::filesystem::create_directories(c.out);
   StatsCsv stats(std::filesystem::path(c.out) / "stats.csv");
   std::vector<FrameTiming> all;
-  const Camera start = defaultCamera(scene, renderer.aspect());
+  const Camera start = c.camera == "static" ? defaultCamera(scene, renderer.aspect()) : pathStartCamera(scene, renderer.aspect());
   auto collect = [&](const std::vector<FrameTiming>& done) {
     for (const FrameTiming& t : done) {
       stats.add(t);
       all.push_back(t);
     }
   };
-  for (uint32_t f = 0; f < c.frames; ++f) collect(renderer.render(c.camera == "orbit" ? orbitCamera(start, f, c.frames) : start));
+  auto camera = [&](uint32_t f) {
+    if (c.camera == "orbit") return orbitCamera(start, f, c.frames);
+    if (c.camera == "flythrough") return flythroughCamera(start, f, c.frames);
+    return start;
+  };
+  for (uint32_t f = 0; f < c.frames; ++f) collect(renderer.render(camera(f)));
   collect(renderer.finish());
   const FrameImages images = renderer.readback();
   writePng(std::filesystem::path(c.out) / "frame.png", images.width, images.height, images.ldrRgba8);
@@ -61,6 +67,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (args[0] == "render") return render(raybudget::cli::parseRender({args.begin() + 1, args.end()}));
+    if (args[0] == "sweep" && args.size() > 1 && (args[1] == "--help" || args[1] == "-h")) {
+      std::cout << raybudget::cli::kSweepUsage;
+      return 0;
+    }
+    if (args[0] == "sweep") return raybudget::cli::runSweep(raybudget::cli::parseSweep({args.begin() + 1, args.end()}));
     std::cerr << "raybudget: unknown command '" << args[0] << "'\n\n" << raybudget::cli::kUsage;
     return 2;
   } catch (const std::exception& e) {

@@ -285,6 +285,8 @@ struct Renderer::Impl {
       std::vector<select::Candidate> c;
       for (uint32_t i = 0; i < r[0]; ++i) c.push_back({g[i].id, g[i].cost, g[i].value, g[i].distance});
       t.optimalValueBound = select::optimalValueBound(c, settings.budgetMs);
+      if (!c.empty())
+        t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
     }
     t.measuredTraceMs = t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
     if (!settings.learnTimeScale) return;

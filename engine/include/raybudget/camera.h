@@ -21,4 +21,8 @@ struct Camera {
 // and distance: a deterministic orbit for benchmarks and tests.
 Camera orbitCamera(const Camera& start, uint32_t frame, uint32_t frameCount);
 
+// Camera `frame` of `frameCount` on a fly-through: from `start` over its target and out to
+// the far side, looking ahead: the objects' pixels, distances and visibility change fast.
+Camera flythroughCamera(const Camera& start, uint32_t frame, uint32_t frameCount);
+
 }  // namespace raybudget

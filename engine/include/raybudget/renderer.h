@@ -79,6 +79,7 @@ struct FrameTiming {
   uint32_t selectedObjects = 0;
   uint32_t selectionChanges = 0;  // objects selected or dropped since the previous frame
   double optimalValueBound = 0.0;  // with RenderSettings::optimalBound: the knapsack bound on the value
+  double cheapestCandidateMs = 0.0;  // with RenderSettings::optimalBound: the least predicted cost of a candidate (0: none)
   double selectedValue = 0.0;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;

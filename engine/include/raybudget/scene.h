@@ -150,6 +150,12 @@ Scene loadScene(const std::filesystem::path& path);
 // The camera to render with: the scene's own, else one framing its bounds.
 Camera defaultCamera(const Scene& scene, float aspect);
 
+// Where the camera paths (orbit, fly-through) start: the default camera's position pulled
+// 40% towards the centre of the scene's bounds, looking at that centre with world up (a
+// glTF camera's own target is just a point ahead of it, and an orbit around it would
+// leave an enclosed scene).
+Camera pathStartCamera(const Scene& scene, float aspect);
+
 // Writes `params` of each object back into the glTF file as node extras.raybudget,
 // keeping everything else as loaded. Used by the editor and the round-trip test.
 void saveRayBudgetParams(const std::filesystem::path& source, const std::filesystem::path& destination,

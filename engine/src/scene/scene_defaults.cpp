@@ -36,6 +36,16 @@ Camera defaultCamera(const Scene& scene, float aspect) {
   return c;
 }
 
+Camera pathStartCamera(const Scene& scene, float aspect) {
+  Camera c = defaultCamera(scene, aspect);
+  const glm::vec3 center = 0.5f * (scene.boundsMin + scene.boundsMax);
+  c.position = center + 0.6f * (c.position - center);
+  c.target = center;
+  c.up = glm::vec3(0.0f, 1.0f, 0.0f);
+  if (glm::length(glm::cross(c.position - c.target, c.up)) < 1e-6f) c.position.z += 1e-3f;  // straight above: lookAt needs a side
+  return c;
+}
+
 void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform) {
   if (id >= scene.objects.size()) throw Error("setObjectTransform: object " + std::to_string(id) + " does not exist");
   const float det = glm::determinant(glm::mat3(transform));
