@@ -6,7 +6,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build ccache pkg-config git python3
+  build-essential cmake ninja-build ccache pkg-config git python3 python3-venv
   libvulkan-dev vulkan-validationlayers vulkan-tools spirv-tools
   glslang-tools glslang-dev
   libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
