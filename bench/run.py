@@ -4,8 +4,9 @@ of ../shared/scenes/bench that loads, scores each frame with FLIP (NVIDIA's flip
 against the full-RT reference, and writes results/<date>/: frames.csv, summary.csv,
 headline.md, plots and image strips (the per-scene sweeps and their images under raw/).
 
-usage: bench/run.py [--quick] [--out DIR] [--scenes FILE...] [--policies LIST]
-                    [--budgets N] [--frames N] [--warmup N] [--repeats N] [--size WxH]
+usage: bench/run.py [--quick] [--out DIR] [--publish DIR] [--scenes FILE...]
+                    [--policies LIST] [--budgets N] [--frames N] [--warmup N]
+                    [--repeats N] [--size WxH] [--paths LIST] [--validation]
 
 Needs numpy, matplotlib and flip-evaluator (scripts/bench-deps.sh makes .venv-bench).
 """
@@ -15,6 +16,7 @@ import datetime
 import math
 import os
 import pathlib
+import shutil
 import subprocess
 import sys
 import time
@@ -39,8 +41,9 @@ def parse_args(argv):
     p.add_argument("--paths", default="orbit,flythrough")
     p.add_argument("--raybudget", default=str(ROOT / "build" / "tools" / "raybudget"))
     p.add_argument("--validation", action="store_true")
+    p.add_argument("--publish", help="also copy summary.csv, headline.md, plots/ and strips/ into this folder (docs/benchmarks)")
     a = p.parse_args(argv)
-    full = dict(budgets=8, frames=8, warmup=4, repeats=3)
+    full = dict(budgets=8, frames=6, warmup=3, repeats=3)
     quick = dict(budgets=6, frames=4, warmup=2, repeats=3)
     for k, v in (quick if a.quick else full).items():
         if getattr(a, k) is None:
@@ -405,6 +408,13 @@ def main(argv):
                 + (f"; failed: {', '.join(f'{n} (exit {rc})' for n, rc in skipped)}" if skipped else "") + "\n\n" + text)
     plots(out_dir, summary, rows, policies)
     strips(out_dir, rows)
+    if a.publish:
+        pub = pathlib.Path(a.publish)
+        pub.mkdir(parents=True, exist_ok=True)
+        for name in ("summary.csv", "headline.md"):
+            shutil.copy(out_dir / name, pub / name)
+        for folder in ("plots", "strips"):
+            shutil.copytree(out_dir / folder, pub / folder, dirs_exist_ok=True)
     print(text)
     print(f"run.py: wrote {out_dir}/frames.csv, summary.csv, headline.md, plots/, strips/ in {minutes:.1f} min")
     return 0

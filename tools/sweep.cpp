@@ -217,7 +217,7 @@ int runSweep(const SweepCommand& c) {
   std::ofstream csv(std::filesystem::path(c.out) / "frames.csv");
   csv << "scene,path,policy,budget_index,budget_ms,repeat,frame,trace_ms,frame_ms,predicted_trace_ms,selected_objects,rays,selected_value,"
          "optimal_value_bound,selection_changes,rmse,psnr,image\n";
-  const uint64_t perPath = uint64_t(c.frames + c.warmup) * (uint64_t(c.repeats) * (2 + c.policies.size() * c.budgets) + 1);
+  const uint64_t perPath = uint64_t(c.frames + c.warmup) * (uint64_t(c.repeats) * (2 + c.policies.size() * c.budgets) + c.policies.size());
   Sweep sweep(c, scene, renderer, csv, perPath * c.paths.size());
   std::cout << "sweep " << c.scene << ": " << scene.objects.size() << " objects, device " << renderer.deviceName() << '\n';
   const Camera start = pathStartCamera(scene, renderer.aspect());
@@ -228,12 +228,15 @@ int runSweep(const SweepCommand& c) {
     for (uint32_t r = 0; r < c.repeats; ++r)
       for (const FrameTiming& t : sweep.run(pathName, path, {Policy::All, 0, 1.0f, r}, true)) fullTrace.push_back(traceMs(t));
     for (uint32_t r = 0; r < c.repeats; ++r) sweep.run(pathName, path, {Policy::None, 0, 1.0f, r}, true);
-    // The sweep's ends: full RT's trace time, and the cheapest candidate's predicted cost
-    // (a density run at the full budget, not recorded).
+    // The sweep's ends: full RT's trace time, and the cheapest candidate's predicted cost.
+    // Each policy runs the path once at the full budget first, not recorded: the cost
+    // model learns the device's time scale (kept across restarts, per cost unit) as an
+    // engine running for a while would have, and the probes give the cheapest candidate.
     const double most = std::max(median(fullTrace), 1e-3);
     std::vector<double> cheapest;
-    for (const FrameTiming& t : sweep.run(pathName, path, {Policy::Density, 0, float(most), 0}, false))
-      if (t.cheapestCandidateMs > 0.0) cheapest.push_back(t.cheapestCandidateMs);
+    for (const Policy p : c.policies)
+      for (const FrameTiming& t : sweep.run(pathName, path, {p, 0, float(most), 0}, false))
+        if (t.cheapestCandidateMs > 0.0 && p != Policy::Paper) cheapest.push_back(t.cheapestCandidateMs);
     double least = cheapest.empty() ? most / 64.0 : median(cheapest);
     if (least > most / 8.0) least = most / 8.0;
     std::printf("%s: full-RT trace %.3f ms, cheapest object %.4f ms\n", pathName.c_str(), most, least);

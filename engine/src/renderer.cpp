@@ -140,6 +140,10 @@ struct Renderer::Impl {
   // The cost model: trace milliseconds per unit of work (rays = pixels * Q, or the paper's
   // C), learned from the trace passes' timestamps.
   double kappa = 0.0;
+  // The time scale each cost unit last learned (0: the work units of density, nearest and
+  // random; 1: the paper's C), kept across restartSelection: it describes the device and
+  // the scene, not the selection. 0 = not learned yet.
+  std::array<double, 2> learnedKappa{0.0, 0.0};
   passes::ShadowMapPass shadowMaps;
   passes::EnvironmentPass environment;
   passes::ScreenPass lighting;
@@ -490,16 +494,18 @@ struct Renderer::Impl {
     return settings.policy == Policy::Paper ? 1e-4 * double(settings.width) * double(settings.height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
   }
 
-  // Forgets what the selection learned (S, work per pixel, kappa) and switches policy and
-  // budget, as if a new renderer had been made for the same scene.
+  // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
+  // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
   std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs) {
     RenderSettings next = settings;
     next.policy = policy;
     next.budgetMs = budgetMs;
     validateSettings(next);
     std::vector<FrameTiming> done = finish();
+    if (isBudgeted(settings.policy)) learnedKappa[settings.policy == Policy::Paper] = kappa;
     settings = next;
-    kappa = priorKappa();
+    const double learned = learnedKappa[settings.policy == Policy::Paper];
+    kappa = learned > 0.0 ? learned : priorKappa();
     const std::vector<gpu::GpuObjectParams> params = passes::initialObjectParams(scene.shell);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       constexpr size_t kPerUpdate = 65536 / sizeof(gpu::GpuObjectParams);  // vkCmdUpdateBuffer's limit

@@ -121,9 +121,12 @@ class Renderer {
   std::vector<FrameTiming> finish();
 
   // Switches to another policy and budget and forgets what the selection learned (S, each
-  // object's work per pixel, the time scale): the next frames select as a new Renderer on
-  // this scene would, without rebuilding its buffers and pipelines (benchmark sweeps).
-  // Finishes the frames in flight and returns their timings. Throws Error on a bad budget.
+  // object's work per pixel) without rebuilding buffers and pipelines (benchmark sweeps).
+  // The cost model's time scale (ms per unit of predicted work, a property of the device
+  // and scene) is kept per cost unit: the paper's C and our work units each keep what they
+  // last learned. With learnTimeScale off the next frames select exactly as a new Renderer
+  // would. Finishes the frames in flight and returns their timings. Throws Error on a bad
+  // budget.
   std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs);
 
   // Moves an object (animation, the editor): from the next frame on, its raster draws, its
