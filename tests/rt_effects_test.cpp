@@ -278,6 +278,15 @@ TEST(RtPolicy, TracesExactlyTheTilesOfSelectedPixels) {
 namespace raybudget {
 namespace {
 
+// Renders `frames` frames of a full orbit from `start` and returns every frame's timing.
+std::vector<FrameTiming> renderOrbit(Renderer& renderer, const Camera& start, uint32_t frames) {
+  std::vector<FrameTiming> t;
+  for (uint32_t f = 0; f < frames; ++f)
+    for (const FrameTiming& x : renderer.render(orbitCamera(start, f, frames))) t.push_back(x);
+  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  return t;
+}
+
 // One frame of a budgeted policy from the default camera; its stats.
 FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) {
   RenderSettings s;
@@ -338,10 +347,7 @@ uint32_t selectionChangesOnAnOrbit(Scene scene, float i) {
   Renderer renderer(scene, s);
   Camera start = defaultCamera(scene, 160.0f / 96.0f);
   start.position = glm::mix(start.target, start.position, 0.5f);  // inside the court's walls
-  std::vector<FrameTiming> t;
-  for (uint32_t f = 0; f < 36; ++f)
-    for (const FrameTiming& x : renderer.render(orbitCamera(start, f, 36))) t.push_back(x);
-  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  const std::vector<FrameTiming> t = renderOrbit(renderer, start, 36);
   EXPECT_EQ(t.size(), 36u);
   uint32_t changes = 0;
   for (size_t f = 6; f < t.size(); ++f) changes += t[f].selectionChanges;
@@ -379,10 +385,7 @@ TEST(RtBudget, TraceTimeStaysWithinTheBudgetOnAnOrbit) {
   s.budgetMs = 5.0f;
   Renderer renderer(scene, s);
   const Camera start = defaultCamera(scene, 320.0f / 180.0f);
-  std::vector<FrameTiming> t;
-  for (uint32_t f = 0; f < 300; ++f)
-    for (const FrameTiming& x : renderer.render(orbitCamera(start, f, 300))) t.push_back(x);
-  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  const std::vector<FrameTiming> t = renderOrbit(renderer, start, 300);
   test::expectValidationClean(renderer.validationMessages());
   ASSERT_EQ(t.size(), 300u);
   size_t within = 0, traced = 0;
@@ -445,17 +448,14 @@ struct Picked {
 
 // The selections of `frames` frames of an orbit (deterministic: the time scale is frozen).
 std::vector<Picked> orbitSelections(Renderer& renderer, const Camera& start, uint32_t frames) {
-  std::vector<FrameTiming> t;
-  for (uint32_t f = 0; f < frames; ++f)
-    for (const FrameTiming& x : renderer.render(orbitCamera(start, f, frames))) t.push_back(x);
-  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
   std::vector<Picked> out;
-  for (const FrameTiming& x : t) out.push_back({x.selectedObjects, x.selectedValue, x.predictedTraceMs});
+  for (const FrameTiming& x : renderOrbit(renderer, start, frames)) out.push_back({x.selectedObjects, x.selectedValue, x.predictedTraceMs});
   return out;
 }
 
-// restartSelection forgets S, the learned work per pixel and the time scale: after another
-// policy ran, a restarted renderer selects exactly what a new one does, frame by frame.
+// restartSelection forgets S and the learned work per pixel: with the time scale frozen,
+// after another policy ran, a restarted renderer selects exactly what a new one does, frame
+// by frame.
 TEST(RtBudget, RestartedSelectionEqualsANewRenderer) {
   const Scene scene = loadScene(test::defaultScenePath());
   RenderSettings s;
