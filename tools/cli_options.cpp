@@ -67,6 +67,12 @@ float parsePositive(const std::string& option, const std::string& value) {
   return v;
 }
 
+Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount) {
+  if (path == "orbit") return orbitCamera(start, frame, frameCount);
+  if (path == "flythrough") return flythroughCamera(start, frame, frameCount);
+  return start;
+}
+
 RenderCommand parseRender(const std::vector<std::string>& args) {
   RenderCommand c;
   for (size_t i = 0; i < args.size(); ++i) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "raybudget/camera.h"
 #include "raybudget/renderer.h"
 
 namespace raybudget::cli {
@@ -21,6 +22,10 @@ struct RenderCommand {
 RenderCommand parseRender(const std::vector<std::string>& args);
 
 extern const char* kUsage;
+
+// Frame `frame` of `frameCount` on the named camera path from `start`: "orbit",
+// "flythrough", or anything else the start itself (static).
+Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount);
 
 // `option`'s value as a whole number in lo..hi, or a positive finite number; throws
 // raybudget::Error naming the option otherwise.

@@ -30,12 +30,7 @@ int render(const raybudget::cli::RenderCommand& c) {
       all.push_back(t);
     }
   };
-  auto camera = [&](uint32_t f) {
-    if (c.camera == "orbit") return orbitCamera(start, f, c.frames);
-    if (c.camera == "flythrough") return flythroughCamera(start, f, c.frames);
-    return start;
-  };
-  for (uint32_t f = 0; f < c.frames; ++f) collect(renderer.render(camera(f)));
+  for (uint32_t f = 0; f < c.frames; ++f) collect(renderer.render(cli::cameraOnPath(c.camera, start, f, c.frames)));
   collect(renderer.finish());
   const FrameImages images = renderer.readback();
   writePng(std::filesystem::path(c.out) / "frame.png", images.width, images.height, images.ldrRgba8);

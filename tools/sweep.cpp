@@ -42,7 +42,7 @@ std::vector<std::string> splitList(const std::string& s) {
 
 std::vector<Camera> cameraPath(const std::string& name, const Camera& start, uint32_t frames) {
   std::vector<Camera> path;
-  for (uint32_t f = 0; f < frames; ++f) path.push_back(name == "orbit" ? orbitCamera(start, f, frames) : flythroughCamera(start, f, frames));
+  for (uint32_t f = 0; f < frames; ++f) path.push_back(cameraOnPath(name, start, f, frames));
   return path;
 }
 
@@ -152,7 +152,10 @@ class Sweep {
     collect(renderer_.render(camera));
     ++rendered_;
     ++done_;
-    if (done_ % 8 == 0 || done_ == total_) std::printf("progress %llu %llu\n", (unsigned long long)done_, (unsigned long long)total_), std::fflush(stdout);
+    if (done_ % 8 == 0 || done_ == total_) {
+      std::printf("progress %llu %llu\n", (unsigned long long)done_, (unsigned long long)total_);
+      std::fflush(stdout);
+    }
   }
 
   const SweepCommand& c_;
