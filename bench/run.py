@@ -281,6 +281,20 @@ def headline(summary, policies):
     return "\n".join(lines) + "\n"
 
 
+def label(ax, xlabel, ylabel, title):
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+
+
+def save(plt, fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
 def plots(out_dir, summary, rows, policies):
     import matplotlib
     matplotlib.use("Agg")
@@ -302,14 +316,8 @@ def plots(out_dir, summary, rows, policies):
                 if s:
                     ax.plot([max(s["trace_ms"], 1e-3)], [s["flip"]], "s", color=COLORS[p], label=p, ms=7)
             ax.set_xscale("log")
-            ax.set_xlabel("trace-pass GPU time per frame (ms, log)")
-            ax.set_ylabel("mean FLIP against full RT")
-            ax.set_title(f"{scene}: {path}")
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(plot_dir / f"error_vs_time_{scene}.png", dpi=90)
-        plt.close(fig)
+            label(ax, "trace-pass GPU time per frame (ms, log)", "mean FLIP against full RT", f"{scene}: {path}")
+        save(plt, fig, plot_dir / f"error_vs_time_{scene}.png")
     # Adherence and flicker per policy against the budget index, over all scenes.
     for key, ylabel, name in (("within_1.2T", "frames with trace time <= 1.2 T", "adherence"),
                               ("changes_per_frame", "selection changes per frame", "flicker")):
@@ -321,14 +329,8 @@ def plots(out_dir, summary, rows, policies):
                     by_b.setdefault(s["budget_index"], []).append(s[key])
             bs = sorted(by_b)
             ax.plot(bs, [mean(by_b[b]) for b in bs], "o-", color=COLORS.get(p), label=p)
-        ax.set_xlabel("budget point (0 = cheapest object ... last = full-RT trace time)")
-        ax.set_ylabel(ylabel)
-        ax.set_title(f"{name}, mean over scenes and paths")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(plot_dir / f"{name}.png", dpi=90)
-        plt.close(fig)
+        label(ax, "budget point (0 = cheapest object ... last = full-RT trace time)", ylabel, f"{name}, mean over scenes and paths")
+        save(plt, fig, plot_dir / f"{name}.png")
 
 
 def strips(out_dir, rows):
@@ -361,9 +363,7 @@ def strips(out_dir, rows):
             ax.imshow(img.clip(0, 1))
             ax.set_title(title, fontsize=9)
             ax.axis("off")
-        fig.tight_layout()
-        fig.savefig(strip_dir / f"{scene}.png", dpi=90)
-        plt.close(fig)
+        save(plt, fig, strip_dir / f"{scene}.png")
 
 
 def main(argv):

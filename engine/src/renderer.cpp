@@ -487,6 +487,9 @@ struct Renderer::Impl {
     return done;
   }
 
+  // Which of learnedKappa a policy's predicted costs are in.
+  static size_t costUnit(Policy policy) { return policy == Policy::Paper ? 1 : 0; }
+
   // A prior until the first measurement: 1e-4 ms per ray (10 Mrays/s) of
   // RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the screen,
   // so per unit of C, 1e-4 ms times the pixel count.
@@ -502,9 +505,9 @@ struct Renderer::Impl {
     next.budgetMs = budgetMs;
     validateSettings(next);
     std::vector<FrameTiming> done = finish();
-    if (isBudgeted(settings.policy)) learnedKappa[settings.policy == Policy::Paper] = kappa;
+    if (isBudgeted(settings.policy)) learnedKappa[costUnit(settings.policy)] = kappa;
     settings = next;
-    const double learned = learnedKappa[settings.policy == Policy::Paper];
+    const double learned = learnedKappa[costUnit(settings.policy)];
     kappa = learned > 0.0 ? learned : priorKappa();
     const std::vector<gpu::GpuObjectParams> params = passes::initialObjectParams(scene.shell);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
