@@ -59,4 +59,32 @@ bool keyLess(uvec4 a, uvec4 b) {
   return a.w < b.w;
 }
 
+// lowbias32 of (seed, ID): the order of `random` (select::randomRank).
+uint randomRank(uint seed, uint id) {
+  uint x = id ^ (seed * 0x9E3779B9u);
+  x ^= x >> 16;
+  x *= 0x7FEB352Du;
+  x ^= x >> 15;
+  x *= 0x846CA68Bu;
+  x ^= x >> 16;
+  return x;
+}
+
+// The sort key of candidate i for the policy's order (which = 0) or `paper`'s relevance
+// order (1): ascending = selection order; the candidate index is the last word, so keys
+// are unique. Past the candidates: all ones, sorted last.
+uvec4 candidateKey(uint i, uint which) {
+  if (i >= candidateCount()) return uvec4(0xFFFFFFFFu);
+  GpuCandidate c = candidates[i];
+  uint policy = push.sizes.z;
+  if (policy == RB_SELECT_DENSITY) {
+    precise float density = c.cost > 0.0 ? c.value / c.cost : uintBitsToFloat(0x7F800000u);
+    return uvec4(~orderedBits(density), orderedBits(c.cost), c.id, i);
+  }
+  if (policy == RB_SELECT_NEAREST) return uvec4(orderedBits(c.distance), c.id, 0u, i);
+  if (policy == RB_SELECT_RANDOM) return uvec4(randomRank(push.sizes.w, c.id), c.id, 0u, i);
+  if (which == 0u) return uvec4(~orderedBits(c.cost), c.id, 0u, i);  // `paper`: the cost chain, most costly first
+  return uvec4(~orderedBits(c.value), c.id, 0u, i);                  // `paper`: the relevance order, most relevant first
+}
+
 #endif

@@ -13,6 +13,7 @@ layout(local_size_x = 64) in;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.walk.z) return;
+  selected[i] = 0u;  // until the walk selects it
   GpuObjectCost oc = costs[i];
   if (oc.pixels > 0u && oc.work > 0u) {
     float observed = float(oc.work) / float(oc.pixels);

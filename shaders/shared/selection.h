@@ -41,8 +41,12 @@ struct GpuObjectCost {
 // Prior traversal work (BVH nodes + triangles) per ray, before an object was measured.
 #define RB_PRIOR_WORK_PER_RAY 32.0
 
-// Keys per invocation in the first pass of the merge sort (shaders/select/select_merge.comp).
-#define RB_MERGE_CHUNK 8u
+// The merge sort (shaders/select/select_block_sort.comp, select_merge.comp): keys sorted
+// completely by one workgroup of RB_MERGE_LANES invocations (one SIMD batch on lavapipe),
+// and outputs per invocation of each merge pass over the blocks.
+#define RB_MERGE_BLOCK 1024u
+#define RB_MERGE_LANES 8u
+#define RB_MERGE_SEGMENT 32u
 
 // 16 bytes: one candidate of the GPU selection (select::Candidate).
 struct GpuCandidate {

@@ -6,6 +6,7 @@
 
 #include "select_apply_comp.h"
 #include "select_bitonic_comp.h"
+#include "select_block_sort_comp.h"
 #include "select_candidates_comp.h"
 #include "select_keys_comp.h"
 #include "select_merge_comp.h"
@@ -31,6 +32,23 @@ constexpr uint32_t kBlock = 1024;  // the bitonic shader's shared-memory block
 
 uint32_t paddedSize(uint32_t n) { return std::max(kBlock, std::bit_ceil(std::max(n, 1u))); }
 
+// The walk runs as one subgroup (shaders/select/select_walk.comp): its workgroup size is
+// the device's subgroup size, and it needs the subgroup vote, arithmetic and shuffle ops.
+vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayout layout) {
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+  vkGetPhysicalDeviceProperties2(ctx.physicalDevice(), &properties);
+  const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
+                                        VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
+  if ((subgroup.supportedOperations & needed) != needed || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
+    throw Error(std::string("the GPU selection needs subgroup vote, arithmetic and shuffle operations in compute shaders; ") +
+                ctx.properties().deviceName + " lacks them");
+  const uint32_t size = subgroup.subgroupSize;
+  const VkSpecializationMapEntry entry{0, 0, sizeof(size)};
+  const VkSpecializationInfo info{1, &entry, sizeof(size), &size};
+  return vk::createComputePipeline(ctx, layout, kSpirv_select_walk_comp, &info);
+}
+
 }  // namespace
 
 struct GpuSelector::Impl {
@@ -38,11 +56,10 @@ struct GpuSelector::Impl {
   uint32_t capacity, padded;
   vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, placeholder;
   vk::ComputeSet set;
-  vk::Owned<VkPipeline> keys, bitonic, merge, walk, candidatesFromObjects, apply;
+  vk::Owned<VkPipeline> keys, bitonic, blockSort, merge, walk, candidatesFromObjects, apply;
   bool mergeSort = false;  // a CPU device: the barrier-free merge sort beats the bitonic sort
   vk::TimestampPool timestamps;
   double gpuMs = 0.0;
-  VkBuffer frameSelection = VK_NULL_HANDLE;
 
   Impl(const vk::Context& c, uint32_t cap, SortMethod sort)
       : ctx(c), capacity(cap), padded(paddedSize(cap)), timestamps(c, 1, 1) {
@@ -64,8 +81,9 @@ struct GpuSelector::Impl {
     apply = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_apply_comp);
     keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
     bitonic = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_bitonic_comp);
-    walk = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_walk_comp);
+    walk = createWalkPipeline(c, set.pipelineLayout);
     merge = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_merge_comp);
+    blockSort = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_block_sort_comp);
     mergeSort = sort == SortMethod::Merge || (sort == SortMethod::Auto && c.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
   }
 
@@ -75,17 +93,13 @@ struct GpuSelector::Impl {
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
-  void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa, const select::PolicyOptions& options,
-                   VkBuffer selection) {
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa, const select::PolicyOptions& options) {
     if (objects > capacity) throw Error("GPU selection of " + std::to_string(objects) + " objects exceeds its capacity " + std::to_string(capacity));
     if (policy == select::Policy::Optimal || policy == select::Policy::All || policy == select::Policy::None)
       throw Error(std::string("frame selection runs the budgeted policies, not ") + select::policyName(policy));
     SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
                     glm::vec4(budget, kappa, 0, 0), glm::uvec4(options.paperHops, 1, objects, 0)};
-    vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);
-    vkCmdFillBuffer(cmd, flags.buffer, 0, VK_WHOLE_SIZE, 0);
-    vkCmdFillBuffer(cmd, scratch.buffer, 0, VK_WHOLE_SIZE, 0);
-    vkCmdFillBuffer(cmd, selection, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);  // the candidate count
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -94,9 +108,6 @@ struct GpuSelector::Impl {
     sortOrder(cmd, push, 0, objects);
     if (policy == select::Policy::Paper) sortOrder(cmd, push, 1, objects);
     dispatch(cmd, walk, push, 1);
-    push.stage.z = 0;
-    dispatch(cmd, apply, push, (capacity + 63) / 64);
-    push.stage.z = 1;
     dispatch(cmd, apply, push, (objects + 63) / 64);
   }
 
@@ -108,26 +119,29 @@ struct GpuSelector::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
 
-  // Keys then a sort (bitonic, or the merge sort) of one order (0: the policy's, 1:
-  // `paper`'s relevance order) of up to `most` candidates.
+  // A sort of one order (0: the policy's, 1: `paper`'s relevance order) of up to `most`
+  // candidates: the merge sort (computing its own keys), or keys then the bitonic sort.
   void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which, uint32_t most) {
     push.stage = glm::uvec4(0, 0, which, push.stage.w);
-    dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
     if (mergeSort) {
-      // Sorted chunks of RB_MERGE_CHUNK keys, merged while shorter than `most`. Each merge
-      // reads where the pass before wrote; the chunk pass writes to the spare buffer when
-      // the number of merges is odd, so that the last merge writes the keys.
-      uint32_t merges = 0;
-      for (uint32_t run = RB_MERGE_CHUNK; run < most; run *= 2) ++merges;
-      push.stage.y = merges % 2;
-      dispatch(cmd, merge, push, (most + RB_MERGE_CHUNK * 64 - 1) / (RB_MERGE_CHUNK * 64));
-      for (uint32_t run = RB_MERGE_CHUNK; run < most; run *= 2) {
-        if (run > RB_MERGE_CHUNK) push.stage.y = 1 - push.stage.y;
+      // Blocks sorted by one workgroup each, then merged while shorter than `most`. Each
+      // pass reads where the one before wrote; the block sort's first write goes to the
+      // spare buffer when the number of merge levels is odd, so that the last writes the keys.
+      uint32_t levelsInBlock = 0, passes = 0;
+      for (uint32_t run = 8; run < std::min(RB_MERGE_BLOCK, most); run *= 2) ++levelsInBlock;
+      for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2) ++passes;
+      push.stage.x = levelsInBlock;
+      push.stage.y = (levelsInBlock + passes) % 2;
+      dispatch(cmd, blockSort, push, (most + RB_MERGE_BLOCK - 1) / RB_MERGE_BLOCK);
+      push.stage.y = passes % 2;  // where the blocks are now
+      for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2) {
         push.stage.x = run;
-        dispatch(cmd, merge, push, (most + RB_MERGE_CHUNK * 64 - 1) / (RB_MERGE_CHUNK * 64));
+        dispatch(cmd, merge, push, (most + RB_MERGE_SEGMENT * 64 - 1) / (RB_MERGE_SEGMENT * 64));
+        push.stage.y = 1 - push.stage.y;
       }
       return;
     }
+    dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
     push.stage.x = 0;  // every stage up to the block size in one dispatch
     push.stage.y = 0;
     dispatch(cmd, bitonic, push, push.sizes.y / kBlock);
@@ -160,8 +174,6 @@ struct GpuSelector::Impl {
         const VkBufferCopy copy{0, 0, n * sizeof(gpu::GpuCandidate)};
         vkCmdCopyBuffer(cmd, staging.buffer, candidates.buffer, 1, &copy);
       }
-      vkCmdFillBuffer(cmd, flags.buffer, 0, VK_WHOLE_SIZE, 0);
-      vkCmdFillBuffer(cmd, scratch.buffer, 0, VK_WHOLE_SIZE, 0);
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
@@ -197,12 +209,11 @@ select::Selection GpuSelector::select(std::span<const select::Candidate> candida
 }
 double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
 void GpuSelector::bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
-  impl_->frameSelection = selection;
   impl_->bindFrame(records, selection, params, costs);
 }
 void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
                               const select::PolicyOptions& options) const {
-  impl_->recordFrame(cmd, objects, policy, budget, kappa, options, impl_->frameSelection);
+  impl_->recordFrame(cmd, objects, policy, budget, kappa, options);
 }
 VkBuffer GpuSelector::resultBuffer() const { return impl_->result.buffer; }
 VkBuffer GpuSelector::candidateBuffer() const { return impl_->candidates.buffer; }

@@ -12,8 +12,9 @@
 namespace raybudget::passes {
 
 // How the candidates are ordered: a bitonic sort in shared-memory blocks, or a merge sort
-// without barriers (faster on a CPU device, where barriers are expensive). Auto picks the
-// merge sort on a CPU device. Both give the same order.
+// (blocks sorted by one-subgroup workgroups, then barrier-free merge passes: faster on a CPU
+// device, where barriers between SIMD batches are expensive). Auto picks the merge sort on
+// a CPU device. Both give the same order.
 enum class SortMethod { Auto, Bitonic, Merge };
 
 class GpuSelector {
@@ -31,7 +32,7 @@ class GpuSelector {
   double lastGpuMs() const;
 
   // Frame mode. The renderer's per-object buffers (shared/selection.h): records in, the
-  // selection out (uint per object, zeroed here), K/Q/I with S updated for the next frame.
+  // selection out (uint per object, written here), K/Q/I with S updated for the next frame.
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs);
   // Records, into the frame's command buffer, the selection among the objects' candidates
   // with costs kappa * work (the paper's C for `paper`, pixels * Q otherwise). Afterwards

@@ -1,0 +1,62 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The merge sort's first dispatch: each workgroup sorts one block of RB_MERGE_BLOCK
+// candidates' keys completely. The workgroup is one SIMD batch on lavapipe
+// (RB_MERGE_LANES invocations), so its barriers switch nothing; the merge passes of
+// select_merge.comp then merge the blocks. Each invocation computes the keys of chunks of
+// 8 and sorts them with a sorting network on registers (no array indexed at run time:
+// lavapipe would spill it), then every level merges runs of 8, 16, ... up to the block.
+//   stage.x: merge levels within the block; stage.y = 1: the sorted chunks go to the
+//   spare buffer (the host picks it so that the last pass of the sort writes the keys).
+#include "include/select_merge.glsl"
+
+layout(local_size_x = RB_MERGE_LANES) in;
+
+// Compare-exchange: a gets the smaller key.
+#define RB_CSWAP(a, b) \
+  if (keyLess(b, a)) { \
+    uvec4 t = a;       \
+    a = b;             \
+    b = t;             \
+  }
+
+// The 8 keys of chunk `chunk`, sorted by a 19-comparator network (keys past n are all
+// ones, sorted last, not stored).
+void sortChunk(uint chunk, uint n, bool toSpare) {
+  uint first = chunk * 8u, which = push.stage.z;
+  if (first >= n) return;
+  uvec4 k0 = candidateKey(first, which), k1 = candidateKey(first + 1u, which), k2 = candidateKey(first + 2u, which);
+  uvec4 k3 = candidateKey(first + 3u, which), k4 = candidateKey(first + 4u, which), k5 = candidateKey(first + 5u, which);
+  uvec4 k6 = candidateKey(first + 6u, which), k7 = candidateKey(first + 7u, which);
+  RB_CSWAP(k0, k2) RB_CSWAP(k1, k3) RB_CSWAP(k4, k6) RB_CSWAP(k5, k7)
+  RB_CSWAP(k0, k4) RB_CSWAP(k1, k5) RB_CSWAP(k2, k6) RB_CSWAP(k3, k7)
+  RB_CSWAP(k0, k1) RB_CSWAP(k2, k3) RB_CSWAP(k4, k5) RB_CSWAP(k6, k7)
+  RB_CSWAP(k2, k4) RB_CSWAP(k3, k5)
+  RB_CSWAP(k1, k4) RB_CSWAP(k3, k6)
+  RB_CSWAP(k1, k2) RB_CSWAP(k3, k4) RB_CSWAP(k5, k6)
+  storeKey(toSpare, first, k0);
+  if (first + 1u < n) storeKey(toSpare, first + 1u, k1);
+  if (first + 2u < n) storeKey(toSpare, first + 2u, k2);
+  if (first + 3u < n) storeKey(toSpare, first + 3u, k3);
+  if (first + 4u < n) storeKey(toSpare, first + 4u, k4);
+  if (first + 5u < n) storeKey(toSpare, first + 5u, k5);
+  if (first + 6u < n) storeKey(toSpare, first + 6u, k6);
+  if (first + 7u < n) storeKey(toSpare, first + 7u, k7);
+}
+
+void main() {
+  uint n = candidateCount(), base = gl_WorkGroupID.x * RB_MERGE_BLOCK, lane = gl_LocalInvocationID.x;
+  if (base >= n) return;  // the whole workgroup: no barrier is skipped by part of it
+  bool toSpare = push.stage.y != 0u;
+  // Adjacent lanes take adjacent chunks, so the SIMD batch loads neighbouring candidates.
+  for (uint c = lane; c < RB_MERGE_BLOCK / 8u; c += RB_MERGE_LANES) sortChunk(base / 8u + c, n, toSpare);
+  const uint perLane = RB_MERGE_BLOCK / RB_MERGE_LANES;
+  uint run = 8u;
+  for (uint level = 0u; level < push.stage.x; ++level) {
+    memoryBarrierBuffer();
+    barrier();
+    mergeRange(base + lane * perLane, base + (lane + 1u) * perLane, run, n, toSpare);
+    toSpare = !toSpare;
+    run *= 2u;
+  }
+}
