@@ -20,8 +20,19 @@ void addWide(uint index, uint word, uint value) {
   }
 }
 
+// Adds an object to the tile's set (shared/config.h), or marks the set full.
+void noteTileObject(uint tile, uint id) {
+  uint base = tile * RB_TILE_OBJECT_WORDS;
+  for (uint s = 0u; s + 1u < RB_TILE_OBJECT_WORDS; ++s) {
+    uint old = atomicCompSwap(tileObjects[base + s], 0u, id + 1u);
+    if (old == 0u || old == id + 1u) return;
+  }
+  tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] = 1u;
+}
+
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
+  uint tile = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;  // a workgroup is a tile
   bool inside = p.x < frame.sizeLightsFrame.x && p.y < frame.sizeLightsFrame.y;
   uint id = inside ? texelFetch(gObjectId, ivec2(p), 0).r : RB_NO_OBJECT;
   bool pending = id != RB_NO_OBJECT;
@@ -36,6 +47,7 @@ void main() {
       atomicAdd(coverage[current].pixelsSumX.x, pixels);
       addWide(current, 1u, sumX);
       addWide(current, 3u, sumY);
+      noteTileObject(tile, current);
     }
     pending = pending && !mine;
   }

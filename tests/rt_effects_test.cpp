@@ -3,6 +3,7 @@
 // tracing on and off without touching anything else.
 #include <bit>
 #include <cstring>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
@@ -270,6 +271,64 @@ TEST(RtPolicy, TracesExactlyTheTilesOfSelectedPixels) {
   // The empty dispatches still run (and are timed) but do no work.
   ASSERT_TRUE(skyTimings[0].passMs[size_t(Pass::TraceShadows)].has_value());
   EXPECT_LT(*skyTimings[0].passMs[size_t(Pass::TraceShadows)], 0.25 * *timings[0].passMs[size_t(Pass::TraceShadows)]);
+}
+
+// The tile list checks the objects the coverage pass noted per tile and scans the pixels
+// only of tiles showing more than three. On a crowded grid under a budget both kinds of
+// tile occur, and the traced tiles are exactly those holding pixels of selected objects.
+TEST(RtPolicy, TracesTheTilesOfSelectedObjectsOnACrowdedGrid) {
+  const Scene scene = cubeGridScene(900);
+  RenderSettings s;
+  s.width = 320;
+  s.height = 192;
+  s.validation = true;
+  s.policy = Policy::Density;
+  s.budgetMs = 1000.0f;      // first everything: the predicted cost of the whole set
+  s.learnTimeScale = false;  // predictions in the prior's time scale: the budget binds deterministically
+  s.objectMetrics = true;
+  Renderer renderer(scene, s);
+  const Camera camera = pathStartCamera(scene, 320.0f / 192.0f);
+  std::vector<FrameTiming> first = renderer.render(camera);
+  for (const FrameTiming& f : renderer.finish()) first.push_back(f);
+  ASSERT_EQ(first.size(), 1u);
+  ASSERT_GT(first[0].predictedTraceMs, 0.0);
+  // A third of that: the budget selects some objects, not all.
+  renderer.restartSelection(Policy::Density, float(first[0].predictedTraceMs / 8.0));
+  std::vector<FrameTiming> t;
+  for (int f = 0; f < 3; ++f)
+    for (const FrameTiming& x : renderer.render(camera)) t.push_back(x);
+  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  ASSERT_EQ(t.size(), 3u);
+  const FrameImages img = renderer.readback();
+  const std::vector<ObjectMetrics> metrics = renderer.objectMetrics();
+  size_t tiles = 0, crowded = 0, mixedSparse = 0, selectedObjects = 0, visibleObjects = 0;
+  for (const ObjectMetrics& m : metrics) {
+    selectedObjects += m.selected;
+    visibleObjects += m.pixels > 0;
+  }
+  for (uint32_t ty = 0; ty < (s.height + 7) / 8; ++ty)
+    for (uint32_t tx = 0; tx < (s.width + 7) / 8; ++tx) {
+      std::set<uint32_t> objects;
+      bool any = false, unselected = false;
+      for (uint32_t y = ty * 8; y < std::min(s.height, ty * 8 + 8); ++y)
+        for (uint32_t x = tx * 8; x < std::min(s.width, tx * 8 + 8); ++x) {
+          const uint32_t id = img.objectIds[size_t(y) * s.width + x];
+          if (id == 0xFFFFFFFFu) continue;
+          objects.insert(id);
+          any = any || metrics[id].selected;
+          unselected = unselected || !metrics[id].selected;
+        }
+      tiles += any;
+      crowded += objects.size() > 3;
+      mixedSparse += objects.size() > 1 && objects.size() <= 3 && any && unselected;
+    }
+  EXPECT_GT(crowded, 0u) << "some tiles show more than three objects (the pixel scan)";
+  EXPECT_GT(mixedSparse, 0u) << "some tiles show two or three objects, selected and not (the object check)";
+  EXPECT_GT(selectedObjects, 0u);
+  EXPECT_LT(selectedObjects, visibleObjects) << "the budget binds";
+  EXPECT_EQ(t.back().selectedObjects, selectedObjects);
+  EXPECT_EQ(t.back().tracedTiles, tiles);
+  test::expectValidationClean(renderer.validationMessages());
 }
 
 }  // namespace

@@ -559,21 +559,23 @@ std::vector<ObjectMetrics> Renderer::objectMetrics() {
   if (r.frameIndex == 0) throw Error("objectMetrics() before any frame was rendered");
   VK_CHECK(vkQueueWaitIdle(r.ctx.queue()));
   const size_t count = r.scene.objectSpheres.size();
-  const VkDeviceSize bytes = std::max<size_t>(1, count) * sizeof(gpu::GpuObjectRecord);
-  vk::Buffer host = vk::createBuffer(r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  const VkDeviceSize bytes = std::max<size_t>(1, count) * sizeof(gpu::GpuObjectRecord), flagBytes = std::max<size_t>(1, count) * 4;
+  vk::Buffer host = vk::createBuffer(r.ctx, bytes + flagBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   r.ctx.submitAndWait([&](VkCommandBuffer cmd) {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                       VK_ACCESS_2_TRANSFER_READ_BIT);
-    const VkBufferCopy copy{0, 0, bytes};
+    const VkBufferCopy copy{0, 0, bytes}, flags{0, bytes, flagBytes};
     vkCmdCopyBuffer(cmd, r.scene.objectRecords.buffer, host.buffer, 1, &copy);
+    vkCmdCopyBuffer(cmd, r.scene.selection.buffer, host.buffer, 1, &flags);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   });
   const auto* records = static_cast<const gpu::GpuObjectRecord*>(host.mapped);
+  const auto* selected = reinterpret_cast<const uint32_t*>(static_cast<const char*>(host.mapped) + bytes);
   std::vector<ObjectMetrics> out(count);
   for (size_t i = 0; i < count; ++i) {
     const gpu::GpuObjectRecord& g = records[i];
     out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w, g.crCandidatePixels.x, g.crCandidatePixels.y,
-              g.crCandidatePixels.z > 0.5f};
+              g.crCandidatePixels.z > 0.5f, selected[i] != 0u};
   }
   return out;
 }

@@ -61,6 +61,8 @@ layout(set = 0, binding = 34, std430) buffer TileListBlock {
 };
 
 layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost objectCosts[]; };
+// Per tile, RB_TILE_OBJECT_WORDS words: the objects it shows (shared/config.h).
+layout(set = 0, binding = 36, std430) buffer TileObjectBlock { uint tileObjects[]; };
 
 // Whether the pixel's object was selected for ray tracing this frame.
 bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && selected[objectId] != 0u; }

@@ -7,6 +7,10 @@
 
 // Object-ID value of pixels that show no object (the G-buffer clear value).
 #define RB_NO_OBJECT 0xFFFFFFFFu
+// Per 8x8 tile, the coverage pass notes up to RB_TILE_OBJECT_WORDS - 1 distinct objects
+// (ID + 1, 0 = none) and, in the last word, 1 when the tile shows more: the tile list then
+// checks those objects instead of fetching the tile's pixels.
+#define RB_TILE_OBJECT_WORDS 4u
 
 // Light types (GpuLight.directionType.w).
 #define RB_LIGHT_DIRECTIONAL 0

@@ -91,6 +91,7 @@ struct ObjectMetrics {
   uint32_t pixels = 0;
   float A = 0.0f, P = 0.0f, D = 0.0f, V = 0.0f, C = 0.0f, R = 0.0f;
   bool candidate = false;
+  bool selected = false;  // ray-traced effects this frame (the select pass's choice)
 };
 
 struct FrameImages {

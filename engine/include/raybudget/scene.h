@@ -142,6 +142,10 @@ struct Scene {
 // default camera (direction of travel normalize(-0.3, -1, -0.4)).
 Light defaultSun();
 
+// A generated stress scene: a square grid of `count` cubes (0.8 units, one mesh instanced)
+// on the ground, lit by the default sun (selection benchmarks and tests).
+Scene cubeGridScene(uint32_t count);
+
 // Loads and validates a .gltf or .glb file. Throws raybudget::Error naming the file and the
 // problem on malformed input; recoverable oddities (points/lines, zero-area triangles)
 // become warnings in Scene::warnings.

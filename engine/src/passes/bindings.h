@@ -42,7 +42,8 @@ enum Binding : uint32_t {
   kSelection = 33,
   kTileList = 34,
   kObjectCosts = 35,
-  kBindingCount = 36,
+  kTileObjects = 36,
+  kBindingCount = 37,
 };
 
 }  // namespace raybudget::passes

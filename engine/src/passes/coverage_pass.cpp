@@ -17,6 +17,7 @@ CoveragePass::CoveragePass(const vk::Context& ctx, VkPipelineLayout layout)
 void CoveragePass::record(const FrameContext& fc) const {
   const VkCommandBuffer cmd = fc.cmd;
   vkCmdFillBuffer(cmd, fc.scene.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, fc.targets.tileObjects.buffer, 0, VK_WHOLE_SIZE, 0);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, coverage_);

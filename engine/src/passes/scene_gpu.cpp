@@ -201,7 +201,7 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   gpu.coverage = vk::createBuffer(ctx, objectCount * sizeof(gpu::GpuCoverage), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
   gpu.objectParams = vk::createDeviceBuffer(ctx, params, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   gpu.objectRecords = vk::createBuffer(ctx, objectCount * sizeof(gpu::GpuObjectRecord), kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-  gpu.selection = vk::createBuffer(ctx, objectCount * sizeof(uint32_t), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+  gpu.selection = vk::createBuffer(ctx, objectCount * sizeof(uint32_t), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
   gpu.objectCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuObjectCost>(objectCount), kStorage);
 
   // The acceleration structure for the ray-traced effects (static scenes: built once, here):
