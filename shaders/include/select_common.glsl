@@ -6,9 +6,8 @@
 #include "shared/selection.h"
 
 layout(set = 0, binding = 0, std430) buffer CandidateBlock { GpuCandidate candidates[]; };
-// Sort keys: (the order's primary word, candidate index); see candidateKey.
-layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec2 order[]; };
-layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec2 relevance[]; };  // `paper`: the relevance order
+layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec4 order[]; };       // sort keys k0, k1, k2, candidate index
+layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec4 relevance[]; };  // `paper`: the relevance order
 layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: taken, rank, group start
 layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
 // Frame mode: x candidates, y predicted cost and z value (float bits), w selected; then
@@ -53,6 +52,13 @@ uint orderedBits(float f) {
   return (u & 0x80000000u) != 0u ? ~u : (u | 0x80000000u);
 }
 
+bool keyLess(uvec4 a, uvec4 b) {
+  if (a.x != b.x) return a.x < b.x;
+  if (a.y != b.y) return a.y < b.y;
+  if (a.z != b.z) return a.z < b.z;
+  return a.w < b.w;
+}
+
 // lowbias32 of (seed, ID): the order of `random` (select::randomRank).
 uint randomRank(uint seed, uint id) {
   uint x = id ^ (seed * 0x9E3779B9u);
@@ -65,35 +71,20 @@ uint randomRank(uint seed, uint id) {
 }
 
 // The sort key of candidate i for the policy's order (which = 0) or `paper`'s relevance
-// order (1), ascending = selection order: the order's first criterion as ordered bits and
-// the candidate index. Keys are two words, not all criteria, because on a CPU device the
-// sort's time is its memory traffic; the rare ties in the first word are broken by
-// keyLess from the candidates. Past the candidates: all ones and the index, sorted last.
-uvec2 candidateKey(uint i, uint which) {
-  if (i >= candidateCount()) return uvec2(0xFFFFFFFFu, i);
+// order (1): ascending = selection order; the candidate index is the last word, so keys
+// are unique. Past the candidates: all ones, sorted last.
+uvec4 candidateKey(uint i, uint which) {
+  if (i >= candidateCount()) return uvec4(0xFFFFFFFFu);
   GpuCandidate c = candidates[i];
   uint policy = push.sizes.z;
   if (policy == RB_SELECT_DENSITY) {
     precise float density = c.cost > 0.0 ? c.value / c.cost : uintBitsToFloat(0x7F800000u);
-    return uvec2(~orderedBits(density), i);
+    return uvec4(~orderedBits(density), orderedBits(c.cost), c.id, i);
   }
-  if (policy == RB_SELECT_NEAREST) return uvec2(orderedBits(c.distance), i);
-  if (policy == RB_SELECT_RANDOM) return uvec2(randomRank(push.sizes.w, c.id), i);
-  if (which == 0u) return uvec2(~orderedBits(c.cost), i);  // `paper`: the cost chain, most costly first
-  return uvec2(~orderedBits(c.value), i);                  // `paper`: the relevance order, most relevant first
+  if (policy == RB_SELECT_NEAREST) return uvec4(orderedBits(c.distance), c.id, 0u, i);
+  if (policy == RB_SELECT_RANDOM) return uvec4(randomRank(push.sizes.w, c.id), c.id, 0u, i);
+  if (which == 0u) return uvec4(~orderedBits(c.cost), c.id, 0u, i);  // `paper`: the cost chain, most costly first
+  return uvec4(~orderedBits(c.value), c.id, 0u, i);                  // `paper`: the relevance order, most relevant first
 }
-
-// Candidates i and j tie in the first word: density then by lower cost, every order then
-// by lower ID, then lower index (select::policies' order). Past the candidates: last.
-bool tieLess(uint i, uint j) {
-  uint n = candidateCount();
-  if (i >= n || j >= n) return i < j;
-  GpuCandidate a = candidates[i], b = candidates[j];
-  if (push.sizes.z == RB_SELECT_DENSITY && a.cost != b.cost) return orderedBits(a.cost) < orderedBits(b.cost);
-  if (a.id != b.id) return a.id < b.id;
-  return i < j;
-}
-
-bool keyLess(uvec2 a, uvec2 b) { return a.x != b.x ? a.x < b.x : tieLess(a.y, b.y); }
 
 #endif

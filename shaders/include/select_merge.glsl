@@ -7,13 +7,13 @@
 #define RB_SELECT_MERGE_GLSL
 #include "select_common.glsl"
 
-layout(set = 0, binding = 10, std430) buffer SpareBlock { uvec2 spare[]; };
+layout(set = 0, binding = 10, std430) buffer SpareBlock { uvec4 spare[]; };
 
-uvec2 loadKey(bool fromSpare, uint i) {
+uvec4 loadKey(bool fromSpare, uint i) {
   if (fromSpare) return spare[i];
   return push.stage.z == 0u ? order[i] : relevance[i];
 }
-void storeKey(bool toSpare, uint i, uvec2 v) {
+void storeKey(bool toSpare, uint i, uvec4 v) {
   if (toSpare) spare[i] = v;
   else if (push.stage.z == 0u) order[i] = v;
   else relevance[i] = v;
@@ -37,7 +37,7 @@ void mergeRange(uint first, uint last, uint run, uint n, bool fromSpare) {
       else hi = mid;
     }
     uint a = a0 + lo, b = b0 + d - lo;
-    uvec2 keyA = a < b0 ? loadKey(fromSpare, a) : uvec2(0u), keyB = b < end ? loadKey(fromSpare, b) : uvec2(0u);
+    uvec4 keyA = a < b0 ? loadKey(fromSpare, a) : uvec4(0u), keyB = b < end ? loadKey(fromSpare, b) : uvec4(0u);
     uint stop = min(last, end);
     // Branch-free steps: one store and at most one load each, whichever run is taken.
     for (; o < stop; ++o) {
@@ -46,7 +46,7 @@ void mergeRange(uint first, uint last, uint run, uint n, bool fromSpare) {
       a += takeA ? 1u : 0u;
       b += takeA ? 0u : 1u;
       uint next = takeA ? a : b;
-      uvec2 v = next < (takeA ? b0 : end) ? loadKey(fromSpare, next) : uvec2(0u);
+      uvec4 v = next < (takeA ? b0 : end) ? loadKey(fromSpare, next) : uvec4(0u);
       keyA = takeA ? v : keyA;
       keyB = takeA ? keyB : v;
     }

@@ -66,9 +66,9 @@ struct GpuSelector::Impl {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     candidates = vk::createBuffer(c, std::max(cap, 1u) * sizeof(gpu::GpuCandidate),
                                   storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    order = vk::createBuffer(c, padded * 8ull, storage, false);
-    relevance = vk::createBuffer(c, padded * 8ull, storage, false);
-    spare = vk::createBuffer(c, std::max(cap, 1u) * 8ull, storage, false);
+    order = vk::createBuffer(c, padded * 16ull, storage, false);
+    relevance = vk::createBuffer(c, padded * 16ull, storage, false);
+    spare = vk::createBuffer(c, std::max(cap, 1u) * 16ull, storage, false);
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
