@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The select pass: which objects get ray-traced effects this frame. Today the baselines:
-// push x = object count, y = 0 none, 1 all (every object with pixels on screen). The
-// budgeted policies (engine/src/select/policies.h is their CPU reference) come next.
+// The select pass for the unbudgeted policies: push x = object count, y = 0 none, 1 all
+// (every object with pixels on screen). The budgeted policies select in
+// shaders/select/ (engine/src/passes/gpu_selector.h), then the tile list follows.
 #include "include/bindings.glsl"
 
 layout(local_size_x = 64) in;
