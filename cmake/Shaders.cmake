@@ -1,6 +1,8 @@
 # Compiles each GLSL shader at build time into a C++ header holding its SPIR-V as a
 # uint32_t array (glslangValidator --vn), so the engine carries its shaders and no
-# runtime path can go stale. A shader error fails the build. Every shader depends on
+# runtime path can go stale. A shader error fails the build, and so does SPIR-V that
+# spirv-val rejects (glslang 11 emits invalid SPIR-V for some constructs without a word,
+# e.g. a ?: between a buffer's struct and a local one). Every shader depends on
 # every include, so editing a shared header recompiles them all.
 #
 # TRACING sources are compiled a second time with RB_NATIVE_RAY_QUERY into
@@ -30,11 +32,12 @@ function(raybudget_add_shaders target)
       set(defines -DRB_NATIVE_RAY_QUERY)
     endif()
     set(out "${out_dir}/${var}.h")
+    set(glslang ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 --quiet ${defines} -I${CMAKE_CURRENT_SOURCE_DIR})
     add_custom_command(
       OUTPUT "${out}"
-      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 --quiet ${defines}
-              -I${CMAKE_CURRENT_SOURCE_DIR} --vn kSpirv_${var}
-              -o "${out}" "${CMAKE_CURRENT_SOURCE_DIR}/${src}"
+      COMMAND ${glslang} -o "${out_dir}/${var}.spv" "${CMAKE_CURRENT_SOURCE_DIR}/${src}"
+      COMMAND ${SPIRV_VAL} --target-env vulkan1.3 "${out_dir}/${var}.spv"
+      COMMAND ${glslang} --vn kSpirv_${var} -o "${out}" "${CMAKE_CURRENT_SOURCE_DIR}/${src}"
       DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${src}" ${ARG_INCLUDES}
       COMMENT "glslang ${name} ${suffix}"
       VERBATIM)
