@@ -262,15 +262,20 @@ TEST(RtPolicy, TracesExactlyTheTilesOfSelectedPixels) {
   Camera up = defaultCamera(scene, float(w) / float(h));
   up.position = glm::vec3(0.0f, 1000.0f, 0.0f);
   up.target = up.position + glm::vec3(0.0f, 1.0f, 0.001f);
-  std::vector<FrameTiming> skyTimings;
-  const FrameImages sky = renderScene(scene, Policy::All, up, w, h, false, 0.3f, &skyTimings);
-  for (uint32_t id : sky.objectIds) ASSERT_EQ(id, 0xFFFFFFFFu);
-  ASSERT_EQ(skyTimings.size(), 1u);
-  EXPECT_EQ(skyTimings[0].tracedTiles, 0u);
-  EXPECT_EQ(skyTimings[0].raysTraced, 0u);
-  // The empty dispatches still run (and are timed) but do no work.
-  ASSERT_TRUE(skyTimings[0].passMs[size_t(Pass::TraceShadows)].has_value());
-  EXPECT_LT(*skyTimings[0].passMs[size_t(Pass::TraceShadows)], 0.25 * *timings[0].passMs[size_t(Pass::TraceShadows)]);
+  // The empty dispatches still run (and are timed) but do no work: the fastest of three
+  // sky frames (one alone can be preempted on a busy 2-core machine) against the full one.
+  double skyShadowMs = 1e9;
+  for (int run = 0; run < 3; ++run) {
+    std::vector<FrameTiming> skyTimings;
+    const FrameImages sky = renderScene(scene, Policy::All, up, w, h, false, 0.3f, &skyTimings);
+    for (uint32_t id : sky.objectIds) ASSERT_EQ(id, 0xFFFFFFFFu);
+    ASSERT_EQ(skyTimings.size(), 1u);
+    EXPECT_EQ(skyTimings[0].tracedTiles, 0u);
+    EXPECT_EQ(skyTimings[0].raysTraced, 0u);
+    ASSERT_TRUE(skyTimings[0].passMs[size_t(Pass::TraceShadows)].has_value());
+    skyShadowMs = std::min(skyShadowMs, *skyTimings[0].passMs[size_t(Pass::TraceShadows)]);
+  }
+  EXPECT_LT(skyShadowMs, 0.25 * *timings[0].passMs[size_t(Pass::TraceShadows)]);
 }
 
 // The tile list checks the objects the coverage pass noted per tile and scans the pixels
