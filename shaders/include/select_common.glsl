@@ -3,6 +3,7 @@
 // engine/src/select/policies.cpp; these shaders reproduce it exactly.
 #ifndef RB_SELECT_COMMON_GLSL
 #define RB_SELECT_COMMON_GLSL
+#include "shared/random_rank.h"
 #include "shared/selection.h"
 
 layout(set = 0, binding = 0, std430) buffer CandidateBlock { GpuCandidate candidates[]; };
@@ -57,17 +58,6 @@ bool keyLess(uvec4 a, uvec4 b) {
   if (a.y != b.y) return a.y < b.y;
   if (a.z != b.z) return a.z < b.z;
   return a.w < b.w;
-}
-
-// lowbias32 of (seed, ID): the order of `random` (select::randomRank).
-uint randomRank(uint seed, uint id) {
-  uint x = id ^ (seed * 0x9E3779B9u);
-  x ^= x >> 16;
-  x *= 0x7FEB352Du;
-  x ^= x >> 15;
-  x *= 0x846CA68Bu;
-  x ^= x >> 16;
-  return x;
 }
 
 // The sort key of candidate i for the policy's order (which = 0) or `paper`'s relevance

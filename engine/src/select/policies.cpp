@@ -7,6 +7,7 @@
 
 #include "raybudget/error.h"
 #include "select/paper_graph.h"
+#include "shared/random_rank.h"
 
 namespace raybudget::select {
 namespace {
@@ -33,16 +34,7 @@ std::vector<uint32_t> indices(size_t n) {
 
 }  // namespace
 
-uint32_t randomRank(uint32_t seed, uint32_t id) {
-  // A 32-bit integer hash (lowbias32, Wellons) of the seed and the ID: the GPU computes it too.
-  uint32_t x = id ^ (seed * 0x9E3779B9u);
-  x ^= x >> 16;
-  x *= 0x7FEB352Du;
-  x ^= x >> 15;
-  x *= 0x846CA68Bu;
-  x ^= x >> 16;
-  return x;
-}
+uint32_t randomRank(uint32_t seed, uint32_t id) { return gpu::randomRank(seed, id); }
 
 float densityKey(const Candidate& c) { return c.cost > 0.0f ? c.value / c.cost : std::numeric_limits<float>::infinity(); }
 
