@@ -1,6 +1,7 @@
 // Cost of the GPU selection (keys, sort, sequential walk) per policy for 10, 1k,
 // 10k and 100k candidates, against the CPU reference, median of `repeats`. Candidates are
-// random (log-uniform costs and relevance), the budget a third of their total cost.
+// random (log-uniform costs and relevance; "-tied" rows: drawn from 11 values, many equal
+// keys), the budget a third of their total cost.
 // Then the coverage and select passes in the frame on generated scenes of 10 to 100k
 // cubes (640x360, density, T = 4 ms, median of frames 3-9).
 //
@@ -40,37 +41,43 @@ int main(int argc, char** argv) {
     passes::GpuSelector gpu(ctx, 100000);
     std::printf("select_bench: median of %u, device %s\n", repeats, ctx.properties().deviceName);
     std::printf("%-12s %10s %12s %12s %10s\n", "policy", "candidates", "GPU ms", "CPU ms", "selected");
-    std::mt19937 rng(3);
+    std::mt19937 rng(3), tiedRng(5);  // two streams: the random sets stay those of earlier runs
     std::uniform_real_distribution<float> u(-5.0f, 5.0f);
     for (uint32_t n : {10u, 1000u, 10000u, 100000u}) {
-      std::vector<select::Candidate> c(n);
-      double total = 0.0;
+      // Random candidates, and the same drawn from 11 values each: many equal keys, as in a
+      // symmetric view of repeated objects (equal distances, densities), which random
+      // candidates alone hide.
+      std::vector<select::Candidate> c(n), tied(n);
       for (uint32_t i = 0; i < n; ++i) {
         c[i] = {i, std::exp(u(rng)), std::exp(u(rng)), std::exp(u(rng))};
-        total += c[i].cost;
+        tied[i] = {i, std::exp(std::round(u(tiedRng)) * 0.5f), std::exp(std::round(u(tiedRng)) * 0.5f), std::exp(std::round(u(tiedRng)) * 0.5f)};
       }
-      const float budget = float(total / 3.0);
       // "paper-climb": the paper's walk climbing relevance pointers while one fits (the
       // superlinear reading; up to 10k only, it takes seconds at 100k).
       struct Row {
         const char* name;
         select::Policy policy;
         uint32_t paperHops;
+        const std::vector<select::Candidate>* set;
       };
-      for (const Row& row : {Row{"paper", select::Policy::Paper, 1}, Row{"paper-climb", select::Policy::Paper, 0},
-                             Row{"density", select::Policy::Density, 1}, Row{"nearest", select::Policy::Nearest, 1},
-                             Row{"random", select::Policy::Random, 1}}) {
+      for (const Row& row : {Row{"paper", select::Policy::Paper, 1, &c}, Row{"paper-climb", select::Policy::Paper, 0, &c},
+                             Row{"density", select::Policy::Density, 1, &c}, Row{"nearest", select::Policy::Nearest, 1, &c},
+                             Row{"random", select::Policy::Random, 1, &c}, Row{"density-tied", select::Policy::Density, 1, &tied},
+                             Row{"nearest-tied", select::Policy::Nearest, 1, &tied}}) {
         const select::Policy p = row.policy;
+        double total = 0.0;
+        for (const select::Candidate& x : *row.set) total += x.cost;
+        const float budget = float(total / 3.0);
         select::PolicyOptions options;
         options.paperHops = row.paperHops;
         if (row.paperHops == 0 && n > 10000) continue;
         std::vector<double> g, cpu;
         size_t selected = 0;
         for (uint32_t r = 0; r < repeats; ++r) {
-          selected = gpu.select(c, p, budget, options).ids.size();
+          selected = gpu.select(*row.set, p, budget, options).ids.size();
           g.push_back(gpu.lastGpuMs());
           const auto t0 = std::chrono::steady_clock::now();
-          (void)select::selectObjects(p, c, budget, options);
+          (void)select::selectObjects(p, *row.set, budget, options);
           cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         }
         std::printf("%-12s %10u %12.3f %12.3f %10zu\n", row.name, n, median(g), median(cpu), selected);
