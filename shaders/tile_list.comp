@@ -26,10 +26,9 @@ void main() {
       uint v = tileObjects[base + s];
       any = any || (v != 0u && selected[v - 1u] != 0u);
     }
-    if (any) tiles[atomicAdd(tileDispatch.x, 1u)] = tile.x | (tile.y << 16);
-    return;
+  } else {
+    for (uint y = first.y; y < last.y && !any; ++y)
+      for (uint x = first.x; x < last.x && !any; ++x) any = pixelSelected(texelFetch(gObjectId, ivec2(x, y), 0).r);
   }
-  for (uint y = first.y; y < last.y && !any; ++y)
-    for (uint x = first.x; x < last.x && !any; ++x) any = pixelSelected(texelFetch(gObjectId, ivec2(x, y), 0).r);
   if (any) tiles[atomicAdd(tileDispatch.x, 1u)] = tile.x | (tile.y << 16);
 }

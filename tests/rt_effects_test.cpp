@@ -297,7 +297,7 @@ TEST(RtPolicy, TracesTheTilesOfSelectedObjectsOnACrowdedGrid) {
   for (const FrameTiming& f : renderer.finish()) first.push_back(f);
   ASSERT_EQ(first.size(), 1u);
   ASSERT_GT(first[0].predictedTraceMs, 0.0);
-  // A third of that: the budget selects some objects, not all.
+  // An eighth of that: the budget selects some objects, not all.
   renderer.restartSelection(Policy::Density, float(first[0].predictedTraceMs / 8.0));
   std::vector<FrameTiming> t;
   for (int f = 0; f < 3; ++f)

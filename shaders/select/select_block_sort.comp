@@ -20,10 +20,10 @@ layout(local_size_x = RB_MERGE_LANES) in;
     b = t;             \
   }
 
-// The 8 keys of chunk `chunk`, sorted by a 19-comparator network (keys past n are all
+// The RB_MERGE_CHUNK (8) keys of chunk `chunk`, sorted by a 19-comparator network (keys past n are all
 // ones, sorted last, not stored).
 void sortChunk(uint chunk, uint n, bool toSpare) {
-  uint first = chunk * 8u, which = push.stage.z;
+  uint first = chunk * RB_MERGE_CHUNK, which = push.stage.z;
   if (first >= n) return;
   uvec4 k0 = candidateKey(first, which), k1 = candidateKey(first + 1u, which), k2 = candidateKey(first + 2u, which);
   uvec4 k3 = candidateKey(first + 3u, which), k4 = candidateKey(first + 4u, which), k5 = candidateKey(first + 5u, which);
@@ -49,9 +49,9 @@ void main() {
   if (base >= n) return;  // the whole workgroup: no barrier is skipped by part of it
   bool toSpare = push.stage.y != 0u;
   // Adjacent lanes take adjacent chunks, so the SIMD batch loads neighbouring candidates.
-  for (uint c = lane; c < RB_MERGE_BLOCK / 8u; c += RB_MERGE_LANES) sortChunk(base / 8u + c, n, toSpare);
+  for (uint c = lane; c < RB_MERGE_BLOCK / RB_MERGE_CHUNK; c += RB_MERGE_LANES) sortChunk(base / RB_MERGE_CHUNK + c, n, toSpare);
   const uint perLane = RB_MERGE_BLOCK / RB_MERGE_LANES;
-  uint run = 8u;
+  uint run = RB_MERGE_CHUNK;
   for (uint level = 0u; level < push.stage.x; ++level) {
     memoryBarrierBuffer();
     barrier();

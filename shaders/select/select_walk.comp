@@ -8,8 +8,9 @@
 // order (density, nearest, random; density then compares with the best single candidate),
 // or the walk of the paper's graph over the cost chain and the relevance order. The same
 // float operations in the same order as engine/src/select (the tests compare bit for bit).
-// Writes every candidate's flag (0 or 1) and, in frame mode, marks the selected objects in
-// the frame's selection (zeroed by select_candidates.comp).
+// Writes every candidate's flag (0 or 1) for select(), or in frame mode marks the selected
+// objects in the frame's selection (zeroed by select_candidates.comp), nothing else reads
+// the flags there.
 #include "include/select_common.glsl"
 
 // The device's subgroup size: the workgroup is one subgroup (were it more, each would walk
@@ -23,15 +24,15 @@ struct Picked {
 };
 
 void mark(uint ci, bool on) {
-  selectedFlags[ci] = on ? 1u : 0u;
-  if (push.walk.y != 0u && on) selected[candidates[ci].id] = 1u;
+  if (push.walk.y == 0u) selectedFlags[ci] = on ? 1u : 0u;
+  else if (on) selected[candidates[ci].id] = 1u;
 }
 
 // Every candidate unselected (the frame's selection too), before a walk or a replacement.
 void clearAll(uint n) {
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
-    selectedFlags[ci] = 0u;
-    if (push.walk.y != 0u) selected[candidates[ci].id] = 0u;
+    if (push.walk.y == 0u) selectedFlags[ci] = 0u;
+    else selected[candidates[ci].id] = 0u;
   }
   subgroupMemoryBarrierBuffer();
   subgroupBarrier();

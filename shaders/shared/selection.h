@@ -44,6 +44,7 @@ struct GpuObjectCost {
 // The merge sort (shaders/select/select_block_sort.comp, select_merge.comp): keys sorted
 // completely by one workgroup of RB_MERGE_LANES invocations (one SIMD batch on lavapipe),
 // and outputs per invocation of each merge pass over the blocks.
+#define RB_MERGE_CHUNK 8u  // keys each invocation first sorts with a sorting network
 #define RB_MERGE_BLOCK 1024u
 #define RB_MERGE_LANES 8u
 #define RB_MERGE_SEGMENT 32u

@@ -128,7 +128,7 @@ struct GpuSelector::Impl {
       // pass reads where the one before wrote; the block sort's first write goes to the
       // spare buffer when the number of merge levels is odd, so that the last writes the keys.
       uint32_t levelsInBlock = 0, passes = 0;
-      for (uint32_t run = 8; run < std::min(RB_MERGE_BLOCK, most); run *= 2) ++levelsInBlock;
+      for (uint32_t run = RB_MERGE_CHUNK; run < std::min(RB_MERGE_BLOCK, most); run *= 2) ++levelsInBlock;
       for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2) ++passes;
       push.stage.x = levelsInBlock;
       push.stage.y = (levelsInBlock + passes) % 2;
