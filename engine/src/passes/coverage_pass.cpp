@@ -17,12 +17,12 @@ CoveragePass::CoveragePass(const vk::Context& ctx, VkPipelineLayout layout)
 void CoveragePass::record(const FrameContext& fc) const {
   const VkCommandBuffer cmd = fc.cmd;
   vkCmdFillBuffer(cmd, fc.scene.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
-  vkCmdFillBuffer(cmd, fc.targets.tileObjects.buffer, 0, VK_WHOLE_SIZE, 0);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, coverage_);
   bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatch(cmd, (fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE, (fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE, 1);
+  const uint32_t tiles = ((fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE);
+  vkCmdDispatch(cmd, (tiles + 63) / 64, 1, 1);  // one invocation per tile
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   const uint32_t objects = uint32_t(fc.scene.objectSpheres.size());

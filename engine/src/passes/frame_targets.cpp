@@ -55,7 +55,7 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                 false);
-  t.tileObjects = vk::createBuffer(ctx, 4 * RB_TILE_OBJECT_WORDS * tiles, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+  t.tileObjects = vk::createBuffer(ctx, 4 * RB_TILE_OBJECT_WORDS * tiles, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
 
   // Shadow maps: at least one layer / one cube, so the descriptors always have an image.
