@@ -7,8 +7,10 @@
 #include "shared/selection.h"
 
 layout(set = 0, binding = 0, std430) buffer CandidateBlock { GpuCandidate candidates[]; };
-layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec4 order[]; };       // sort keys k0, k1, k2, candidate index
-layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec4 relevance[]; };  // `paper`: the relevance order
+// Sort keys: the policy's key word, then the candidate's place in ID order (the tie-break,
+// and where candidateAt finds the candidate).
+layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec2 order[]; };
+layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec2 relevance[]; };  // `paper`: the relevance order
 layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: taken, rank, group start
 layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
 // Frame mode: x candidates, y predicted cost and z value (float bits), w selected; then
@@ -19,6 +21,9 @@ layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectReco
 layout(set = 0, binding = 7, std430) buffer SelectedBlock { uint selected[]; };
 layout(set = 0, binding = 8, std430) buffer ParamsBlock { GpuObjectParams params[]; };
 layout(set = 0, binding = 9, std430) buffer CostBlock { GpuObjectCost costs[]; };
+// Frame mode: per object, its candidate slot (select_candidates.comp appends candidates in
+// any order; the keys carry object IDs).
+layout(set = 0, binding = 11, std430) buffer SlotBlock { uint slotOf[]; };
 
 layout(push_constant) uniform SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
@@ -53,28 +58,29 @@ uint orderedBits(float f) {
   return (u & 0x80000000u) != 0u ? ~u : (u | 0x80000000u);
 }
 
-bool keyLess(uvec4 a, uvec4 b) {
-  if (a.x != b.x) return a.x < b.x;
-  if (a.y != b.y) return a.y < b.y;
-  if (a.z != b.z) return a.z < b.z;
-  return a.w < b.w;
-}
+bool keyLess(uvec2 a, uvec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
+
+// The candidate of a key's second word: in frame mode an object ID; for select() the slot,
+// the host having uploaded the candidates in ID order.
+uint candidateAt(uint word) { return push.walk.y != 0u ? slotOf[word] : word; }
 
 // The sort key of candidate i for the policy's order (which = 0) or `paper`'s relevance
-// order (1): ascending = selection order; the candidate index is the last word, so keys
-// are unique. Past the candidates: all ones, sorted last.
-uvec4 candidateKey(uint i, uint which) {
-  if (i >= candidateCount()) return uvec4(0xFFFFFFFFu);
+// order (1): ascending = selection order. The policy's word, then the candidate's place in
+// ID order, so keys are unique, ties go by ID, and a key is 8 bytes (a merge sort on a CPU
+// device moves it scattered, lane by lane: 16-byte keys cost ~1.5x as much). Past the
+// candidates: all ones, sorted last.
+uvec2 candidateKey(uint i, uint which) {
+  if (i >= candidateCount()) return uvec2(0xFFFFFFFFu);
   GpuCandidate c = candidates[i];
-  uint policy = push.sizes.z;
+  uint place = push.walk.y != 0u ? c.id : i, policy = push.sizes.z;
   if (policy == RB_SELECT_DENSITY) {
     precise float density = c.cost > 0.0 ? c.value / c.cost : uintBitsToFloat(0x7F800000u);
-    return uvec4(~orderedBits(density), orderedBits(c.cost), c.id, i);
+    return uvec2(~orderedBits(density), place);
   }
-  if (policy == RB_SELECT_NEAREST) return uvec4(orderedBits(c.distance), c.id, 0u, i);
-  if (policy == RB_SELECT_RANDOM) return uvec4(randomRank(push.sizes.w, c.id), c.id, 0u, i);
-  if (which == 0u) return uvec4(~orderedBits(c.cost), c.id, 0u, i);  // `paper`: the cost chain, most costly first
-  return uvec4(~orderedBits(c.value), c.id, 0u, i);                  // `paper`: the relevance order, most relevant first
+  if (policy == RB_SELECT_NEAREST) return uvec2(orderedBits(c.distance), place);
+  if (policy == RB_SELECT_RANDOM) return uvec2(randomRank(push.sizes.w, c.id), place);
+  if (which == 0u) return uvec2(~orderedBits(c.cost), place);  // `paper`: the cost chain, most costly first
+  return uvec2(~orderedBits(c.value), place);                  // `paper`: the relevance order, most relevant first
 }
 
 #endif

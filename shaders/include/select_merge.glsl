@@ -7,13 +7,13 @@
 #define RB_SELECT_MERGE_GLSL
 #include "select_common.glsl"
 
-layout(set = 0, binding = 10, std430) buffer SpareBlock { uvec4 spare[]; };
+layout(set = 0, binding = 10, std430) buffer SpareBlock { uvec2 spare[]; };
 
-uvec4 loadKey(bool fromSpare, uint i) {
+uvec2 loadKey(bool fromSpare, uint i) {
   if (fromSpare) return spare[i];
   return push.stage.z == 0u ? order[i] : relevance[i];
 }
-void storeKey(bool toSpare, uint i, uvec4 v) {
+void storeKey(bool toSpare, uint i, uvec2 v) {
   if (toSpare) spare[i] = v;
   else if (push.stage.z == 0u) order[i] = v;
   else relevance[i] = v;
@@ -22,7 +22,7 @@ void storeKey(bool toSpare, uint i, uvec4 v) {
 // Writes outputs [first, last) of the pass that merges runs of `run` sorted keys pairwise
 // into runs of 2 run, reading one buffer and writing the other. For each pair of runs it
 // touches, it finds where its outputs start on the merge path (one binary search; keys
-// are unique: the candidate index is their last word), then merges sequentially.
+// are unique: their second word is the candidate's place in ID order), then merges sequentially.
 void mergeRange(uint first, uint last, uint run, uint n, bool fromSpare) {
   last = min(last, n);
   uint o = first;
@@ -37,7 +37,7 @@ void mergeRange(uint first, uint last, uint run, uint n, bool fromSpare) {
       else hi = mid;
     }
     uint a = a0 + lo, b = b0 + d - lo;
-    uvec4 keyA = a < b0 ? loadKey(fromSpare, a) : uvec4(0u), keyB = b < end ? loadKey(fromSpare, b) : uvec4(0u);
+    uvec2 keyA = a < b0 ? loadKey(fromSpare, a) : uvec2(0u), keyB = b < end ? loadKey(fromSpare, b) : uvec2(0u);
     uint stop = min(last, end);
     // Branch-free steps: one store and at most one load each, whichever run is taken.
     for (; o < stop; ++o) {
@@ -46,7 +46,7 @@ void mergeRange(uint first, uint last, uint run, uint n, bool fromSpare) {
       a += takeA ? 1u : 0u;
       b += takeA ? 0u : 1u;
       uint next = takeA ? a : b;
-      uvec4 v = next < (takeA ? b0 : end) ? loadKey(fromSpare, next) : uvec4(0u);
+      uvec2 v = next < (takeA ? b0 : end) ? loadKey(fromSpare, next) : uvec2(0u);
       keyA = takeA ? v : keyA;
       keyB = takeA ? keyB : v;
     }

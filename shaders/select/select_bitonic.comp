@@ -11,10 +11,10 @@
 
 layout(local_size_x = 512) in;
 
-shared uvec4 block[1024];
+shared uvec2 block[1024];
 
-uvec4 load(uint i) { return push.stage.z == 0u ? order[i] : relevance[i]; }
-void store(uint i, uvec4 v) {
+uvec2 load(uint i) { return push.stage.z == 0u ? order[i] : relevance[i]; }
+void store(uint i, uvec2 v) {
   if (push.stage.z == 0u) order[i] = v;
   else relevance[i] = v;
 }
@@ -25,7 +25,7 @@ void main() {
   if (j >= 1024u) {
     uint i = 2u * j * (t / j) + (t % j), l = i + j;
     if (l >= size) return;
-    uvec4 a = load(i), b = load(l);
+    uvec2 a = load(i), b = load(l);
     bool ascending = (i & k) == 0u;
     if (keyLess(b, a) == ascending) {
       store(i, b);
@@ -43,7 +43,7 @@ void main() {
       barrier();
       uint i = 2u * jj * (lt / jj) + (lt % jj), l = i + jj;
       bool ascending = ((base + i) & kk) == 0u;
-      uvec4 a = block[i], b = block[l];
+      uvec2 a = block[i], b = block[l];
       if (keyLess(b, a) == ascending) {
         block[i] = b;
         block[l] = a;

@@ -15,7 +15,7 @@ layout(local_size_x = RB_MERGE_LANES) in;
 // Compare-exchange: a gets the smaller key.
 #define RB_CSWAP(a, b) \
   if (keyLess(b, a)) { \
-    uvec4 t = a;       \
+    uvec2 t = a;       \
     a = b;             \
     b = t;             \
   }
@@ -25,9 +25,9 @@ layout(local_size_x = RB_MERGE_LANES) in;
 void sortChunk(uint chunk, uint n, bool toSpare) {
   uint first = chunk * RB_MERGE_CHUNK, which = push.stage.z;
   if (first >= n) return;
-  uvec4 k0 = candidateKey(first, which), k1 = candidateKey(first + 1u, which), k2 = candidateKey(first + 2u, which);
-  uvec4 k3 = candidateKey(first + 3u, which), k4 = candidateKey(first + 4u, which), k5 = candidateKey(first + 5u, which);
-  uvec4 k6 = candidateKey(first + 6u, which), k7 = candidateKey(first + 7u, which);
+  uvec2 k0 = candidateKey(first, which), k1 = candidateKey(first + 1u, which), k2 = candidateKey(first + 2u, which);
+  uvec2 k3 = candidateKey(first + 3u, which), k4 = candidateKey(first + 4u, which), k5 = candidateKey(first + 5u, which);
+  uvec2 k6 = candidateKey(first + 6u, which), k7 = candidateKey(first + 7u, which);
   RB_CSWAP(k0, k2) RB_CSWAP(k1, k3) RB_CSWAP(k4, k6) RB_CSWAP(k5, k7)
   RB_CSWAP(k0, k4) RB_CSWAP(k1, k5) RB_CSWAP(k2, k6) RB_CSWAP(k3, k7)
   RB_CSWAP(k0, k1) RB_CSWAP(k2, k3) RB_CSWAP(k4, k5) RB_CSWAP(k6, k7)

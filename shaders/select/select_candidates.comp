@@ -27,4 +27,5 @@ void main() {
   float work = push.sizes.z == RB_SELECT_PAPER ? r.crCandidatePixels.x : pixels * perPixel;
   uint slot = atomicAdd(result.x, 1u);
   candidates[slot] = GpuCandidate(i, push.budget.y * work, r.crCandidatePixels.y, r.apdv.z);
+  slotOf[i] = slot;
 }

@@ -10,7 +10,7 @@ layout(local_size_x = 256) in;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.sizes.y) return;
-  uvec4 key = candidateKey(i, push.stage.z);
+  uvec2 key = candidateKey(i, push.stage.z);
   if (push.stage.z == 0u) order[i] = key;
   else relevance[i] = key;
 }

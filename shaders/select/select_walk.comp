@@ -65,7 +65,7 @@ Picked selectGreedy(uint n, float budget) {
   Single best = Single(0u, 0.0, 0u, 0u);
   for (uint base = 0u; base < n; base += gl_SubgroupSize) {
     bool valid = base + lane < n;
-    uint ci = valid ? order[base + lane].w : 0u;
+    uint ci = valid ? candidateAt(order[base + lane].y) : 0u;
     GpuCandidate c = GpuCandidate(0u, uintBitsToFloat(0x7F800000u), 0.0, 0.0);  // past the end: fits nothing
     if (valid) c = candidates[ci];  // (not a ?: with the buffer's struct: glslang emits invalid SPIR-V)
     bool taken = false;
@@ -106,23 +106,23 @@ Picked selectPaper(uint n, float budget, uint pointers) {
   clearAll(n);
   if (gl_SubgroupInvocationID != 0u) return p;
   for (uint s = 0u; s < n; ++s) {
-    uint ci = relevance[s].w;
+    uint ci = candidateAt(relevance[s].y);
     scratch[n + ci] = s;
-    bool tie = s > 0u && candidates[relevance[s - 1u].w].value == candidates[ci].value;
+    bool tie = s > 0u && candidates[candidateAt(relevance[s - 1u].y)].value == candidates[ci].value;
     scratch[2u * n + s] = tie ? scratch[2u * n + s - 1u] : s;
   }
   float remaining = budget;
   uint head = 0u;
   while (true) {
-    while (head < n && (scratch[order[head].w] != 0u || candidates[order[head].w].cost > remaining)) ++head;
+    while (head < n && (scratch[candidateAt(order[head].y)] != 0u || candidates[candidateAt(order[head].y)].cost > remaining)) ++head;
     if (head == n) break;
-    uint node = order[head].w;
+    uint node = candidateAt(order[head].y);
     for (uint hop = 0u; push.walk.x == 0u || hop < push.walk.x; ++hop) {
       bool climbed = false;
       uint first = scratch[2u * n + scratch[n + node]];
       uint from = first > pointers ? first - pointers : 0u;
       for (uint pos = from; pos < first; ++pos) {  // most relevant first
-        uint c = relevance[pos].w;
+        uint c = candidateAt(relevance[pos].y);
         if (scratch[c] != 0u || candidates[c].cost > remaining) continue;
         node = c;
         climbed = true;

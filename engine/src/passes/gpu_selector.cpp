@@ -54,7 +54,7 @@ vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayou
 struct GpuSelector::Impl {
   const vk::Context& ctx;
   uint32_t capacity, padded;
-  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, placeholder;
+  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, slots, placeholder;
   vk::ComputeSet set;
   vk::Owned<VkPipeline> keys, bitonic, blockSort, merge, walk, candidatesFromObjects, apply;
   bool mergeSort = false;  // a CPU device: the barrier-free merge sort beats the bitonic sort
@@ -66,15 +66,16 @@ struct GpuSelector::Impl {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     candidates = vk::createBuffer(c, std::max(cap, 1u) * sizeof(gpu::GpuCandidate),
                                   storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    order = vk::createBuffer(c, padded * 16ull, storage, false);
-    relevance = vk::createBuffer(c, padded * 16ull, storage, false);
-    spare = vk::createBuffer(c, std::max(cap, 1u) * 16ull, storage, false);
+    order = vk::createBuffer(c, padded * 8ull, storage, false);  // 8-byte keys (select_common.glsl)
+    relevance = vk::createBuffer(c, padded * 8ull, storage, false);
+    spare = vk::createBuffer(c, std::max(cap, 1u) * 8ull, storage, false);
+    slots = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage, false);
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9 until bindFrame
-    const std::vector<VkDescriptorType> types(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    const std::vector<VkDescriptorType> types(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
     bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer, placeholder.buffer);
     candidatesFromObjects = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_candidates_comp);
@@ -88,8 +89,8 @@ struct GpuSelector::Impl {
   }
 
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
-    const VkBuffer buffers[11] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer, result.buffer,
-                                  records,           selection,    params,           costs,          spare.buffer};
+    const VkBuffer buffers[12] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer, result.buffer,
+                                  records,           selection,    params,           costs,          spare.buffer, slots.buffer};
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
@@ -162,8 +163,13 @@ struct GpuSelector::Impl {
     if (c.size() > capacity) throw Error("GPU selection of " + std::to_string(c.size()) + " candidates exceeds its capacity " + std::to_string(capacity));
     select::validateCandidates(c, budget);  // the CPU reference's errors for the same input
     const uint32_t n = uint32_t(c.size()), pad = paddedSize(n);
+    // Uploaded in ID order: the sort keys break ties by the candidate's slot
+    // (select_common.glsl), which is then its place in ID order, as the CPU reference's ties.
+    std::vector<uint32_t> byId(n);
+    for (uint32_t i = 0; i < n; ++i) byId[i] = i;
+    std::stable_sort(byId.begin(), byId.end(), [&](uint32_t a, uint32_t b) { return c[a].id < c[b].id; });
     std::vector<gpu::GpuCandidate> data;
-    for (const select::Candidate& x : c) data.push_back({x.id, x.cost, x.value, x.distance});
+    for (uint32_t i : byId) data.push_back({c[i].id, c[i].cost, c[i].value, c[i].distance});
     vk::Buffer staging = vk::createBuffer(ctx, std::max<size_t>(1, data.size()) * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!data.empty()) std::memcpy(staging.mapped, data.data(), data.size() * sizeof(gpu::GpuCandidate));
     SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0),
@@ -192,9 +198,10 @@ struct GpuSelector::Impl {
     select::Selection s;
     for (uint32_t i = 0; i < n; ++i)
       if (f[i]) {
-        s.ids.push_back(c[i].id);
-        s.cost += c[i].cost;
-        s.value += c[i].value;
+        const select::Candidate& x = c[byId[i]];
+        s.ids.push_back(x.id);
+        s.cost += x.cost;
+        s.value += x.value;
       }
     std::sort(s.ids.begin(), s.ids.end());
     return s;

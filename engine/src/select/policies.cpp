@@ -46,12 +46,11 @@ namespace {
 std::vector<uint32_t> density(std::span<const Candidate> c, float budget) {
   std::vector<uint32_t> order = indices(c.size());
   // The key is a float division (zero cost: +inf, first), one total order: key descending,
-  // then cost ascending, then ID; float sums in selection order. The GPU does the same.
+  // then ID (as every policy's ties: the GPU's sort keys are one word and the ID order);
+  // float sums in selection order. The GPU does the same.
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     const float ka = densityKey(c[a]), kb = densityKey(c[b]);
-    if (ka != kb) return ka > kb;
-    if (c[a].cost != c[b].cost) return c[a].cost < c[b].cost;
-    return c[a].id < c[b].id;
+    return ka != kb ? ka > kb : c[a].id < c[b].id;
   });
   std::vector<uint32_t> greedy = greedyFit(c, order, budget);
   float greedyValue = 0.0f;
