@@ -367,6 +367,45 @@ FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) {
   return t.empty() ? FrameTiming{} : t[0];
 }
 
+// In the frame the GPU selection runs on candidates the GPU made (appended in any order,
+// keyed by object ID through a slot table): it equals the CPU reference on the same
+// candidates, every frame of an orbit, for every budgeted policy, on a grid whose
+// symmetric view gives many equal keys and on the default scene.
+TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
+  const Scene grid = cubeGridScene(2000), scene = loadScene(test::defaultScenePath());
+  for (const Scene* sc : {&grid, &scene})
+    for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
+      // First with a budget that takes every candidate, for their count and total cost;
+      // then a quarter of the last frame's total binds (more so in the early frames, whose
+      // costs the prior predicts higher).
+      auto orbit = [&](float budgetMs) {
+        RenderSettings s;
+        s.width = 200;
+        s.height = 120;
+        s.validation = true;
+        s.policy = p;
+        s.budgetMs = budgetMs;
+        s.learnTimeScale = false;
+        s.checkSelection = true;
+        Renderer renderer(*sc, s);
+        const std::vector<FrameTiming> t = renderOrbit(renderer, defaultCamera(*sc, 200.0f / 120.0f), 6);
+        test::expectValidationClean(renderer.validationMessages());
+        for (const FrameTiming& f : t) {
+          EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << policyName(p) << ", " << sc->objects.size() << " objects, T " << budgetMs << ", frame " << f.frame;
+        }
+        return t;
+      };
+      const std::vector<FrameTiming> all = orbit(1e6f);
+      ASSERT_EQ(all.size(), 6u);
+      ASSERT_GT(all.back().predictedTraceMs, 0.0);
+      const std::vector<FrameTiming> part = orbit(float(all.back().predictedTraceMs / 4.0));
+      ASSERT_EQ(part.size(), 6u);
+      uint32_t partial = 0;
+      for (size_t f = 0; f < 6; ++f) partial += part[f].selectedObjects > 0 && part[f].selectedObjects < all[f].selectedObjects;
+      EXPECT_GE(partial, 3u) << policyName(p) << ", " << sc->objects.size() << " objects: the budget should bind in most frames";
+    }
+}
+
 // The budgeted policies in the frame: a budget below the cheapest object selects nothing
 // and dispatches nothing; a larger budget selects more; the prediction stays within T.
 TEST(RtBudget, SelectionFollowsTheBudget) {

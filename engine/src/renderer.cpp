@@ -116,7 +116,8 @@ struct Renderer::Impl {
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
     vk::Buffer tileCount;      // host-visible copy of the frame's tile-list header
     vk::Buffer selectResult;   // host-visible copy of the GPU selection's result
-    vk::Buffer candidates;     // with optimalBound: host-visible copy of the candidates
+    vk::Buffer candidates;     // with optimalBound or checkSelection: host-visible copy of the candidates
+    vk::Buffer selection;      // with checkSelection: host-visible copy of the frame's selection
     bool selected = false;     // the frame ran the select pass
     bool budgeted = false;     // ... with a budgeted policy
     double kappa = 0.0;        // the cost model the frame was selected with
@@ -187,9 +188,11 @@ struct Renderer::Impl {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
       slot.tileCount = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.selectResult = vk::createBuffer(ctx, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      if (rs.optimalBound)
+      if (rs.optimalBound || rs.checkSelection)
         slot.candidates = vk::createBuffer(ctx, std::max<size_t>(1, scene.objectSpheres.size()) * sizeof(gpu::GpuCandidate),
                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      if (rs.checkSelection)
+        slot.selection = vk::createBuffer(ctx, std::max<size_t>(1, scene.objectSpheres.size()) * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.set = passes::allocateSet(ctx, pool, setLayout);
       passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, samplers);
     }
@@ -284,13 +287,22 @@ struct Renderer::Impl {
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
     t.selectionChanges = r[4];
-    if (settings.optimalBound) {
+    if (settings.optimalBound || settings.checkSelection) {
       const auto* g = static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped);
       std::vector<select::Candidate> c;
       for (uint32_t i = 0; i < r[0]; ++i) c.push_back({g[i].id, g[i].cost, g[i].value, g[i].distance});
-      t.optimalValueBound = select::optimalValueBound(c, settings.budgetMs);
-      if (!c.empty())
-        t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
+      if (settings.optimalBound) {
+        t.optimalValueBound = select::optimalValueBound(c, settings.budgetMs);
+        if (!c.empty())
+          t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
+      }
+      if (settings.checkSelection) {
+        const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
+        std::vector<uint32_t> gpuIds;
+        for (uint32_t i = 0; i < scene.objectSpheres.size(); ++i)
+          if (flags[i]) gpuIds.push_back(i);
+        t.selectionMatchesCpu = gpuIds == select::selectObjects(selectPolicy(), c, settings.budgetMs, policyOptions()).ids;
+      }
     }
     t.measuredTraceMs = t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
     if (!settings.learnTimeScale) return;
@@ -335,6 +347,7 @@ struct Renderer::Impl {
   bool native() const { return scene.native != nullptr; }
 
   select::Policy selectPolicy() const { return toSelectPolicy(settings.policy); }
+  select::PolicyOptions policyOptions() const { return {settings.graphPointers, settings.seed, 1, 4096}; }
 
   // The object records for the moved objects' new transforms (and their culling spheres).
   std::vector<gpu::GpuObject> refreshObjectRecords() {
@@ -427,15 +440,18 @@ struct Renderer::Impl {
       computeToCompute(cmd);
       timed(Pass::Select, [&] {
         if (slot.budgeted) {
-          const select::PolicyOptions options{settings.graphPointers, settings.seed, 1, 4096};
-          selector.recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), settings.budgetMs, float(kappa), options);
+          selector.recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), settings.budgetMs, float(kappa), policyOptions());
           vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                             VK_ACCESS_2_TRANSFER_READ_BIT);
           const VkBufferCopy copy{0, 0, 32};
           vkCmdCopyBuffer(cmd, selector.resultBuffer(), slot.selectResult.buffer, 1, &copy);
-          if (settings.optimalBound) {
+          if (settings.optimalBound || settings.checkSelection) {
             const VkBufferCopy all{0, 0, slot.candidates.size};
             vkCmdCopyBuffer(cmd, selector.candidateBuffer(), slot.candidates.buffer, 1, &all);
+          }
+          if (settings.checkSelection) {
+            const VkBufferCopy all{0, 0, slot.selection.size};
+            vkCmdCopyBuffer(cmd, scene.selection.buffer, slot.selection.buffer, 1, &all);
           }
           computeToCompute(cmd);
         }

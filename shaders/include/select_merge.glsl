@@ -19,6 +19,23 @@ void storeKey(bool toSpare, uint i, uvec2 v) {
   else relevance[i] = v;
 }
 
+// The merge levels n candidates need, counted on the GPU (in frame mode only it knows n; the
+// host dispatches for every object, and the passes past the candidates exit at once):
+// within a block, runs of RB_MERGE_CHUNK doubled up to the block or n; then merge passes
+// over blocks while a run is shorter than n. The last level writes the keys; the first
+// writes where that parity needs (spareFirst).
+uint levelsInBlock(uint n) {
+  uint levels = 0u;
+  for (uint run = RB_MERGE_CHUNK; run < min(uint(RB_MERGE_BLOCK), n); run *= 2u) ++levels;
+  return levels;
+}
+uint mergePasses(uint n) {
+  uint passes = 0u;
+  for (uint run = RB_MERGE_BLOCK; run < n; run *= 2u) ++passes;
+  return passes;
+}
+bool spareFirst(uint n) { return ((levelsInBlock(n) + mergePasses(n)) & 1u) != 0u; }
+
 // Writes outputs [first, last) of the pass that merges runs of `run` sorted keys pairwise
 // into runs of 2 run, reading one buffer and writing the other. For each pair of runs it
 // touches, it finds where its outputs start on the merge path (one binary search; keys

@@ -6,8 +6,8 @@
 // select_merge.comp then merge the blocks. Each invocation computes the keys of chunks of
 // 8 and sorts them with a sorting network on registers (no array indexed at run time:
 // lavapipe would spill it), then every level merges runs of 8, 16, ... up to the block.
-//   stage.x: merge levels within the block; stage.y = 1: the sorted chunks go to the
-//   spare buffer (the host picks it so that the last pass of the sort writes the keys).
+// The sorted chunks go to the spare buffer or the keys, so that the last level of the
+// whole sort writes the keys (select_merge.glsl's spareFirst).
 #include "include/select_merge.glsl"
 
 layout(local_size_x = RB_MERGE_LANES) in;
@@ -47,12 +47,12 @@ void sortChunk(uint chunk, uint n, bool toSpare) {
 void main() {
   uint n = candidateCount(), base = gl_WorkGroupID.x * RB_MERGE_BLOCK, lane = gl_LocalInvocationID.x;
   if (base >= n) return;  // the whole workgroup: no barrier is skipped by part of it
-  bool toSpare = push.stage.y != 0u;
+  bool toSpare = spareFirst(n);
   // Adjacent lanes take adjacent chunks, so the SIMD batch loads neighbouring candidates.
   for (uint c = lane; c < RB_MERGE_BLOCK / RB_MERGE_CHUNK; c += RB_MERGE_LANES) sortChunk(base / RB_MERGE_CHUNK + c, n, toSpare);
   const uint perLane = RB_MERGE_BLOCK / RB_MERGE_LANES;
   uint run = RB_MERGE_CHUNK;
-  for (uint level = 0u; level < push.stage.x; ++level) {
+  for (uint level = 0u, levels = levelsInBlock(n); level < levels; ++level) {
     memoryBarrierBuffer();
     barrier();
     mergeRange(base + lane * perLane, base + (lane + 1u) * perLane, run, n, toSpare);

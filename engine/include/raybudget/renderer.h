@@ -55,6 +55,9 @@ struct RenderSettings {
   // Benchmarks: read each frame's candidates back and compute the 0/1-knapsack bound on the
   // value any selection within T could reach (FrameTiming::optimalValueBound).
   bool optimalBound = false;
+  // Tests: read each frame's candidates and selection back and run the CPU reference policy
+  // on the same candidates (FrameTiming::selectionMatchesCpu).
+  bool checkSelection = false;
   RayTracingSettings rayTracing;
   // Run the heuristic's per-object pass every frame (coverage, then A, P, D, V, C, R on the
   // GPU), readable with Renderer::objectMetrics().
@@ -81,6 +84,9 @@ struct FrameTiming {
   double optimalValueBound = 0.0;  // with RenderSettings::optimalBound: the knapsack bound on the value
   double cheapestCandidateMs = 0.0;  // with RenderSettings::optimalBound: the least predicted cost of a candidate (0: none)
   double selectedValue = 0.0;
+  // With RenderSettings::checkSelection: whether the GPU selected exactly the objects the
+  // CPU reference (engine/src/select/policies.h) selects from the frame's candidates.
+  std::optional<bool> selectionMatchesCpu;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
 };

@@ -125,20 +125,15 @@ struct GpuSelector::Impl {
   void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which, uint32_t most) {
     push.stage = glm::uvec4(0, 0, which, push.stage.w);
     if (mergeSort) {
-      // Blocks sorted by one workgroup each, then merged while shorter than `most`. Each
-      // pass reads where the one before wrote; the block sort's first write goes to the
-      // spare buffer when the number of merge levels is odd, so that the last writes the keys.
-      uint32_t levelsInBlock = 0, passes = 0;
-      for (uint32_t run = RB_MERGE_CHUNK; run < std::min(RB_MERGE_BLOCK, most); run *= 2) ++levelsInBlock;
-      for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2) ++passes;
-      push.stage.x = levelsInBlock;
-      push.stage.y = (levelsInBlock + passes) % 2;
+      // Blocks sorted by one workgroup each, then merge passes while runs are shorter than
+      // `most`. The shaders count the levels the candidates need and pick the buffers (in
+      // frame mode only the GPU knows how many there are); passes beyond them exit.
       dispatch(cmd, blockSort, push, (most + RB_MERGE_BLOCK - 1) / RB_MERGE_BLOCK);
-      push.stage.y = passes % 2;  // where the blocks are now
-      for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2) {
+      uint32_t pass = 0;
+      for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2, ++pass) {
         push.stage.x = run;
+        push.stage.y = pass;
         dispatch(cmd, merge, push, (most + RB_MERGE_SEGMENT * 64 - 1) / (RB_MERGE_SEGMENT * 64));
-        push.stage.y = 1 - push.stage.y;
       }
       return;
     }
