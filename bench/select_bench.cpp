@@ -3,7 +3,8 @@
 // random (log-uniform costs and relevance; "-tied" rows: drawn from 11 values, many equal
 // keys), the budget a third of their total cost.
 // Then the coverage and select passes in the frame on generated scenes of 10 to 100k
-// cubes (640x360, density, T = 4 ms, median of frames 3-9).
+// cubes (640x360, density, T = 4 ms, median of frames 3-19: one frame on a busy
+// 2-core machine can be 0.5 ms off).
 //
 // usage: select_bench [--repeats R]
 #include <algorithm>
@@ -98,7 +99,7 @@ int main(int argc, char** argv) {
       Renderer renderer(scene, s);
       Camera cam = defaultCamera(scene, 640.0f / 360.0f);
       std::vector<FrameTiming> t;
-      for (int f = 0; f < 10; ++f)
+      for (int f = 0; f < 20; ++f)
         for (const FrameTiming& x : renderer.render(cam)) t.push_back(x);
       for (const FrameTiming& x : renderer.finish()) t.push_back(x);
       size_t visible = 0;

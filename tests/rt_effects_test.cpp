@@ -557,8 +557,8 @@ std::vector<Picked> orbitSelections(Renderer& renderer, const Camera& start, uin
 }
 
 // restartSelection forgets S and the learned work per pixel: with the time scale frozen,
-// after another policy ran, a restarted renderer selects exactly what a new one does, frame
-// by frame.
+// after another policy ran (budgeted or not), a restarted renderer selects exactly what a
+// new one does, frame by frame.
 TEST(RtBudget, RestartedSelectionEqualsANewRenderer) {
   const Scene scene = loadScene(test::defaultScenePath());
   RenderSettings s;
@@ -582,8 +582,16 @@ TEST(RtBudget, RestartedSelectionEqualsANewRenderer) {
   reused.restartSelection(Policy::Density, 0.5f);
   EXPECT_EQ(orbitSelections(reused, start, 8), expected);
   EXPECT_THROW(reused.restartSelection(Policy::Density, -1.0f), Error);
+  // From `all`, which runs without the GPU selector: restarting builds it.
+  RenderSettings unbudgeted = s;
+  unbudgeted.policy = Policy::All;
+  Renderer fromAll(scene, unbudgeted);
+  (void)orbitSelections(fromAll, start, 2);
+  fromAll.restartSelection(Policy::Density, 0.5f);
+  EXPECT_EQ(orbitSelections(fromAll, start, 8), expected);
   test::expectValidationClean(fresh.validationMessages());
   test::expectValidationClean(reused.validationMessages());
+  test::expectValidationClean(fromAll.validationMessages());
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "compose_comp.h"
 #include "rt_effects_comp.h"
@@ -137,7 +138,9 @@ struct Renderer::Impl {
   passes::GBufferPass gbuffer;
   passes::CoveragePass coverage;
   passes::SelectPass selectPass;
-  passes::GpuSelector selector;
+  // The GPU selection, built for the first budgeted policy (it needs subgroup shuffle and
+  // buffers per object, which `none` and `all` never use).
+  std::unique_ptr<passes::GpuSelector> selector;
   // The cost model: trace milliseconds per unit of work (rays = pixels * Q, or the paper's
   // C), learned from the trace passes' timestamps.
   double kappa = 0.0;
@@ -172,7 +175,6 @@ struct Renderer::Impl {
         gbuffer(ctx, pipelineLayout),
         coverage(ctx, pipelineLayout),
         selectPass(ctx, pipelineLayout),
-        selector(ctx, std::max<uint32_t>(1, uint32_t(scene.objectSpheres.size()))),
         shadowMaps(ctx, pipelineLayout),
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
@@ -180,7 +182,7 @@ struct Renderer::Impl {
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
         traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
         traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
-    selector.bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer, scene.objectCosts.buffer);
+    ensureSelector();
     kappa = priorKappa();
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
@@ -440,14 +442,14 @@ struct Renderer::Impl {
       computeToCompute(cmd);
       timed(Pass::Select, [&] {
         if (slot.budgeted) {
-          selector.recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), settings.budgetMs, float(kappa), policyOptions());
+          selector->recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), settings.budgetMs, float(kappa), policyOptions());
           vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                             VK_ACCESS_2_TRANSFER_READ_BIT);
           const VkBufferCopy copy{0, 0, 32};
-          vkCmdCopyBuffer(cmd, selector.resultBuffer(), slot.selectResult.buffer, 1, &copy);
+          vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.selectResult.buffer, 1, &copy);
           if (settings.optimalBound || settings.checkSelection) {
             const VkBufferCopy all{0, 0, slot.candidates.size};
-            vkCmdCopyBuffer(cmd, selector.candidateBuffer(), slot.candidates.buffer, 1, &all);
+            vkCmdCopyBuffer(cmd, selector->candidateBuffer(), slot.candidates.buffer, 1, &all);
           }
           if (settings.checkSelection) {
             const VkBufferCopy all{0, 0, slot.selection.size};
@@ -515,6 +517,12 @@ struct Renderer::Impl {
 
   // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
   // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
+  void ensureSelector() {
+    if (selector || !isBudgeted(settings.policy)) return;
+    selector = std::make_unique<passes::GpuSelector>(ctx, std::max<uint32_t>(1, uint32_t(scene.objectSpheres.size())));
+    selector->bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer, scene.objectCosts.buffer);
+  }
+
   std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs) {
     RenderSettings next = settings;
     next.policy = policy;
@@ -523,6 +531,7 @@ struct Renderer::Impl {
     std::vector<FrameTiming> done = finish();
     if (isBudgeted(settings.policy)) learnedKappa[costUnit(settings.policy)] = kappa;
     settings = next;
+    ensureSelector();
     const double learned = learnedKappa[costUnit(settings.policy)];
     kappa = learned > 0.0 ? learned : priorKappa();
     const std::vector<gpu::GpuObjectParams> params = passes::initialObjectParams(scene.shell);

@@ -63,11 +63,13 @@ struct GpuSelector::Impl {
 
   Impl(const vk::Context& c, uint32_t cap, SortMethod sort)
       : ctx(c), capacity(cap), padded(paddedSize(cap)), timestamps(c, 1, 1) {
+    mergeSort = sort == SortMethod::Merge || (sort == SortMethod::Auto && c.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    const uint32_t keySlots = mergeSort ? std::max(cap, 1u) : padded;  // the bitonic sort pads to a power of two
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     candidates = vk::createBuffer(c, std::max(cap, 1u) * sizeof(gpu::GpuCandidate),
                                   storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    order = vk::createBuffer(c, padded * 8ull, storage, false);  // 8-byte keys (select_common.glsl)
-    relevance = vk::createBuffer(c, padded * 8ull, storage, false);
+    order = vk::createBuffer(c, keySlots * 8ull, storage, false);  // 8-byte keys (select_common.glsl)
+    relevance = vk::createBuffer(c, keySlots * 8ull, storage, false);
     spare = vk::createBuffer(c, std::max(cap, 1u) * 8ull, storage, false);
     slots = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage, false);
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
@@ -85,7 +87,6 @@ struct GpuSelector::Impl {
     walk = createWalkPipeline(c, set.pipelineLayout);
     merge = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_merge_comp);
     blockSort = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_block_sort_comp);
-    mergeSort = sort == SortMethod::Merge || (sort == SortMethod::Auto && c.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
   }
 
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
