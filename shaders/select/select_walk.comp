@@ -103,7 +103,12 @@ Picked selectGreedy(uint n, float budget) {
 Picked selectPaper(uint n, float budget, uint pointers) {
   Picked p = Picked(0.0, 0.0, 0u);
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) scratch[ci] = 0u;
-  clearAll(n);
+  if (push.walk.y == 0u) {
+    clearAll(n);  // the flags; in frame mode the candidate pass cleared the selection
+  } else {
+    subgroupMemoryBarrierBuffer();
+    subgroupBarrier();
+  }
   if (gl_SubgroupInvocationID != 0u) return p;
   for (uint s = 0u; s < n; ++s) {
     uint ci = candidateAt(relevance[s].y);
