@@ -351,15 +351,20 @@ std::vector<FrameTiming> renderOrbit(Renderer& renderer, const Camera& start, ui
   return t;
 }
 
-// One frame of a budgeted policy from the default camera; its stats.
-FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) {
+// Settings of a validated render under a budgeted policy.
+RenderSettings budgetedSettings(Policy policy, float budgetMs, uint32_t width, uint32_t height) {
   RenderSettings s;
-  s.width = 160;
-  s.height = 96;
+  s.width = width;
+  s.height = height;
   s.validation = true;
   s.policy = policy;
   s.budgetMs = budgetMs;
-  Renderer renderer(scene, s);
+  return s;
+}
+
+// One frame of a budgeted policy from the default camera; its stats.
+FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) {
+  Renderer renderer(scene, budgetedSettings(policy, budgetMs, 160, 96));
   std::vector<FrameTiming> t = renderer.render(defaultCamera(scene, 160.0f / 96.0f));
   for (const FrameTiming& f : renderer.finish()) t.push_back(f);
   test::expectValidationClean(renderer.validationMessages());
@@ -379,12 +384,7 @@ TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
       // then a quarter of the last frame's total binds (more so in the early frames, whose
       // costs the prior predicts higher).
       auto orbit = [&](float budgetMs) {
-        RenderSettings s;
-        s.width = 200;
-        s.height = 120;
-        s.validation = true;
-        s.policy = p;
-        s.budgetMs = budgetMs;
+        RenderSettings s = budgetedSettings(p, budgetMs, 200, 120);
         s.learnTimeScale = false;
         s.checkSelection = true;
         Renderer renderer(*sc, s);
