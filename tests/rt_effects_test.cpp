@@ -398,12 +398,51 @@ TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
       const std::vector<FrameTiming> all = orbit(1e6f);
       ASSERT_EQ(all.size(), 6u);
       ASSERT_GT(all.back().predictedTraceMs, 0.0);
+      for (const FrameTiming& f : all) EXPECT_FALSE(f.selectionSorted) << "everything fits: no sort needed";
       const std::vector<FrameTiming> part = orbit(float(all.back().predictedTraceMs / 4.0));
       ASSERT_EQ(part.size(), 6u);
       uint32_t partial = 0;
-      for (size_t f = 0; f < 6; ++f) partial += part[f].selectedObjects > 0 && part[f].selectedObjects < all[f].selectedObjects;
+      for (size_t f = 0; f < 6; ++f) {
+        const bool binds = part[f].selectedObjects > 0 && part[f].selectedObjects < all[f].selectedObjects;
+        partial += binds;
+        if (binds) EXPECT_TRUE(part[f].selectionSorted);
+      }
       EXPECT_GE(partial, 3u) << policyName(p) << ", " << sc->objects.size() << " objects: the budget should bind in most frames";
     }
+}
+
+// When every candidate fits for certain (their summed cost at most 31/32 of T) the select
+// pass skips the sort and takes them all; just above that share it sorts and greedy still
+// takes them all; just below the total it binds. Each equals the CPU reference. One frame
+// each from the same view: the first frame's costs come from the prior alone, so they are
+// the same in every renderer.
+TEST(RtBudget, SkipsTheSortOnlyWhenEveryCandidateFitsForCertain) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest}) {
+    auto frame = [&](float budgetMs) {
+      RenderSettings s = budgetedSettings(p, budgetMs, 200, 120);
+      s.checkSelection = true;
+      Renderer renderer(scene, s);
+      std::vector<FrameTiming> t = renderer.render(defaultCamera(scene, 200.0f / 120.0f));
+      for (const FrameTiming& f : renderer.finish()) t.push_back(f);
+      test::expectValidationClean(renderer.validationMessages());
+      EXPECT_EQ(t.size(), 1u);
+      const FrameTiming f = t.empty() ? FrameTiming{} : t[0];
+      EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << policyName(p) << ", T " << budgetMs;
+      return f;
+    };
+    const FrameTiming everything = frame(1e6f);
+    const double total = everything.predictedTraceMs;
+    ASSERT_GT(everything.selectedObjects, 3u);
+    EXPECT_FALSE(everything.selectionSorted);
+    const FrameTiming roomy = frame(float(total * 1.04)), tight = frame(float(total * 1.001)), short_ = frame(float(total * 0.999));
+    EXPECT_FALSE(roomy.selectionSorted) << policyName(p);
+    EXPECT_EQ(roomy.selectedObjects, everything.selectedObjects) << policyName(p);
+    EXPECT_TRUE(tight.selectionSorted) << policyName(p);
+    EXPECT_EQ(tight.selectedObjects, everything.selectedObjects) << policyName(p);
+    EXPECT_TRUE(short_.selectionSorted) << policyName(p);
+    EXPECT_LT(short_.selectedObjects, everything.selectedObjects) << policyName(p);
+  }
 }
 
 // The budgeted policies in the frame: a budget below the cheapest object selects nothing

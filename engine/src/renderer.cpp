@@ -289,6 +289,7 @@ struct Renderer::Impl {
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
     t.selectionChanges = r[4];
+    t.selectionSorted = r[0] > 0 && (r[0] > RB_ALL_FIT_MAX_CANDIDATES || r[6] != 0 || r[5] > RB_ALL_FIT_UNITS);  // select_common.glsl's allCandidatesFit
     if (settings.optimalBound || settings.checkSelection) {
       const auto* g = static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped);
       std::vector<select::Candidate> c;

@@ -14,7 +14,8 @@ layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec2 relevance[]; 
 layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: taken, rank, group start
 layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
 // Frame mode: x candidates, y predicted cost and z value (float bits), w selected; then
-// x objects whose selection changed since the last frame.
+// x objects whose selection changed since the last frame, y and z the candidates' total cost
+// (allCandidatesFit).
 layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; uvec4 result2; };
 // Frame mode: the renderer's per-object records, selection and K/Q/I/S (shared/selection.h).
 layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectRecord records[]; };
@@ -34,6 +35,16 @@ layout(push_constant) uniform SelectPush {
 
 // Candidates: given (push) or, in frame mode, counted on the GPU by select_candidates.comp.
 uint candidateCount() { return push.walk.y != 0u ? result.x : push.sizes.x; }
+
+// Frame mode: whether every candidate fits the budget for certain, so that every policy
+// selects them all and no order is needed (the sorts exit, the walk marks them all). The
+// candidate pass sums their costs in units of 2^-20 budget rounded up (exact integers);
+// "certain" leaves 1/32 of the budget for float rounding: the walks subtract in float, each
+// subtraction off by at most 2^-24 budget, so after n <= 2^18 steps what remains is still
+// above the next cost. Then greedy takes all (and density's best single cannot beat the sum
+// of all values, partial float sums of values >= 0 never decrease), and the paper's walk
+// finds a fitting node until every node is taken.
+bool allCandidatesFit() { return push.walk.y != 0u && result.x <= RB_ALL_FIT_MAX_CANDIDATES && result2.z == 0u && result2.y <= RB_ALL_FIT_UNITS; }
 
 // The part of the key array the sort must order: the candidates rounded up to a power of
 // two (at least one 1024-key block). In frame mode the dispatches cover every object; the

@@ -46,7 +46,7 @@ void sortChunk(uint chunk, uint n, bool toSpare) {
 
 void main() {
   uint n = candidateCount(), base = gl_WorkGroupID.x * RB_MERGE_BLOCK, lane = gl_LocalInvocationID.x;
-  if (base >= n) return;  // the whole workgroup: no barrier is skipped by part of it
+  if (base >= n || allCandidatesFit()) return;  // the whole workgroup: no barrier is skipped by part of it
   bool toSpare = spareFirst(n);
   // Adjacent lanes take adjacent chunks, so the SIMD batch loads neighbouring candidates.
   for (uint c = lane; c < RB_MERGE_BLOCK / RB_MERGE_CHUNK; c += RB_MERGE_LANES) sortChunk(base / RB_MERGE_CHUNK + c, n, toSpare);

@@ -11,7 +11,7 @@ layout(local_size_x = 64) in;
 
 void main() {
   uint n = candidateCount(), run = push.stage.x, first = gl_GlobalInvocationID.x * RB_MERGE_SEGMENT;
-  if (run >= n) return;
+  if (run >= n || allCandidatesFit()) return;
   bool fromSpare = ((mergePasses(n) - push.stage.y) & 1u) != 0u;  // the last pass reads the spare buffer
   mergeRange(first, first + RB_MERGE_SEGMENT, run, n, fromSpare);
 }

@@ -149,15 +149,16 @@ void main() {
   uint n = candidateCount(), policy = push.sizes.z;
   float budget = push.budget.x;
   Picked p = Picked(0.0, 0.0, 0u);
-  if (policy == RB_SELECT_PAPER) {
-    p = selectPaper(n, budget, push.stage.w);
-  } else if (policy == RB_SELECT_ALL || policy == RB_SELECT_NONE) {
+  bool everything = policy == RB_SELECT_ALL || allCandidatesFit();  // (no order needed)
+  if (everything || policy == RB_SELECT_NONE) {
     Picked lanePart = Picked(0.0, 0.0, 0u);
     for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
-      mark(ci, policy == RB_SELECT_ALL);
-      if (policy == RB_SELECT_ALL) lanePart = Picked(lanePart.cost + candidates[ci].cost, lanePart.value + candidates[ci].value, lanePart.count + 1u);
+      mark(ci, everything);
+      if (everything) lanePart = Picked(lanePart.cost + candidates[ci].cost, lanePart.value + candidates[ci].value, lanePart.count + 1u);
     }
     p = Picked(subgroupAdd(lanePart.cost), subgroupAdd(lanePart.value), subgroupAdd(lanePart.count));
+  } else if (policy == RB_SELECT_PAPER) {
+    p = selectPaper(n, budget, push.stage.w);
   } else {
     p = selectGreedy(n, budget);
   }

@@ -41,6 +41,12 @@ struct GpuObjectCost {
 // Prior traversal work (BVH nodes + triangles) per ray, before an object was measured.
 #define RB_PRIOR_WORK_PER_RAY 32.0
 
+// Frame mode: the candidates' total cost in units of 2^-20 budget (rounded up each) at or
+// below which every candidate fits for certain and no order is needed: 31/32 of the budget
+// (select_common.glsl's allCandidatesFit says why).
+#define RB_ALL_FIT_UNITS 1015808u
+#define RB_ALL_FIT_MAX_CANDIDATES 262144u  // 2^18: the rounding bound holds up to here
+
 // The merge sort (shaders/select/select_block_sort.comp, select_merge.comp): keys sorted
 // completely by one workgroup of RB_MERGE_LANES invocations (one SIMD batch on lavapipe),
 // and outputs per invocation of each merge pass over the blocks.

@@ -81,6 +81,9 @@ struct FrameTiming {
   double measuredTraceMs = 0.0;
   uint32_t selectedObjects = 0;
   uint32_t selectionChanges = 0;  // objects selected or dropped since the previous frame
+  // false when every candidate fit the budget for certain (their summed cost at most 31/32
+  // of T), so the select pass skipped the sort and selected them all
+  bool selectionSorted = false;
   double optimalValueBound = 0.0;  // with RenderSettings::optimalBound: the knapsack bound on the value
   double cheapestCandidateMs = 0.0;  // with RenderSettings::optimalBound: the least predicted cost of a candidate (0: none)
   double selectedValue = 0.0;
