@@ -3,8 +3,8 @@
 // random (log-uniform costs and relevance; "-tied" rows: drawn from 11 values, many equal
 // keys), the budget a third of their total cost.
 // Then the coverage and select passes in the frame on generated scenes of 10 to 100k
-// cubes (640x360, density, T = 4 ms, median of frames 3-19: one frame on a busy
-// 2-core machine can be 0.5 ms off).
+// cubes (640x360, density with a binding budget and with one every candidate fits, and
+// all; median of frames 3-19: one frame on a busy 2-core machine can be 0.5 ms off).
 //
 // usage: select_bench [--repeats R]
 #include <algorithm>
@@ -84,32 +84,40 @@ int main(int argc, char** argv) {
         std::printf("%-12s %10u %12.3f %12.3f %10zu\n", row.name, n, median(g), median(cpu), selected);
       }
     }
-    std::printf("\n%-12s %10s %12s %12s %10s\n", "in the frame", "objects", "coverage ms", "select ms", "visible");
-    // `all` runs the select pass without the GPU selector: its select time is the fixed
-    // part (marking objects, the tile list), the rest is the selection itself.
-    for (const Policy policy : {Policy::Density, Policy::All})
+    std::printf("\n%-16s %8s %12s %12s %8s %8s\n", "in the frame", "objects", "coverage ms", "select ms", "visible", "sorted");
+    // density-binds: T a third of what the candidates cost (from density-fits' last frame,
+    // with the time scale frozen so both predict alike): the sort runs every frame.
+    // density-fits: T far above it, every candidate fits: the select pass skips the sort.
+    // all: the select pass without the GPU selector, the fixed part (marking objects, the
+    // tile list). "sorted": frames whose selection needed the sort.
     for (uint32_t n : {10u, 1000u, 10000u, 100000u}) {
       const Scene scene = cubeGridScene(n);
-      RenderSettings s;
-      s.width = 640;
-      s.height = 360;
-      s.policy = policy;
-      s.budgetMs = 4.0f;
-      s.objectMetrics = true;
-      Renderer renderer(scene, s);
-      Camera cam = defaultCamera(scene, 640.0f / 360.0f);
-      std::vector<FrameTiming> t;
-      for (int f = 0; f < 20; ++f)
-        for (const FrameTiming& x : renderer.render(cam)) t.push_back(x);
-      for (const FrameTiming& x : renderer.finish()) t.push_back(x);
-      size_t visible = 0;
-      for (const ObjectMetrics& m : renderer.objectMetrics()) visible += m.pixels > 0;
-      std::vector<double> cov, sel;
-      for (size_t f = 3; f < t.size(); ++f) {
-        cov.push_back(t[f].passMs[size_t(Pass::Coverage)].value_or(0.0));
-        sel.push_back(t[f].passMs[size_t(Pass::Select)].value_or(0.0));
+      double fitsTotalMs = 0.0;
+      for (const char* row : {"density-fits", "density-binds", "all"}) {
+        RenderSettings s;
+        s.width = 640;
+        s.height = 360;
+        s.policy = std::strcmp(row, "all") ? Policy::Density : Policy::All;
+        s.budgetMs = !std::strcmp(row, "density-binds") ? float(fitsTotalMs / 3.0) : 1e6f;
+        s.learnTimeScale = false;
+        s.objectMetrics = true;
+        Renderer renderer(scene, s);
+        Camera cam = defaultCamera(scene, 640.0f / 360.0f);
+        std::vector<FrameTiming> t;
+        for (int f = 0; f < 20; ++f)
+          for (const FrameTiming& x : renderer.render(cam)) t.push_back(x);
+        for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+        size_t visible = 0, sorted = 0;
+        for (const ObjectMetrics& m : renderer.objectMetrics()) visible += m.pixels > 0;
+        std::vector<double> cov, sel;
+        for (size_t f = 3; f < t.size(); ++f) {
+          cov.push_back(t[f].passMs[size_t(Pass::Coverage)].value_or(0.0));
+          sel.push_back(t[f].passMs[size_t(Pass::Select)].value_or(0.0));
+          sorted += t[f].selectionSorted;
+        }
+        if (!std::strcmp(row, "density-fits")) fitsTotalMs = t.back().predictedTraceMs;
+        std::printf("%-16s %8u %12.3f %12.3f %8zu %5zu/%zu\n", row, n, median(cov), median(sel), visible, sorted, sel.size());
       }
-      std::printf("%-12s %10u %12.3f %12.3f %10zu\n", policyName(policy), n, median(cov), median(sel), visible);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "select_bench: error: %s\n", e.what());
