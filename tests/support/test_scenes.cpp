@@ -1,6 +1,9 @@
 #include "support/test_scenes.h"
 
 #include <fstream>
+#include <string>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -21,7 +24,9 @@ std::vector<std::filesystem::path> manifestScenes(const std::string& set) {
 std::filesystem::path defaultScenePath() { return std::filesystem::path(RAYBUDGET_SOURCE_DIR) / "data" / "default" / "court.gltf"; }
 
 std::filesystem::path freshTempDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("raybudget-test-" + name);
+  // Per process: CTest runs each test as its own process, in parallel, and tests of one
+  // file share names (two FrameTiming tests removed each other's folder while writing it).
+  const auto dir = std::filesystem::temp_directory_path() / ("raybudget-test-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

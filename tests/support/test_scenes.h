@@ -12,7 +12,7 @@ std::filesystem::path sharedScenesDir();
 // empty when the folder is absent.
 std::vector<std::filesystem::path> manifestScenes(const std::string& set);
 std::filesystem::path defaultScenePath();
-// A fresh empty temporary folder for one test.
+// A fresh empty temporary folder for one test process.
 std::filesystem::path freshTempDir(const std::string& name);
 
 }  // namespace raybudget::test
