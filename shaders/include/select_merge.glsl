@@ -8,6 +8,8 @@
 #include "select_common.glsl"
 
 layout(set = 0, binding = 10, std430) buffer SpareBlock { uvec2 spare[]; };
+// Per order and merge pass, its indirect dispatch (x, y, z, unused), written by the block sort.
+layout(set = 0, binding = 12, std430) buffer MergeArgsBlock { uvec4 mergeArgs[]; };
 
 uvec2 loadKey(bool fromSpare, uint i) {
   if (fromSpare) return spare[i];

@@ -46,6 +46,12 @@ void sortChunk(uint chunk, uint n, bool toSpare) {
 
 void main() {
   uint n = candidateCount(), base = gl_WorkGroupID.x * RB_MERGE_BLOCK, lane = gl_LocalInvocationID.x;
+  // The merge passes' indirect dispatches: workgroups for the candidates, none for a pass
+  // they do not need (or when no order is needed at all).
+  if (gl_WorkGroupID.x == 0u && lane == 0u) {
+    uint passes = allCandidatesFit() ? 0u : mergePasses(n), groups = (n + RB_MERGE_SEGMENT * RB_MERGE_GROUP - 1u) / (RB_MERGE_SEGMENT * RB_MERGE_GROUP);
+    for (uint p = 0u; p < RB_MERGE_MAX_PASSES; ++p) mergeArgs[push.stage.z * RB_MERGE_MAX_PASSES + p] = uvec4(p < passes ? groups : 0u, 1u, 1u, 0u);
+  }
   if (base >= n || allCandidatesFit()) return;  // the whole workgroup: no barrier is skipped by part of it
   bool toSpare = spareFirst(n);
   // Adjacent lanes take adjacent chunks, so the SIMD batch loads neighbouring candidates.

@@ -54,6 +54,8 @@ struct GpuObjectCost {
 #define RB_MERGE_BLOCK 1024u
 #define RB_MERGE_LANES 8u
 #define RB_MERGE_SEGMENT 32u
+#define RB_MERGE_GROUP 64u        // merge pass workgroup size
+#define RB_MERGE_MAX_PASSES 24u   // blocks of 1024 merged up to 2^34 keys
 
 // 16 bytes: one candidate of the GPU selection (select::Candidate).
 struct GpuCandidate {

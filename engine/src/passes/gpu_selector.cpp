@@ -54,7 +54,7 @@ vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayou
 struct GpuSelector::Impl {
   const vk::Context& ctx;
   uint32_t capacity, padded;
-  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, slots, placeholder;
+  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, slots, mergeArgs, placeholder;
   vk::ComputeSet set;
   vk::Owned<VkPipeline> keys, bitonic, blockSort, merge, walk, candidatesFromObjects, apply;
   bool mergeSort = false;  // a CPU device: the barrier-free merge sort beats the bitonic sort
@@ -72,12 +72,15 @@ struct GpuSelector::Impl {
     relevance = vk::createBuffer(c, keySlots * 8ull, storage, false);
     spare = vk::createBuffer(c, std::max(cap, 1u) * 8ull, storage, false);
     slots = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage, false);
+    // Per order (the policy's, `paper`'s relevance order) and merge pass: its indirect
+    // dispatch (16 bytes each), written by the block sort.
+    mergeArgs = vk::createBuffer(c, 2ull * RB_MERGE_MAX_PASSES * 16, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9 until bindFrame
-    const std::vector<VkDescriptorType> types(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    const std::vector<VkDescriptorType> types(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
     bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer, placeholder.buffer);
     candidatesFromObjects = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_candidates_comp);
@@ -90,8 +93,9 @@ struct GpuSelector::Impl {
   }
 
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
-    const VkBuffer buffers[12] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer, result.buffer,
-                                  records,           selection,    params,           costs,          spare.buffer, slots.buffer};
+    const VkBuffer buffers[13] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,     result.buffer,
+                                  records,           selection,    params,           costs,          spare.buffer,     slots.buffer,
+                                  mergeArgs.buffer};
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
@@ -128,13 +132,22 @@ struct GpuSelector::Impl {
     if (mergeSort) {
       // Blocks sorted by one workgroup each, then merge passes while runs are shorter than
       // `most`. The shaders count the levels the candidates need and pick the buffers (in
-      // frame mode only the GPU knows how many there are); passes beyond them exit.
+      // frame mode only the GPU knows how many there are); the block sort writes each merge
+      // pass's indirect dispatch, empty where the candidates need no such pass (on lavapipe
+      // a dispatch costs ~0.07 ms even when all its invocations exit at once).
       dispatch(cmd, blockSort, push, (most + RB_MERGE_BLOCK - 1) / RB_MERGE_BLOCK);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
       uint32_t pass = 0;
       for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2, ++pass) {
+        if (pass >= RB_MERGE_MAX_PASSES) throw Error("GPU selection: more merge passes than RB_MERGE_MAX_PASSES");
         push.stage.x = run;
         push.stage.y = pass;
-        dispatch(cmd, merge, push, (most + RB_MERGE_SEGMENT * 64 - 1) / (RB_MERGE_SEGMENT * 64));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, merge);
+        vkCmdPushConstants(cmd, set.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatchIndirect(cmd, mergeArgs.buffer, (which * RB_MERGE_MAX_PASSES + pass) * 16ull);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       }
       return;
     }
