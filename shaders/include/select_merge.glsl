@@ -22,7 +22,8 @@ void storeKey(bool toSpare, uint i, uvec2 v) {
 }
 
 // The merge levels n candidates need, counted on the GPU (in frame mode only it knows n; the
-// host dispatches for every object, and the passes past the candidates exit at once):
+// host records a merge pass for every level the objects could need, and the block sort
+// empties the indirect dispatches of those the candidates do not):
 // within a block, runs of RB_MERGE_CHUNK doubled up to the block or n; then merge passes
 // over blocks while a run is shorter than n. The last level writes the keys; the first
 // writes where that parity needs (spareFirst).
