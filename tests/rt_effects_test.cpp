@@ -12,6 +12,7 @@
 #include "bvh/embree_oracle.h"
 #include "shared/config.h"
 #include "shared/offset_ray.h"
+#include "shared/selection.h"
 #include "support/procedural.h"
 #include "support/render_helpers.h"
 #include "support/test_scenes.h"
@@ -373,22 +374,23 @@ FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) {
 }
 
 // In the frame the GPU selection runs on candidates the GPU made (appended in any order,
-// keyed by object ID through a slot table): it equals the CPU reference on the same
-// candidates, every frame of an orbit, for every budgeted policy, on a grid whose
-// symmetric view gives many equal keys and on the default scene.
+// keyed by object ID through a slot table, merge passes sized on the GPU): it equals the
+// CPU reference on the same candidates, every frame of an orbit, for every budgeted policy,
+// on a grid whose symmetric view gives many equal keys and thousands of candidates, and on
+// the default scene.
 TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
-  const Scene grid = cubeGridScene(2000), scene = loadScene(test::defaultScenePath());
+  const Scene grid = cubeGridScene(8000), scene = loadScene(test::defaultScenePath());
   for (const Scene* sc : {&grid, &scene})
     for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
       // First with a budget that takes every candidate, for their count and total cost;
       // then a quarter of the last frame's total binds (more so in the early frames, whose
       // costs the prior predicts higher).
       auto orbit = [&](float budgetMs) {
-        RenderSettings s = budgetedSettings(p, budgetMs, 200, 120);
+        RenderSettings s = budgetedSettings(p, budgetMs, 320, 192);
         s.learnTimeScale = false;
         s.checkSelection = true;
         Renderer renderer(*sc, s);
-        const std::vector<FrameTiming> t = renderOrbit(renderer, defaultCamera(*sc, 200.0f / 120.0f), 6);
+        const std::vector<FrameTiming> t = renderOrbit(renderer, defaultCamera(*sc, 320.0f / 192.0f), 6);
         test::expectValidationClean(renderer.validationMessages());
         for (const FrameTiming& f : t) {
           EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << policyName(p) << ", " << sc->objects.size() << " objects, T " << budgetMs << ", frame " << f.frame;
@@ -399,6 +401,7 @@ TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
       ASSERT_EQ(all.size(), 6u);
       ASSERT_GT(all.back().predictedTraceMs, 0.0);
       for (const FrameTiming& f : all) EXPECT_FALSE(f.selectionSorted) << "everything fits: no sort needed";
+      if (sc == &grid) EXPECT_GT(all.back().selectedObjects, 2u * RB_MERGE_BLOCK) << "the grid's candidates should need several merge passes";
       const std::vector<FrameTiming> part = orbit(float(all.back().predictedTraceMs / 4.0));
       ASSERT_EQ(part.size(), 6u);
       uint32_t partial = 0;
