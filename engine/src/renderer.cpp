@@ -289,7 +289,7 @@ struct Renderer::Impl {
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
     t.selectionChanges = r[4];
-    t.selectionSorted = r[0] > 0 && (r[0] > RB_ALL_FIT_MAX_CANDIDATES || r[6] != 0 || r[5] > RB_ALL_FIT_UNITS);  // select_common.glsl's allCandidatesFit
+    t.selectionSorted = r[7] != 0;
     if (settings.optimalBound || settings.checkSelection) {
       const auto* g = static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped);
       std::vector<select::Candidate> c;
@@ -516,14 +516,15 @@ struct Renderer::Impl {
     return settings.policy == Policy::Paper ? 1e-4 * double(settings.width) * double(settings.height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
   }
 
-  // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
-  // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
+  // Builds the GPU selector when the policy is budgeted and it is not built yet.
   void ensureSelector() {
     if (selector || !isBudgeted(settings.policy)) return;
     selector = std::make_unique<passes::GpuSelector>(ctx, std::max<uint32_t>(1, uint32_t(scene.objectSpheres.size())));
     selector->bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer, scene.objectCosts.buffer);
   }
 
+  // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
+  // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
   std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs) {
     RenderSettings next = settings;
     next.policy = policy;

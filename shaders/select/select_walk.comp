@@ -162,5 +162,8 @@ void main() {
   } else {
     p = selectGreedy(n, budget);
   }
-  if (gl_SubgroupInvocationID == 0u) result.yzw = uvec3(floatBitsToUint(p.cost), floatBitsToUint(p.value), p.count);
+  if (gl_SubgroupInvocationID == 0u) {
+    result.yzw = uvec3(floatBitsToUint(p.cost), floatBitsToUint(p.value), p.count);
+    result2.w = everything || policy == RB_SELECT_NONE ? 0u : 1u;  // the selection needed an order
+  }
 }

@@ -37,7 +37,8 @@ class GpuSelector {
   // Records, into the frame's command buffer, the selection among the objects' candidates
   // with costs kappa * work (the paper's C for `paper`, pixels * Q otherwise). Afterwards
   // resultBuffer() holds uvec4(candidates, predicted cost bits, value bits, selected) and
-  // uvec4(objects whose selection changed, 0, 0, 0).
+  // uvec4(objects whose selection changed, the candidates' total cost in 2^-20 budget
+  // units (lo, hi), 1 when the selection needed the sort).
   void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
                    const select::PolicyOptions& options) const;
   VkBuffer resultBuffer() const;
