@@ -29,6 +29,8 @@ struct SelectPush {
 };
 
 constexpr uint32_t kBlock = 1024;  // the bitonic shader's shared-memory block
+// mergeArgs holds a dispatch for every merge pass any 32-bit candidate count can need.
+static_assert(RB_MERGE_MAX_PASSES >= 32 - std::countr_zero(RB_MERGE_BLOCK));
 
 uint32_t paddedSize(uint32_t n) { return std::max(kBlock, std::bit_ceil(std::max(n, 1u))); }
 
@@ -117,12 +119,17 @@ struct GpuSelector::Impl {
     dispatch(cmd, apply, push, (objects + 63) / 64);
   }
 
-  void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const SelectPush& push, uint32_t groups) {
+  // Binds `pipeline` with `push`, records the dispatch, then a barrier for the next step.
+  template <class RecordDispatch>
+  void step(VkCommandBuffer cmd, VkPipeline pipeline, const SelectPush& push, RecordDispatch recordDispatch) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdPushConstants(cmd, set.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, groups, 1, 1);
+    recordDispatch();
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+  void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const SelectPush& push, uint32_t groups) {
+    step(cmd, pipeline, push, [&] { vkCmdDispatch(cmd, groups, 1, 1); });
   }
 
   // A sort of one order (0: the policy's, 1: `paper`'s relevance order) of up to `most`
@@ -140,14 +147,9 @@ struct GpuSelector::Impl {
                         VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
       uint32_t pass = 0;
       for (uint32_t run = RB_MERGE_BLOCK; run < most; run *= 2, ++pass) {
-        if (pass >= RB_MERGE_MAX_PASSES) throw Error("GPU selection: more merge passes than RB_MERGE_MAX_PASSES");
         push.stage.x = run;
         push.stage.y = pass;
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, merge);
-        vkCmdPushConstants(cmd, set.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatchIndirect(cmd, mergeArgs.buffer, (which * RB_MERGE_MAX_PASSES + pass) * 16ull);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        step(cmd, merge, push, [&] { vkCmdDispatchIndirect(cmd, mergeArgs.buffer, (which * RB_MERGE_MAX_PASSES + pass) * 16ull); });
       }
       return;
     }
