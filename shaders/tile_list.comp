@@ -13,12 +13,10 @@ layout(local_size_x = 64) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
 
 void main() {
-  uvec2 size = frame.sizeLightsFrame.xy;
-  uint tilesX = (size.x + RB_TILE_SIZE - 1u) / RB_TILE_SIZE, tilesY = (size.y + RB_TILE_SIZE - 1u) / RB_TILE_SIZE;
   uint t = gl_GlobalInvocationID.x;
-  if (t >= tilesX * tilesY) return;
-  uvec2 tile = uvec2(t % tilesX, t / tilesX);
-  uvec2 first = tile * RB_TILE_SIZE, last = min(first + RB_TILE_SIZE, size);
+  uvec2 first, last;
+  if (!screenTile(t, first, last)) return;
+  uvec2 tile = first / RB_TILE_SIZE;
   uint base = t * RB_TILE_OBJECT_WORDS;
   bool any = false;
   if (tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] == 0u) {

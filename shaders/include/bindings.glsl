@@ -64,6 +64,16 @@ layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost obj
 // Per tile, RB_TILE_OBJECT_WORDS words: the objects it shows (shared/config.h).
 layout(set = 0, binding = 36, std430) buffer TileObjectBlock { uint tileObjects[]; };
 
+// The 8x8 tile of a pass with one invocation per tile (coverage, tile list): its pixels
+// [first, last); false past the last tile.
+bool screenTile(uint t, out uvec2 first, out uvec2 last) {
+  uvec2 size = frame.sizeLightsFrame.xy;
+  uint tilesX = (size.x + RB_TILE_SIZE - 1u) / RB_TILE_SIZE, tilesY = (size.y + RB_TILE_SIZE - 1u) / RB_TILE_SIZE;
+  first = uvec2(t % tilesX, t / tilesX) * RB_TILE_SIZE;
+  last = min(first + RB_TILE_SIZE, size);
+  return t < tilesX * tilesY;
+}
+
 // Whether the pixel's object was selected for ray tracing this frame.
 bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && selected[objectId] != 0u; }
 

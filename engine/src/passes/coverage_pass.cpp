@@ -21,8 +21,7 @@ void CoveragePass::record(const FrameContext& fc) const {
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, coverage_);
   bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  const uint32_t tiles = ((fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE);
-  vkCmdDispatch(cmd, (tiles + 63) / 64, 1, 1);  // one invocation per tile
+  vkCmdDispatch(cmd, (fc.targets.tileCount() + 63) / 64, 1, 1);  // one invocation per tile
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   const uint32_t objects = uint32_t(fc.scene.objectSpheres.size());

@@ -50,7 +50,7 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage);
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
-  const VkDeviceSize tiles = VkDeviceSize((width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((height + RB_TILE_SIZE - 1) / RB_TILE_SIZE);
+  const VkDeviceSize tiles = t.tileCount();
   t.tileList = vk::createBuffer(ctx, 16 + 4 * tiles,
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,

@@ -30,8 +30,7 @@ void SelectPass::record(const FrameContext& fc, SelectMode mode) const {
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tiles_);
-  const uint32_t tileCount = ((fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE);
-  vkCmdDispatch(cmd, (tileCount + 63) / 64, 1, 1);
+  vkCmdDispatch(cmd, (fc.targets.tileCount() + 63) / 64, 1, 1);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                     VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
