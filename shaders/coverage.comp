@@ -38,9 +38,9 @@ struct TileSlots {
 
 void addToSlot(inout uvec4 slot, uint x, uint y) { slot += uvec4(0u, 1u, x, y); }
 
-// The slots are tested one after the other in straight-line code: a loop or a chain of
-// calls with ||, which would read shorter, measured about 0.07 ms slower on lavapipe (one run
-// of alternating builds).
+// The slots are tested one after the other in straight-line code: a chain of calls with
+// ||, which would read shorter, measured about 0.07 ms slower on lavapipe (one run of
+// alternating builds).
 void addPixel(inout TileSlots t, uint id, uint x, uint y) {
   if (id == RB_NO_OBJECT) return;
   if (t.s0.x == RB_NO_OBJECT) t.s0.x = id;
