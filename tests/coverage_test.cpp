@@ -1,6 +1,5 @@
 // The heuristic's per-object pass on the GPU against its CPU reference: coverage counted
 // from the same object-ID image, and A, P, D, V, C, R from engine/src/select/metrics.h.
-#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -62,14 +61,7 @@ size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t
   }
   EXPECT_GT(visible, 0u) << scene.path.filename() << ": the camera should see something";
   size_t crowded = 0;
-  for (uint32_t ty = 0; ty < h; ty += 8)
-    for (uint32_t tx = 0; tx < w; tx += 8) {
-      std::set<uint32_t> ids;
-      for (uint32_t y = ty; y < std::min(h, ty + 8); ++y)
-        for (uint32_t x = tx; x < std::min(w, tx + 8); ++x)
-          if (img.objectIds[size_t(y) * w + x] != 0xFFFFFFFFu) ids.insert(img.objectIds[size_t(y) * w + x]);
-      crowded += ids.size() > 3;
-    }
+  for (const std::set<uint32_t>& tile : test::objectsPerTile(img.objectIds, w, h)) crowded += tile.size() > 3;
   return crowded;
 }
 

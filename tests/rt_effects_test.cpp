@@ -1,6 +1,7 @@
 // Ray-traced effects in the frame: shadows equal Embree's visibility for the same G-buffer
 // points; reflections and refractions show what the geometry says; the policy switches
 // tracing on and off without touching anything else.
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <set>
@@ -312,22 +313,13 @@ TEST(RtPolicy, TracesTheTilesOfSelectedObjectsOnACrowdedGrid) {
     selectedObjects += m.selected;
     visibleObjects += m.pixels > 0;
   }
-  for (uint32_t ty = 0; ty < (s.height + 7) / 8; ++ty)
-    for (uint32_t tx = 0; tx < (s.width + 7) / 8; ++tx) {
-      std::set<uint32_t> objects;
-      bool any = false, unselected = false;
-      for (uint32_t y = ty * 8; y < std::min(s.height, ty * 8 + 8); ++y)
-        for (uint32_t x = tx * 8; x < std::min(s.width, tx * 8 + 8); ++x) {
-          const uint32_t id = img.objectIds[size_t(y) * s.width + x];
-          if (id == 0xFFFFFFFFu) continue;
-          objects.insert(id);
-          any = any || metrics[id].selected;
-          unselected = unselected || !metrics[id].selected;
-        }
-      tiles += any;
-      crowded += objects.size() > 3;
-      mixedSparse += objects.size() > 1 && objects.size() <= 3 && any && unselected;
-    }
+  for (const std::set<uint32_t>& objects : test::objectsPerTile(img.objectIds, s.width, s.height)) {
+    const bool any = std::any_of(objects.begin(), objects.end(), [&](uint32_t id) { return metrics[id].selected; });
+    const bool unselected = std::any_of(objects.begin(), objects.end(), [&](uint32_t id) { return !metrics[id].selected; });
+    tiles += any;
+    crowded += objects.size() > 3;
+    mixedSparse += objects.size() > 1 && objects.size() <= 3 && any && unselected;
+  }
   EXPECT_GT(crowded, 0u) << "some tiles show more than three objects (the pixel scan)";
   EXPECT_GT(mixedSparse, 0u) << "some tiles show two or three objects, selected and not (the object check)";
   EXPECT_GT(selectedObjects, 0u);
@@ -363,15 +355,18 @@ RenderSettings budgetedSettings(Policy policy, float budgetMs, uint32_t width, u
   return s;
 }
 
-// One frame of a budgeted policy from the default camera; its stats.
-FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) {
-  Renderer renderer(scene, budgetedSettings(policy, budgetMs, 160, 96));
-  std::vector<FrameTiming> t = renderer.render(defaultCamera(scene, 160.0f / 96.0f));
+// One validated frame from the default camera; its stats.
+FrameTiming oneFrame(const Scene& scene, const RenderSettings& s) {
+  Renderer renderer(scene, s);
+  std::vector<FrameTiming> t = renderer.render(defaultCamera(scene, renderer.aspect()));
   for (const FrameTiming& f : renderer.finish()) t.push_back(f);
   test::expectValidationClean(renderer.validationMessages());
   EXPECT_EQ(t.size(), 1u);
   return t.empty() ? FrameTiming{} : t[0];
 }
+
+// One frame of a budgeted policy from the default camera; its stats.
+FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) { return oneFrame(scene, budgetedSettings(policy, budgetMs, 160, 96)); }
 
 // In the frame the GPU selection runs on candidates the GPU made (appended in any order,
 // keyed by object ID through a slot table, merge passes sized on the GPU): it equals the
@@ -425,12 +420,7 @@ TEST(RtBudget, SkipsTheSortOnlyWhenEveryCandidateFitsForCertain) {
     auto frame = [&](float budgetMs) {
       RenderSettings s = budgetedSettings(p, budgetMs, 200, 120);
       s.checkSelection = true;
-      Renderer renderer(scene, s);
-      std::vector<FrameTiming> t = renderer.render(defaultCamera(scene, 200.0f / 120.0f));
-      for (const FrameTiming& f : renderer.finish()) t.push_back(f);
-      test::expectValidationClean(renderer.validationMessages());
-      EXPECT_EQ(t.size(), 1u);
-      const FrameTiming f = t.empty() ? FrameTiming{} : t[0];
+      const FrameTiming f = oneFrame(scene, s);
       EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << policyName(p) << ", T " << budgetMs;
       return f;
     };

@@ -1,5 +1,9 @@
 // Renders a scene with validation on and returns what the tests check.
 #pragma once
+#include <algorithm>
+#include <set>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "raybudget/raybudget.h"
@@ -31,7 +35,17 @@ inline RenderResult renderWithValidation(const Scene& scene, uint32_t width, uin
   return r;
 }
 
-// Fails the test with every validation message.
+// The objects each 8x8 tile of an object-ID image shows (tiles row by row; pixels showing
+// no object left out).
+inline std::vector<std::set<uint32_t>> objectsPerTile(const std::vector<uint32_t>& ids, uint32_t width, uint32_t height) {
+  const uint32_t tilesX = (width + 7) / 8, tilesY = (height + 7) / 8;
+  std::vector<std::set<uint32_t>> tiles(size_t(tilesX) * tilesY);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x)
+      if (const uint32_t id = ids[size_t(y) * width + x]; id != 0xFFFFFFFFu) tiles[size_t(y / 8) * tilesX + x / 8].insert(id);
+  return tiles;
+}
+
 // A test on its own Vulkan context with validation on; any validation message fails it.
 class ValidatedGpuTest : public ::testing::Test {
  protected:
