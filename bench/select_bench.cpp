@@ -95,12 +95,18 @@ int main(int argc, char** argv) {
     for (uint32_t n : {10u, 1000u, 10000u, 100000u}) {
       const Scene scene = cubeGridScene(n);
       double fitsTotalMs = 0.0;
-      for (const char* row : {"density-fits", "density-binds", "all"}) {
+      struct FrameRow {
+        const char* name;
+        Policy policy;
+        bool binds;
+      };
+      for (const FrameRow& row : {FrameRow{"density-fits", Policy::Density, false}, FrameRow{"density-binds", Policy::Density, true},
+                                  FrameRow{"all", Policy::All, false}}) {
         RenderSettings s;
         s.width = 640;
         s.height = 360;
-        s.policy = std::strcmp(row, "all") ? Policy::Density : Policy::All;
-        s.budgetMs = !std::strcmp(row, "density-binds") ? float(fitsTotalMs / 3.0) : 1e6f;
+        s.policy = row.policy;
+        s.budgetMs = row.binds ? float(fitsTotalMs / 3.0) : 1e6f;
         s.learnTimeScale = false;
         s.objectMetrics = true;
         Renderer renderer(scene, s);
@@ -117,8 +123,8 @@ int main(int argc, char** argv) {
           sel.push_back(t[f].passMs[size_t(Pass::Select)].value_or(0.0));
           sorted += t[f].selectionSorted;
         }
-        if (!std::strcmp(row, "density-fits")) fitsTotalMs = t.back().predictedTraceMs;
-        std::printf("%-16s %8u %12.3f %12.3f %12.3f %8zu %5zu/%zu\n", row, n, median(cov), median(sel), *std::min_element(sel.begin(), sel.end()),
+        if (row.policy == Policy::Density && !row.binds) fitsTotalMs = t.back().predictedTraceMs;
+        std::printf("%-16s %8u %12.3f %12.3f %12.3f %8zu %5zu/%zu\n", row.name, n, median(cov), median(sel), *std::min_element(sel.begin(), sel.end()),
                     visible, sorted, sel.size());
       }
     }
