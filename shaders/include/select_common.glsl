@@ -25,6 +25,9 @@ layout(set = 0, binding = 9, std430) buffer CostBlock { GpuObjectCost costs[]; }
 // Frame mode: per object, its candidate slot (select_candidates.comp appends candidates in
 // any order; the keys carry object IDs).
 layout(set = 0, binding = 11, std430) buffer SlotBlock { uint slotOf[]; };
+// The greedy policies' order as the walk reads it (select_gather.comp): per position the
+// candidate's cost and value (float bits), slot and ID.
+layout(set = 0, binding = 13, std430) buffer WalkOrderBlock { uvec4 walkOrder[]; };
 
 layout(push_constant) uniform SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed

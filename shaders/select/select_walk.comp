@@ -4,6 +4,8 @@
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_shuffle : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_EXT_control_flow_attributes : require
 // The sequential part of the selection, one subgroup: the greedy fill-in over the sorted
 // order (density, nearest, random; density then compares with the best single candidate),
 // or the walk of the paper's graph over the cost chain and the relevance order. The same
@@ -23,10 +25,11 @@ struct Picked {
   uint count;
 };
 
-void mark(uint ci, bool on) {
+void mark(uint ci, uint id, bool on) {
   if (push.walk.y == 0u) selectedFlags[ci] = on ? 1u : 0u;
-  else if (on) selected[candidates[ci].id] = 1u;
+  else if (on) selected[id] = 1u;
 }
+void mark(uint ci, bool on) { mark(ci, candidates[ci].id, on); }
 
 // Every candidate unselected (the frame's selection too), before a walk or a replacement.
 void clearAll(uint n) {
@@ -53,25 +56,32 @@ bool betterSingle(GpuCandidate c, uint ci, Single b) {
 }
 
 // The greedy fill-in, a subgroup's batch of the order at a time: the lanes load their
-// candidates together, and the decisions run in order on values shuffled from each lane,
-// so the remaining budget is the same float sequence as the CPU's. A batch where nothing
-// fits any more is skipped (most of them once the budget is spent). Density also keeps,
-// per lane, the best single candidate that fits; the subgroup then picks the best of those.
+// candidates together (the next batch's load in flight while this one decides), and the
+// decisions run in order on values shuffled from each lane, so the remaining budget is the
+// same float sequence as the CPU's. A batch where nothing fits any more is skipped (most of
+// them once the budget is spent). Density also keeps, per lane, the best single candidate
+// that fits; the subgroup then picks the best of those.
 Picked selectGreedy(uint n, float budget) {
   Picked p = Picked(0.0, 0.0, 0u);
   bool density = push.sizes.z == RB_SELECT_DENSITY;
   float remaining = budget;
   uint lane = gl_SubgroupInvocationID;
   Single best = Single(0u, 0.0, 0u, 0u);
+  uvec4 next = lane < n ? walkOrder[lane] : uvec4(0u);
   for (uint base = 0u; base < n; base += gl_SubgroupSize) {
     bool valid = base + lane < n;
-    uint ci = valid ? candidateAt(order[base + lane].y) : 0u;
-    GpuCandidate c = GpuCandidate(0u, uintBitsToFloat(0x7F800000u), 0.0, 0.0);  // past the end: fits nothing
-    if (valid) c = candidates[ci];  // (not a ?: with the buffer's struct: glslang emits invalid SPIR-V)
+    uvec4 record = next;
+    if (base + gl_SubgroupSize + lane < n) next = walkOrder[base + gl_SubgroupSize + lane];
+    uint ci = record.z;
+    // Past the end: fits nothing.
+    GpuCandidate c = GpuCandidate(record.w, valid ? uintBitsToFloat(record.x) : uintBitsToFloat(0x7F800000u), uintBitsToFloat(record.y), 0.0);
     bool taken = false;
     if (subgroupAny(c.cost <= remaining)) {
       uint count = min(gl_SubgroupSize, n - base);
-      for (uint j = 0u; j < count; ++j) {
+      // Unrolled to the subgroup size (a specialization constant): a GPU then issues the
+      // shuffles ahead of the decisions that wait on them (H100, 10k: 0.30 -> 0.24 ms).
+      [[unroll]] for (uint j = 0u; j < gl_WorkGroupSize.x; ++j) {
+        if (j >= count) break;
         float cost = subgroupShuffle(c.cost, j), value = subgroupShuffle(c.value, j);
         if (cost <= remaining) {
           remaining -= cost;
@@ -82,7 +92,7 @@ Picked selectGreedy(uint n, float budget) {
         }
       }
     }
-    if (valid) mark(ci, taken);
+    if (valid) mark(ci, c.id, taken);
     if (density && valid && c.cost <= budget && betterSingle(c, ci, best)) best = Single(1u, c.value, c.id, ci);
   }
   bool found = best.found != 0u;
@@ -98,45 +108,70 @@ Picked selectGreedy(uint n, float budget) {
   return Picked(candidates[winner].cost, topValue, 1u);
 }
 
+// The lowest position in [from, end) of an order (`paper`'s cost order, or its relevance
+// order) whose candidate is untaken and fits, with that candidate; x = end if none. The
+// subgroup tests its lanes' positions together and the ballot's lowest lane wins, so the
+// serial chain of dependent loads is one per subgroup's batch, not one per position.
+uvec2 firstThatFits(bool relevanceOrder, uint from, uint end, float remaining) {
+  for (uint base = from; base < end; base += gl_SubgroupSize) {
+    uint pos = base + gl_SubgroupInvocationID, c = 0u;
+    bool fits = false;
+    if (pos < end) {
+      c = candidateAt(relevanceOrder ? relevance[pos].y : order[pos].y);
+      fits = scratch[c] == 0u && candidates[c].cost <= remaining;
+    }
+    uvec4 ballot = subgroupBallot(fits);
+    if (ballot != uvec4(0u)) {
+      uint winner = subgroupBallotFindLSB(ballot);
+      return uvec2(base + winner, subgroupShuffle(c, winner));
+    }
+  }
+  return uvec2(end, 0u);
+}
+
 // scratch: [0, n) taken, [n, 2n) rank in the relevance order, [2n, 3n) first position of
-// the rank's group of equal relevance. Sequential, on the subgroup's first lane.
+// the rank's group of equal relevance. The walk itself is sequential: every lane walks it
+// (same values, same floats), and the lanes split each scan for the next node that fits.
 Picked selectPaper(uint n, float budget, uint pointers) {
   Picked p = Picked(0.0, 0.0, 0u);
-  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) scratch[ci] = 0u;
-  if (push.walk.y == 0u) {
-    clearAll(n);  // the flags; in frame mode the candidate pass cleared the selection
-  } else {
-    subgroupMemoryBarrierBuffer();
-    subgroupBarrier();
+  uint lane = gl_SubgroupInvocationID;
+  if (push.walk.y == 0u) clearAll(n);  // the flags; in frame mode the candidate pass cleared the selection
+  // Ranks, and each rank's group start: the latest position up to it that does not tie
+  // with its predecessor (a running maximum, carried from batch to batch).
+  uint groupStart = 0u;
+  for (uint base = 0u; base < n; base += gl_SubgroupSize) {
+    uint s = base + lane;
+    bool startsGroup = false;
+    if (s < n) {
+      uint ci = candidateAt(relevance[s].y);
+      scratch[ci] = 0u;
+      scratch[n + ci] = s;
+      startsGroup = s == 0u || candidates[candidateAt(relevance[s - 1u].y)].value != candidates[ci].value;
+    }
+    uint start = max(groupStart, subgroupInclusiveMax(startsGroup ? s : 0u));
+    if (s < n) scratch[2u * n + s] = start;
+    groupStart = subgroupMax(start);
   }
-  if (gl_SubgroupInvocationID != 0u) return p;
-  for (uint s = 0u; s < n; ++s) {
-    uint ci = candidateAt(relevance[s].y);
-    scratch[n + ci] = s;
-    bool tie = s > 0u && candidates[candidateAt(relevance[s - 1u].y)].value == candidates[ci].value;
-    scratch[2u * n + s] = tie ? scratch[2u * n + s - 1u] : s;
-  }
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();
   float remaining = budget;
   uint head = 0u;
   while (true) {
-    while (head < n && (scratch[candidateAt(order[head].y)] != 0u || candidates[candidateAt(order[head].y)].cost > remaining)) ++head;
-    if (head == n) break;
-    uint node = candidateAt(order[head].y);
+    // Nodes too costly for what is left go to the next frame's graph: the budget only
+    // shrinks, so they cannot fit later in this frame either.
+    uvec2 found = firstThatFits(false, head, n, remaining);
+    head = found.x;
+    if (head >= n) break;
+    uint node = found.y;
     for (uint hop = 0u; push.walk.x == 0u || hop < push.walk.x; ++hop) {
-      bool climbed = false;
       uint first = scratch[2u * n + scratch[n + node]];
-      uint from = first > pointers ? first - pointers : 0u;
-      for (uint pos = from; pos < first; ++pos) {  // most relevant first
-        uint c = candidateAt(relevance[pos].y);
-        if (scratch[c] != 0u || candidates[c].cost > remaining) continue;
-        node = c;
-        climbed = true;
-        break;
-      }
-      if (!climbed) break;
+      uvec2 pointer = firstThatFits(true, first > pointers ? first - pointers : 0u, first, remaining);  // most relevant first
+      if (pointer.x == first) break;
+      node = pointer.y;
     }
+    // Every lane sets the flag: each then reads its own write, with no barrier per pick.
     scratch[node] = 1u;
-    mark(node, true);
+    if (lane == 0u) mark(node, true);
     p.cost += candidates[node].cost;
     p.value += candidates[node].value;
     ++p.count;
@@ -152,9 +187,20 @@ void main() {
   bool everything = policy == RB_SELECT_ALL || allCandidatesFit();  // (no order needed)
   if (everything || policy == RB_SELECT_NONE) {
     Picked lanePart = Picked(0.0, 0.0, 0u);
-    for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
-      mark(ci, everything);
-      if (everything) lanePart = Picked(lanePart.cost + candidates[ci].cost, lanePart.value + candidates[ci].value, lanePart.count + 1u);
+    // Four candidates per lane and step, their loads issued together: one subgroup walks
+    // them all, so on a GPU each step's load latency, not the work, sets the pace.
+    for (uint base = 0u; base < n; base += 4u * gl_SubgroupSize) {
+      GpuCandidate c[4];
+      [[unroll]] for (uint k = 0u; k < 4u; ++k) {
+        uint ci = base + k * gl_SubgroupSize + gl_SubgroupInvocationID;
+        if (ci < n) c[k] = candidates[ci];
+      }
+      [[unroll]] for (uint k = 0u; k < 4u; ++k) {
+        uint ci = base + k * gl_SubgroupSize + gl_SubgroupInvocationID;
+        if (ci >= n) continue;
+        mark(ci, c[k].id, everything);
+        if (everything) lanePart = Picked(lanePart.cost + c[k].cost, lanePart.value + c[k].value, lanePart.count + 1u);
+      }
     }
     p = Picked(subgroupAdd(lanePart.cost), subgroupAdd(lanePart.value), subgroupAdd(lanePart.count));
   } else if (policy == RB_SELECT_PAPER) {

@@ -8,6 +8,7 @@
 #include "select_bitonic_comp.h"
 #include "select_block_sort_comp.h"
 #include "select_candidates_comp.h"
+#include "select_gather_comp.h"
 #include "select_keys_comp.h"
 #include "select_merge_comp.h"
 #include "select_walk_comp.h"
@@ -41,9 +42,9 @@ vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayou
   VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
   vkGetPhysicalDeviceProperties2(ctx.physicalDevice(), &properties);
   const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
-                                        VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
+                                        VK_SUBGROUP_FEATURE_SHUFFLE_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
   if ((subgroup.supportedOperations & needed) != needed || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
-    throw Error(std::string("the GPU selection needs subgroup vote, arithmetic and shuffle operations in compute shaders; ") +
+    throw Error(std::string("the GPU selection needs subgroup vote, arithmetic, shuffle and ballot operations in compute shaders; ") +
                 ctx.properties().deviceName + " lacks them");
   const uint32_t size = subgroup.subgroupSize;
   const VkSpecializationMapEntry entry{0, 0, sizeof(size)};
@@ -56,9 +57,9 @@ vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayou
 struct GpuSelector::Impl {
   const vk::Context& ctx;
   uint32_t capacity, padded;
-  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, slots, mergeArgs, placeholder;
+  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, slots, mergeArgs, walkOrder, placeholder;
   vk::ComputeSet set;
-  vk::Owned<VkPipeline> keys, bitonic, blockSort, merge, walk, candidatesFromObjects, apply;
+  vk::Owned<VkPipeline> keys, bitonic, blockSort, merge, gather, walk, candidatesFromObjects, apply;
   bool mergeSort = false;  // a CPU device: the barrier-free merge sort beats the bitonic sort
   vk::TimestampPool timestamps;
   double gpuMs = 0.0;
@@ -77,27 +78,29 @@ struct GpuSelector::Impl {
     // Per order (the policy's, `paper`'s relevance order) and merge pass: its indirect
     // dispatch (16 bytes each), written by the block sort.
     mergeArgs = vk::createBuffer(c, 2ull * RB_MERGE_MAX_PASSES * 16, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
+    walkOrder = vk::createBuffer(c, std::max(cap, 1u) * 16ull, storage, false);  // the greedy walk's records
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9 until bindFrame
-    const std::vector<VkDescriptorType> types(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    const std::vector<VkDescriptorType> types(14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
     bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer, placeholder.buffer);
     candidatesFromObjects = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_candidates_comp);
     apply = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_apply_comp);
     keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
     bitonic = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_bitonic_comp);
+    gather = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_gather_comp);
     walk = createWalkPipeline(c, set.pipelineLayout);
     merge = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_merge_comp);
     blockSort = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_block_sort_comp);
   }
 
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
-    const VkBuffer buffers[13] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,     result.buffer,
+    const VkBuffer buffers[14] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,     result.buffer,
                                   records,           selection,    params,           costs,          spare.buffer,     slots.buffer,
-                                  mergeArgs.buffer};
+                                  mergeArgs.buffer,  walkOrder.buffer};
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
@@ -113,8 +116,7 @@ struct GpuSelector::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
     dispatch(cmd, candidatesFromObjects, push, (objects + 63) / 64);
-    sortOrder(cmd, push, 0, objects);
-    if (policy == select::Policy::Paper) sortOrder(cmd, push, 1, objects);
+    orderForWalk(cmd, push, policy, objects);
     dispatch(cmd, walk, push, 1);
     dispatch(cmd, apply, push, (objects + 63) / 64);
   }
@@ -130,6 +132,14 @@ struct GpuSelector::Impl {
   }
   void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, const SelectPush& push, uint32_t groups) {
     step(cmd, pipeline, push, [&] { vkCmdDispatch(cmd, groups, 1, 1); });
+  }
+
+  // What the walk reads for up to `most` candidates: `paper`'s two orders (cost, relevance),
+  // or the greedy policies' order laid out as the walk's records.
+  void orderForWalk(VkCommandBuffer cmd, const SelectPush& push, select::Policy policy, uint32_t most) {
+    sortOrder(cmd, push, 0, most);
+    if (policy == select::Policy::Paper) sortOrder(cmd, push, 1, most);
+    else dispatch(cmd, gather, push, (most + 63) / 64);
   }
 
   // A sort of one order (0: the policy's, 1: `paper`'s relevance order) of up to `most`
@@ -196,8 +206,7 @@ struct GpuSelector::Impl {
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
       timestamps.begin(cmd, 0, 0);
       const bool sorted = policy != select::Policy::None && policy != select::Policy::All;
-      if (sorted && n > 0) sortOrder(cmd, push, 0, n);
-      if (policy == select::Policy::Paper && n > 0) sortOrder(cmd, push, 1, n);
+      if (sorted && n > 0) orderForWalk(cmd, push, policy, n);
       dispatch(cmd, walk, push, 1);
       timestamps.end(cmd, 0, 0);
       const VkBufferCopy back{0, 0, std::max(n, 1u) * 4ull};
