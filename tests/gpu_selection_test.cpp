@@ -18,7 +18,8 @@ using select::Policy;
 
 using GpuSelection = test::ValidatedGpuTest;
 
-// Both sorts (the bitonic one of a GPU, the merge sort of a CPU device) on every set.
+// Both sorts (the bitonic one of a GPU, the merge sort of a CPU device) on every set; every
+// third set drawn from a few levels (near-equal densities).
 TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
   passes::GpuSelector bitonic(ctx, 4096, passes::SortMethod::Bitonic), merge(ctx, 4096, passes::SortMethod::Merge);
   bvh::Rng rng(77);
@@ -26,7 +27,7 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
   for (int trial = 0; trial < 500; ++trial) {
     passes::GpuSelector& gpu = trial % 2 ? bitonic : merge;
     const size_t n = 1 + size_t(rng.next() * (trial % 25 == 0 ? 4000.0f : 60.0f));
-    const std::vector<Candidate> c = test::randomCandidates(rng, n);
+    const std::vector<Candidate> c = trial % 3 == 2 ? test::leveledCandidates(rng, n) : test::randomCandidates(rng, n);
     const float budget = test::randomBudget(rng, c);
     // N from 0 to 5, and 40 (more pointers than a subgroup's lanes: the scan takes batches).
     const select::PolicyOptions options{trial % 7 == 6 ? 40u : uint32_t(trial % 7), uint32_t(trial * 31 + 1), uint32_t(trial % 3)};

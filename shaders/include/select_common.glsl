@@ -83,12 +83,19 @@ uint candidateAt(uint word) { return push.walk.y != 0u ? slotOf[word] : word; }
 // ID order, so keys are unique, ties go by ID, and a key is 8 bytes (a merge sort on a CPU
 // device moves it scattered, lane by lane: 16-byte keys cost ~1.5x as much). Past the
 // candidates: all ones, sorted last.
+// a / b correctly rounded, as the CPU reference divides. Vulkan lets a float division be
+// 2.5 ULP off (NVIDIA's is; lavapipe's is exact), which reordered near-equal densities
+// against the CPU on an H100. A double quotient within 2.5 double ULP of a / b rounds to the
+// correctly rounded float: a quotient of two floats is never within 2^-49 (relative) of a
+// midpoint between floats, and 2.5 double ULP is under 2^-51.
+float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
+
 uvec2 candidateKey(uint i, uint which) {
   if (i >= candidateCount()) return uvec2(0xFFFFFFFFu);
   GpuCandidate c = candidates[i];
   uint place = push.walk.y != 0u ? c.id : i, policy = push.sizes.z;
   if (policy == RB_SELECT_DENSITY) {
-    precise float density = c.cost > 0.0 ? c.value / c.cost : uintBitsToFloat(0x7F800000u);
+    float density = c.cost > 0.0 ? exactQuotient(c.value, c.cost) : uintBitsToFloat(0x7F800000u);
     return uvec2(~orderedBits(density), place);
   }
   if (policy == RB_SELECT_NEAREST) return uvec2(orderedBits(c.distance), place);

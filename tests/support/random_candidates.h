@@ -21,6 +21,17 @@ inline std::vector<select::Candidate> randomCandidates(bvh::Rng& rng, size_t n) 
   return c;
 }
 
+// Costs, values and distances from 11 levels each (e^(k/2), k = -5..5), as in a symmetric view
+// of repeated objects: many densities are equal or a few ULP apart (e^a / e^b against
+// e^c / e^d with a - b = c - d), where a float division that is not correctly rounded (Vulkan
+// allows 2.5 ULP) orders them unlike the CPU.
+inline std::vector<select::Candidate> leveledCandidates(bvh::Rng& rng, size_t n) {
+  auto level = [&] { return std::exp(std::floor(rng.next() * 11.0f - 5.0f) * 0.5f); };
+  std::vector<select::Candidate> c(n);
+  for (size_t i = 0; i < n; ++i) c[i] = {uint32_t(i * 5 + 1), level(), level(), level()};
+  return c;
+}
+
 // 0 one time in ten, else up to 60% of the candidates' total cost.
 inline float randomBudget(bvh::Rng& rng, const std::vector<select::Candidate>& c) {
   double total = 0.0;

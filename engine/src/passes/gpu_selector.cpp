@@ -46,6 +46,9 @@ vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayou
   if ((subgroup.supportedOperations & needed) != needed || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
     throw Error(std::string("the GPU selection needs subgroup vote, arithmetic, shuffle and ballot operations in compute shaders; ") +
                 ctx.properties().deviceName + " lacks them");
+  if (!ctx.shaderFloat64())
+    throw Error(std::string("the GPU selection needs shaderFloat64 (correctly rounded density keys, select_common.glsl); ") +
+                ctx.properties().deviceName + " lacks it");
   const uint32_t size = subgroup.subgroupSize;
   const VkSpecializationMapEntry entry{0, 0, sizeof(size)};
   const VkSpecializationInfo info{1, &entry, sizeof(size), &size};

@@ -189,6 +189,8 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   e2.features.imageCubeArray = VK_TRUE;
   e2.features.samplerAnisotropy = f2.features.samplerAnisotropy;
   e2.features.shaderStorageImageWriteWithoutFormat = f2.features.shaderStorageImageWriteWithoutFormat;
+  shaderFloat64_ = f2.features.shaderFloat64 == VK_TRUE;
+  e2.features.shaderFloat64 = f2.features.shaderFloat64;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -36,6 +36,9 @@ class Context {
   // VK_KHR_ray_query with acceleration structures and buffer device addresses: enabled
   // whenever the device offers them (lavapipe from Mesa 24+, current GPUs).
   bool rayQuerySupported() const { return rayQuery_; }
+  // 64-bit floats in shaders, enabled where offered: the GPU selection divides through them
+  // to get correctly rounded float quotients (select_common.glsl's exactQuotient).
+  bool shaderFloat64() const { return shaderFloat64_; }
   const AccelFunctions& accel() const { return accel_; }
   VkDeviceSize accelScratchAlignment() const { return accelScratchAlignment_; }
 
@@ -52,6 +55,7 @@ class Context {
  private:
   bool validation_ = false;
   bool rayQuery_ = false;
+  bool shaderFloat64_ = false;
   AccelFunctions accel_;
   VkDeviceSize accelScratchAlignment_ = 1;
   Owned<VkInstance> instance_;
