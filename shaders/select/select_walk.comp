@@ -108,50 +108,41 @@ Picked selectGreedy(uint n, float budget) {
   return Picked(candidates[winner].cost, topValue, 1u);
 }
 
-// The lowest position in [from, end) of an order (`paper`'s cost order, or its relevance
-// order) whose candidate is untaken and fits, with that candidate; x = end if none. The
-// subgroup tests its lanes' positions together and the ballot's lowest lane wins, so the
-// serial chain of dependent loads is one per subgroup's batch, not one per position.
-uvec2 firstThatFits(bool relevanceOrder, uint from, uint end, float remaining) {
+// The lowest position in [from, end) of `paper`'s cost chain (offset 0) or relevance order
+// (offset padded) whose node is untaken and fits, with its record (select_gather.comp); x =
+// end if none. The subgroup tests its lanes' positions together and the ballot's lowest lane
+// wins: per batch one record load and one flag load, whatever the position.
+struct Found {
+  uint pos;
+  uvec4 record;  // cost, slot, pointer window, value
+};
+
+Found firstThatFits(uint offset, uint from, uint end, float remaining) {
   for (uint base = from; base < end; base += gl_SubgroupSize) {
-    uint pos = base + gl_SubgroupInvocationID, c = 0u;
+    uint pos = base + gl_SubgroupInvocationID;
+    uvec4 record = uvec4(0u);
     bool fits = false;
     if (pos < end) {
-      c = candidateAt(relevanceOrder ? relevance[pos].y : order[pos].y);
-      fits = scratch[c] == 0u && candidates[c].cost <= remaining;
+      record = walkOrder[offset + pos];
+      fits = uintBitsToFloat(record.x) <= remaining && scratch[record.y] == 0u;
     }
     uvec4 ballot = subgroupBallot(fits);
     if (ballot != uvec4(0u)) {
       uint winner = subgroupBallotFindLSB(ballot);
-      return uvec2(base + winner, subgroupShuffle(c, winner));
+      return Found(base + winner, subgroupShuffle(record, winner));
     }
   }
-  return uvec2(end, 0u);
+  return Found(end, uvec4(0u));
 }
 
-// scratch: [0, n) taken, [n, 2n) rank in the relevance order, [2n, 3n) first position of
-// the rank's group of equal relevance. The walk itself is sequential: every lane walks it
-// (same values, same floats), and the lanes split each scan for the next node that fits.
+// The walk over the cost chain and the pointers into the relevance order. It is sequential:
+// every lane walks it (same values, same floats), and the lanes split each scan for the next
+// node that fits. scratch[0, n): taken, set by every lane itself (each reads only its own
+// writes after the clearing barrier); the selection is marked from it at the end.
 Picked selectPaper(uint n, float budget, uint pointers) {
   Picked p = Picked(0.0, 0.0, 0u);
-  uint lane = gl_SubgroupInvocationID;
-  if (push.walk.y == 0u) clearAll(n);  // the flags; in frame mode the candidate pass cleared the selection
-  // Ranks, and each rank's group start: the latest position up to it that does not tie
-  // with its predecessor (a running maximum, carried from batch to batch).
-  uint groupStart = 0u;
-  for (uint base = 0u; base < n; base += gl_SubgroupSize) {
-    uint s = base + lane;
-    bool startsGroup = false;
-    if (s < n) {
-      uint ci = candidateAt(relevance[s].y);
-      scratch[ci] = 0u;
-      scratch[n + ci] = s;
-      startsGroup = s == 0u || candidates[candidateAt(relevance[s - 1u].y)].value != candidates[ci].value;
-    }
-    uint start = max(groupStart, subgroupInclusiveMax(startsGroup ? s : 0u));
-    if (s < n) scratch[2u * n + s] = start;
-    groupStart = subgroupMax(start);
-  }
+  uint lane = gl_SubgroupInvocationID, relevanceOffset = push.sizes.y;
+  for (uint ci = lane; ci < n; ci += gl_SubgroupSize) scratch[ci] = 0u;
   subgroupMemoryBarrierBuffer();
   subgroupBarrier();
   float remaining = budget;
@@ -159,24 +150,23 @@ Picked selectPaper(uint n, float budget, uint pointers) {
   while (true) {
     // Nodes too costly for what is left go to the next frame's graph: the budget only
     // shrinks, so they cannot fit later in this frame either.
-    uvec2 found = firstThatFits(false, head, n, remaining);
-    head = found.x;
+    Found node = firstThatFits(0u, head, n, remaining);
+    head = node.pos;
     if (head >= n) break;
-    uint node = found.y;
     for (uint hop = 0u; push.walk.x == 0u || hop < push.walk.x; ++hop) {
-      uint first = scratch[2u * n + scratch[n + node]];
-      uvec2 pointer = firstThatFits(true, first > pointers ? first - pointers : 0u, first, remaining);  // most relevant first
-      if (pointer.x == first) break;
-      node = pointer.y;
+      uint first = node.record.z;
+      Found pointer = firstThatFits(relevanceOffset, first > pointers ? first - pointers : 0u, first, remaining);  // most relevant first
+      if (pointer.pos == first) break;
+      node.record = pointer.record;
     }
-    // Every lane sets the flag: each then reads its own write, with no barrier per pick.
-    scratch[node] = 1u;
-    if (lane == 0u) mark(node, true);
-    p.cost += candidates[node].cost;
-    p.value += candidates[node].value;
+    scratch[node.record.y] = 1u;
+    float cost = uintBitsToFloat(node.record.x);
+    p.cost += cost;
+    p.value += uintBitsToFloat(node.record.w);
     ++p.count;
-    remaining -= candidates[node].cost;
+    remaining -= cost;
   }
+  for (uint ci = lane; ci < n; ci += gl_SubgroupSize) mark(ci, scratch[ci] != 0u);
   return p;
 }
 

@@ -81,7 +81,7 @@ struct GpuSelector::Impl {
     // Per order (the policy's, `paper`'s relevance order) and merge pass: its indirect
     // dispatch (16 bytes each), written by the block sort.
     mergeArgs = vk::createBuffer(c, 2ull * RB_MERGE_MAX_PASSES * 16, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
-    walkOrder = vk::createBuffer(c, std::max(cap, 1u) * 16ull, storage, false);  // the greedy walk's records
+    walkOrder = vk::createBuffer(c, 2ull * padded * 16, storage, false);  // the walk's records; `paper`'s second order from `padded`
     scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
@@ -137,12 +137,12 @@ struct GpuSelector::Impl {
     step(cmd, pipeline, push, [&] { vkCmdDispatch(cmd, groups, 1, 1); });
   }
 
-  // What the walk reads for up to `most` candidates: `paper`'s two orders (cost, relevance),
-  // or the greedy policies' order laid out as the walk's records.
+  // What the walk reads for up to `most` candidates: the policy's order (and `paper`'s
+  // relevance order), laid out as the walk's records (select_gather.comp).
   void orderForWalk(VkCommandBuffer cmd, const SelectPush& push, select::Policy policy, uint32_t most) {
     sortOrder(cmd, push, 0, most);
     if (policy == select::Policy::Paper) sortOrder(cmd, push, 1, most);
-    else dispatch(cmd, gather, push, (most + 63) / 64);
+    dispatch(cmd, gather, push, (most + 63) / 64);
   }
 
   // A sort of one order (0: the policy's, 1: `paper`'s relevance order) of up to `most`
