@@ -147,7 +147,7 @@ Picked selectPaper(uint n, float budget, uint pointers) {
   subgroupBarrier();
   float remaining = budget;
   uint head = 0u;
-  while (true) {
+  while (p.count < n) {  // each pick takes a node: a bound, were the flags ever wrong, not a hang
     // Nodes too costly for what is left go to the next frame's graph: the budget only
     // shrinks, so they cannot fit later in this frame either.
     Found node = firstThatFits(0u, head, n, remaining);
