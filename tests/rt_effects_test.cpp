@@ -396,14 +396,18 @@ TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
       ASSERT_EQ(all.size(), 6u);
       ASSERT_GT(all.back().predictedTraceMs, 0.0);
       for (const FrameTiming& f : all) EXPECT_FALSE(f.selectionSorted) << "everything fits: no sort needed";
-      if (sc == &grid) EXPECT_GT(all.back().selectedObjects, 2u * RB_MERGE_BLOCK) << "the grid's candidates should need several merge passes";
+      if (sc == &grid) {
+        EXPECT_GT(all.back().selectedObjects, 2u * RB_MERGE_BLOCK) << "the grid's candidates should need several merge passes";
+      }
       const std::vector<FrameTiming> part = orbit(float(all.back().predictedTraceMs / 4.0));
       ASSERT_EQ(part.size(), 6u);
       uint32_t partial = 0;
       for (size_t f = 0; f < 6; ++f) {
         const bool binds = part[f].selectedObjects > 0 && part[f].selectedObjects < all[f].selectedObjects;
         partial += binds;
-        if (binds) EXPECT_TRUE(part[f].selectionSorted);
+        if (binds) {
+          EXPECT_TRUE(part[f].selectionSorted);
+        }
       }
       EXPECT_GE(partial, 3u) << policyName(p) << ", " << sc->objects.size() << " objects: the budget should bind in most frames";
     }

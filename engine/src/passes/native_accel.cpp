@@ -76,7 +76,7 @@ NativeAccel::NativeAccel(const vk::Context& ctx, const Scene& scene) : ctx_(ctx)
       const Material& mat = scene.materials[size_t(p.material)];
       VkAccelerationStructureGeometryKHR g{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
       g.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
-      g.flags = mat.alphaMode == AlphaMode::Mask ? VkGeometryFlagsKHR(0) : VK_GEOMETRY_OPAQUE_BIT_KHR;
+      g.flags = mat.alphaMode == AlphaMode::Mask ? VkGeometryFlagsKHR(0) : VkGeometryFlagsKHR(VK_GEOMETRY_OPAQUE_BIT_KHR);
       auto& tri = g.geometry.triangles;
       tri = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR};
       tri.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
