@@ -36,7 +36,8 @@ static_assert(RB_MERGE_MAX_PASSES >= 32 - std::countr_zero(RB_MERGE_BLOCK));
 uint32_t paddedSize(uint32_t n) { return std::max(kBlock, std::bit_ceil(std::max(n, 1u))); }
 
 // The walk runs as one subgroup (shaders/select/select_walk.comp): its workgroup size is
-// the device's subgroup size, and it needs the subgroup vote, arithmetic and shuffle ops.
+// the device's subgroup size, and it needs the subgroup vote, arithmetic, shuffle and ballot
+// ops (and shaderFloat64 for the density keys, select_common.glsl).
 vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayout layout) {
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
