@@ -11,7 +11,7 @@ layout(set = 0, binding = 0, std430) buffer CandidateBlock { GpuCandidate candid
 // and where candidateAt finds the candidate).
 layout(set = 0, binding = 1, std430) buffer OrderBlock { uvec2 order[]; };
 layout(set = 0, binding = 2, std430) buffer RelevanceBlock { uvec2 relevance[]; };  // `paper`: the relevance order
-layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: taken, rank, group start
+layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };     // `paper`: per candidate, taken
 layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
 // Frame mode: x candidates, y predicted cost and z value (float bits), w selected; then
 // x objects whose selection changed since the last frame, y and z the candidates' total cost

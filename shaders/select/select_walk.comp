@@ -31,7 +31,8 @@ void mark(uint ci, uint id, bool on) {
 }
 void mark(uint ci, bool on) { mark(ci, candidates[ci].id, on); }
 
-// Every candidate unselected (the frame's selection too), before a walk or a replacement.
+// Every candidate unselected (the frame's selection too), before density's best single
+// candidate replaces the greedy selection.
 void clearAll(uint n) {
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
     if (push.walk.y == 0u) selectedFlags[ci] = 0u;
@@ -109,8 +110,8 @@ Picked selectGreedy(uint n, float budget) {
 }
 
 // The lowest position in [from, end) of `paper`'s cost chain (offset 0) or relevance order
-// (offset padded) whose node is untaken and fits, with its record (select_gather.comp); x =
-// end if none. The subgroup tests its lanes' positions together and the ballot's lowest lane
+// (offset padded) whose node is untaken and fits, with its record (select_gather.comp); pos
+// = end if none. The subgroup tests its lanes' positions together and the ballot's lowest lane
 // wins: per batch one record load and one flag load, whatever the position.
 struct Found {
   uint pos;

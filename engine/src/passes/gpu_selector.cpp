@@ -83,7 +83,7 @@ struct GpuSelector::Impl {
     // dispatch (16 bytes each), written by the block sort.
     mergeArgs = vk::createBuffer(c, 2ull * RB_MERGE_MAX_PASSES * 16, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
     walkOrder = vk::createBuffer(c, 2ull * padded * 16, storage, false);  // the walk's records; `paper`'s second order from `padded`
-    scratch = vk::createBuffer(c, 3ull * std::max(cap, 1u) * 4, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+    scratch = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);  // `paper`'s taken flags
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
