@@ -1,6 +1,9 @@
 #include "passes/batch_tracer.h"
 
+#include <chrono>
 #include <cstring>
+
+#include "bvh/ray_binning.h"
 
 #include "passes/bvh_buffers.h"
 #include "passes/native_accel.h"
@@ -45,7 +48,7 @@ struct BatchTracer::Impl {
   vk::Owned<VkPipeline> pipeline;
   vk::Owned<VkDescriptorPool> pool;
   vk::TimestampPool timestamps;
-  double gpuMs = 0.0;
+  double gpuMs = 0.0, binMs = 0.0;
   size_t accelBytes = 0;
 
   Impl(const vk::Context& c, const bvh::SceneBvh& bvh) : ctx(c), timestamps(c, 1, 1) {
@@ -139,7 +142,21 @@ struct BatchTracer::Impl {
     return set;
   }
 
-  std::vector<gpu::GpuHit> trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags) {
+  std::vector<gpu::GpuHit> trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags, Order order) {
+    binMs = 0.0;
+    if (order == Order::AsGiven) return dispatch(rays, flags);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<uint32_t> binned = bvh::binRays(rays);
+    std::vector<gpu::GpuRay> sorted(rays.size());
+    for (size_t i = 0; i < binned.size(); ++i) sorted[i] = rays[binned[i]];
+    binMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const std::vector<gpu::GpuHit> sortedHits = dispatch(sorted, flags);
+    std::vector<gpu::GpuHit> hits(rays.size());
+    for (size_t i = 0; i < binned.size(); ++i) hits[binned[i]] = sortedHits[i];
+    return hits;
+  }
+
+  std::vector<gpu::GpuHit> dispatch(const std::vector<gpu::GpuRay>& rays, uint32_t flags) {
     if (rays.empty()) return {};
     const VkDeviceSize rayBytes = rays.size() * sizeof(gpu::GpuRay), hitBytes = rays.size() * sizeof(gpu::GpuHit);
     vk::Buffer rayBuffer = vk::createDeviceBuffer(ctx, rays.data(), rayBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -171,8 +188,11 @@ struct BatchTracer::Impl {
 BatchTracer::BatchTracer(const vk::Context& ctx, const bvh::SceneBvh& bvh) : impl_(std::make_unique<Impl>(ctx, bvh)) {}
 BatchTracer::BatchTracer(const vk::Context& ctx, const Scene& scene) : impl_(std::make_unique<Impl>(ctx, scene)) {}
 BatchTracer::~BatchTracer() = default;
-std::vector<gpu::GpuHit> BatchTracer::trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags) { return impl_->trace(rays, flags); }
+std::vector<gpu::GpuHit> BatchTracer::trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags, Order order) {
+  return impl_->trace(rays, flags, order);
+}
 double BatchTracer::lastGpuMs() const { return impl_->gpuMs; }
+double BatchTracer::lastBinMs() const { return impl_->binMs; }
 double BatchTracer::buildMs() const { return impl_->native ? impl_->native->buildMs() : 0.0; }
 size_t BatchTracer::accelBytes() const { return impl_->accelBytes; }
 

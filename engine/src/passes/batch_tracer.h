@@ -23,10 +23,17 @@ class BatchTracer {
   BatchTracer(const BatchTracer&) = delete;
   BatchTracer& operator=(const BatchTracer&) = delete;
 
+  // How trace() hands rays to the device: as given, or binned by direction and origin
+  // first (bvh/ray_binning.h) so each SIMD group gets rays that walk the same nodes. The
+  // hits come back in the caller's order either way, and each ray's hit is the same.
+  enum class Order { AsGiven, Binned };
+
   // Traces `rays` with RB_RQ_* `flags`; every candidate is accepted.
-  std::vector<gpu::GpuHit> trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags);
+  std::vector<gpu::GpuHit> trace(const std::vector<gpu::GpuRay>& rays, uint32_t flags, Order order = Order::AsGiven);
   // GPU milliseconds of the last trace's dispatch (timestamps).
   double lastGpuMs() const;
+  // CPU milliseconds the last trace spent binning its rays (0 for Order::AsGiven).
+  double lastBinMs() const;
   // Acceleration-structure build time (native: BLAS + TLAS on the device; compute: 0,
   // the CPU build happens before) and device memory it takes.
   double buildMs() const;
