@@ -44,19 +44,31 @@ TEST(RayBinning, IsAPermutationInKeyOrder) {
   }
 }
 
-TEST(RayBinning, NeighboursShareADirection) {
-  // Consecutive rays of a random set point 90 degrees apart on average; binned, within 45.
-  const std::vector<gpu::GpuRay> rays = randomRays(20000, 11);
+TEST(RayBinning, NeighboursShareARegionAndADirection) {
+  // Rays from 40 surface points, in random order: consecutive rays start far apart and point
+  // 90 degrees apart on average; binned, neighbours start together and point alike.
+  bvh::Rng rng(11);
+  std::vector<glm::vec3> points(40);
+  for (glm::vec3& p : points) p = glm::vec3(rng.next() * 20.0f - 10.0f, rng.next() * 5.0f, rng.next() * 20.0f - 10.0f);
+  std::vector<gpu::GpuRay> rays = randomRays(20000, 13);
+  for (gpu::GpuRay& r : rays) r.originTMin = glm::vec4(points[size_t(rng.next() * 40.0f) % 40], 1e-3f);
   const std::vector<uint32_t> order = bvh::binRays(rays);
-  double given = 0.0, binned = 0.0;
-  for (size_t i = 1; i < rays.size(); ++i) {
-    given += std::acos(std::clamp(glm::dot(glm::vec3(rays[i - 1].dirTMax), glm::vec3(rays[i].dirTMax)), -1.0f, 1.0f));
-    binned += std::acos(std::clamp(glm::dot(glm::vec3(rays[order[i - 1]].dirTMax), glm::vec3(rays[order[i]].dirTMax)), -1.0f, 1.0f));
+  double givenAngle = 0.0, binnedAngle = 0.0, givenDistance = 0.0, binnedDistance = 0.0;
+  auto angle = [&](uint32_t a, uint32_t b) {
+    return std::acos(std::clamp(glm::dot(glm::vec3(rays[a].dirTMax), glm::vec3(rays[b].dirTMax)), -1.0f, 1.0f));
+  };
+  auto distance = [&](uint32_t a, uint32_t b) { return glm::distance(glm::vec3(rays[a].originTMin), glm::vec3(rays[b].originTMin)); };
+  for (uint32_t i = 1; i < rays.size(); ++i) {
+    givenAngle += angle(i - 1, i);
+    binnedAngle += angle(order[i - 1], order[i]);
+    givenDistance += distance(i - 1, i);
+    binnedDistance += distance(order[i - 1], order[i]);
   }
-  given /= double(rays.size() - 1);
-  binned /= double(rays.size() - 1);
-  EXPECT_GT(given, 1.4);
-  EXPECT_LT(binned, 0.8) << "mean angle between neighbours, radians";
+  const double n = double(rays.size() - 1);
+  EXPECT_GT(givenAngle / n, 1.4);
+  EXPECT_LT(binnedAngle / n, 0.8) << "mean angle between neighbours, radians";
+  EXPECT_GT(givenDistance / n, 5.0);
+  EXPECT_LT(binnedDistance / n, 0.1) << "mean distance between neighbours' origins";
 }
 
 TEST(RayBinning, DegenerateRaysStillGetABin) {

@@ -49,6 +49,8 @@ struct BatchTracer::Impl {
   vk::Owned<VkDescriptorPool> pool;
   vk::TimestampPool timestamps;
   double gpuMs = 0.0, binMs = 0.0;
+  bvh::RayBinner binner;  // Order::Binned keeps its buffers between batches
+  std::vector<gpu::GpuRay> binnedRays;
   size_t accelBytes = 0;
 
   Impl(const vk::Context& c, const bvh::SceneBvh& bvh) : ctx(c), timestamps(c, 1, 1) {
@@ -146,11 +148,11 @@ struct BatchTracer::Impl {
     binMs = 0.0;
     if (order == Order::AsGiven) return dispatch(rays, flags);
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<uint32_t> binned = bvh::binRays(rays);
-    std::vector<gpu::GpuRay> sorted(rays.size());
-    for (size_t i = 0; i < binned.size(); ++i) sorted[i] = rays[binned[i]];
+    const std::vector<uint32_t>& binned = binner.bin(rays);
+    binnedRays.resize(rays.size());
+    for (size_t i = 0; i < binned.size(); ++i) binnedRays[i] = rays[binned[i]];
     binMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const std::vector<gpu::GpuHit> sortedHits = dispatch(sorted, flags);
+    const std::vector<gpu::GpuHit> sortedHits = dispatch(binnedRays, flags);
     std::vector<gpu::GpuHit> hits(rays.size());
     for (size_t i = 0; i < binned.size(); ++i) hits[binned[i]] = sortedHits[i];
     return hits;
