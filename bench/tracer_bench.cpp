@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
     }
     std::printf("\nMrays/s; ratio = compute / Embree single-ray on 2 threads; vs native = compute / VK_KHR_ray_query (0: device has none;\n"
                 "timed on every 16th ray where the whole set would take it over 5 s). incoh.binned: the incoherent rays binned by\n"
-                "direction and origin; the compute figure includes the binning on one CPU core.\n");
+                "origin and direction; the compute figure includes the binning on one CPU core.\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tracer_bench: error: %s\n", e.what());
     return 1;
