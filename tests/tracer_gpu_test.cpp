@@ -26,27 +26,36 @@ std::vector<gpu::GpuRay> toGpu(const std::vector<bvh::OracleRay>& rays) {
 
 using TracerGpu = test::ValidatedGpuTest;
 
+// The default scene with its BVH and Embree, and rays from its camera: primary, then shadow
+// rays to a light and incoherent bounces from their hits.
+struct DefaultSceneRays {
+  Scene scene = loadScene(test::defaultScenePath());
+  bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  bvh::EmbreeOracle oracle{scene};
+  std::vector<bvh::OracleRay> primary;
+  bvh::SecondaryRays secondary;
+  DefaultSceneRays(uint32_t width, uint32_t height, uint32_t seed)
+      : primary(bvh::primaryRays(defaultCamera(scene, 4.0f / 3.0f), width, height)),
+        secondary(bvh::secondaryRays(scene, oracle, primary, glm::vec3(-6.0f, 3.8f, -6.0f), seed)) {}
+};
+
 TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
-  const Scene scene = loadScene(test::defaultScenePath());
-  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
-  const bvh::EmbreeOracle oracle(scene);
-  passes::BatchTracer tracer(ctx, bvh);
-  const auto primary = bvh::primaryRays(defaultCamera(scene, 4.0f / 3.0f), 256, 192);
-  const auto secondary = bvh::secondaryRays(scene, oracle, primary, glm::vec3(-6.0f, 3.8f, -6.0f), 3);
-  for (const auto* set : {&primary, &secondary.incoherent}) {
+  const DefaultSceneRays d(256, 192, 3);
+  passes::BatchTracer tracer(ctx, d.bvh);
+  for (const auto* set : {&d.primary, &d.secondary.incoherent}) {
     const std::vector<gpu::GpuHit> hits = tracer.trace(toGpu(*set), 0u);
     size_t cpuMismatch = 0, embreeMismatch = 0;
     for (size_t i = 0; i < set->size(); ++i) {
       const bvh::OracleRay& r = (*set)[i];
       const bool gpuHit = hits[i].flags & 1u;
-      const bvh::TraceResult c = bvh::traceCpu(bvh, r.origin, r.dir, r.tMin, r.tMax, 0u);
+      const bvh::TraceResult c = bvh::traceCpu(d.bvh, r.origin, r.dir, r.tMin, r.tMax, 0u);
       // Same hits on the same triangles; t within a few ulps of the coordinates, since the
       // GPU compiler may fuse the object-space transform's multiply-adds.
       const float ulps = 1e-6f * (glm::length(r.origin) + c.t * glm::length(r.dir)) / glm::length(r.dir);
       if (gpuHit != c.hit || (gpuHit && (hits[i].object != c.object || hits[i].primitive != c.primitive ||
                                          std::fabs(hits[i].t - c.t) > 1e-6f * c.t + ulps)))
         ++cpuMismatch;
-      const bvh::OracleHit e = oracle.intersect(r);
+      const bvh::OracleHit e = d.oracle.intersect(r);
       if (gpuHit != e.hit || (gpuHit && std::fabs(hits[i].t - e.t) > 1e-4f * e.t + 1e-5f * (glm::length(r.origin) + e.t)))
         ++embreeMismatch;
     }
@@ -54,22 +63,18 @@ TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
     EXPECT_LE(double(embreeMismatch), 1e-4 * double(set->size())) << embreeMismatch << " of " << set->size();
   }
   // Any-hit shadow rays agree with rtcOccluded1.
-  const std::vector<gpu::GpuHit> shadow = tracer.trace(toGpu(secondary.shadow), RB_RQ_TERMINATE_ON_FIRST_HIT);
+  const std::vector<gpu::GpuHit> shadow = tracer.trace(toGpu(d.secondary.shadow), RB_RQ_TERMINATE_ON_FIRST_HIT);
   size_t shadowMismatch = 0;
-  for (size_t i = 0; i < shadow.size(); ++i) shadowMismatch += bool(shadow[i].flags & 1u) != oracle.occluded(secondary.shadow[i]);
+  for (size_t i = 0; i < shadow.size(); ++i) shadowMismatch += bool(shadow[i].flags & 1u) != d.oracle.occluded(d.secondary.shadow[i]);
   EXPECT_LE(double(shadowMismatch), 1e-4 * double(shadow.size())) << shadowMismatch << " of " << shadow.size();
 }
 
 // Binning hands the device the same rays in another order: every ray's hit is the same
 // (each ray's traversal is its own), and the hits come back in the caller's order.
 TEST_F(TracerGpu, BinnedOrderChangesNoHit) {
-  const Scene scene = loadScene(test::defaultScenePath());
-  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
-  const bvh::EmbreeOracle oracle(scene);
-  passes::BatchTracer tracer(ctx, bvh);
-  const auto primary = bvh::primaryRays(defaultCamera(scene, 4.0f / 3.0f), 192, 144);
-  const auto secondary = bvh::secondaryRays(scene, oracle, primary, glm::vec3(-6.0f, 3.8f, -6.0f), 5);
-  const std::vector<gpu::GpuRay> rays = toGpu(secondary.incoherent);
+  const DefaultSceneRays d(192, 144, 5);
+  passes::BatchTracer tracer(ctx, d.bvh);
+  const std::vector<gpu::GpuRay> rays = toGpu(d.secondary.incoherent);
   const std::vector<gpu::GpuHit> given = tracer.trace(rays, 0u);
   EXPECT_EQ(tracer.lastBinMs(), 0.0);
   const std::vector<gpu::GpuHit> binned = tracer.trace(rays, 0u, passes::BatchTracer::Order::Binned);
