@@ -1,7 +1,8 @@
 // Orders a batch of rays so that neighbours share a direction and a region: the batch
 // tracer then hands each SIMD group (8 lanes on lavapipe, 32 on a GPU) rays that walk the
-// same nodes, and its lanes idle less while the slowest one finishes. Incoherent rays
-// (one random bounce per pixel) gain most: docs/TRACER.md has the figures.
+// same nodes, and its lanes idle less while the slowest one finishes. It pays for
+// incoherent rays (one random bounce per pixel) on small and mid-size scenes and can lose
+// where the caller's order already kept a large BVH in cache: docs/TRACER.md has figures.
 #pragma once
 #include <cstdint>
 #include <vector>
