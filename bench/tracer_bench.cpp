@@ -100,19 +100,17 @@ int main(int argc, char** argv) {
       const glm::vec3 extent = scene.boundsMax - scene.boundsMin;
       const glm::vec3 light = 0.5f * (scene.boundsMin + scene.boundsMax) + glm::vec3(0.2f, 0.8f, 0.3f) * glm::length(extent);
       const auto secondary = bvh::secondaryRays(scene, oracle, primary, light, 1);
-      // The fourth set: the incoherent rays binned by direction and origin (bvh/ray_binning.h).
+      // The fourth set: the incoherent rays binned by origin and direction (bvh/ray_binning.h).
       // Embree and the native tracer get them in binned order; the compute tracer bins them
       // itself (BatchTracer::Order::Binned) and its time includes the binning on the CPU.
-      std::vector<gpu::GpuRay> incoherentRays;
-      for (const auto& r : secondary.incoherent) incoherentRays.push_back({glm::vec4(r.origin, r.tMin), glm::vec4(r.dir, r.tMax)});
+      const std::vector<gpu::GpuRay> incoherentRays = bvh::toGpuRays(secondary.incoherent);
       std::vector<bvh::OracleRay> binnedIncoherent;
       for (uint32_t i : bvh::binRays(incoherentRays)) binnedIncoherent.push_back(secondary.incoherent[i]);
       std::vector<Row> rows;
       for (int kind = 0; kind < 4; ++kind) {
         const std::vector<bvh::OracleRay>& rays = kind == 0 ? primary : kind == 1 ? secondary.shadow : kind == 2 ? secondary.incoherent : binnedIncoherent;
         const bool any = kind == 1;
-        std::vector<gpu::GpuRay> gpuRays;
-        for (const auto& r : rays) gpuRays.push_back({glm::vec4(r.origin, r.tMin), glm::vec4(r.dir, r.tMax)});
+        const std::vector<gpu::GpuRay> gpuRays = bvh::toGpuRays(rays);
         std::vector<bvh::OracleHit> hits(rays.size());
         std::vector<char> blocked(rays.size());
         auto single = [&](size_t b, size_t e) {

@@ -18,12 +18,6 @@
 namespace raybudget {
 namespace {
 
-std::vector<gpu::GpuRay> toGpu(const std::vector<bvh::OracleRay>& rays) {
-  std::vector<gpu::GpuRay> out;
-  for (const bvh::OracleRay& r : rays) out.push_back({glm::vec4(r.origin, r.tMin), glm::vec4(r.dir, r.tMax)});
-  return out;
-}
-
 using TracerGpu = test::ValidatedGpuTest;
 
 // The default scene with its BVH and Embree, and rays from its camera: primary, then shadow
@@ -43,7 +37,7 @@ TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
   const DefaultSceneRays d(256, 192, 3);
   passes::BatchTracer tracer(ctx, d.bvh);
   for (const auto* set : {&d.primary, &d.secondary.incoherent}) {
-    const std::vector<gpu::GpuHit> hits = tracer.trace(toGpu(*set), 0u);
+    const std::vector<gpu::GpuHit> hits = tracer.trace(bvh::toGpuRays(*set), 0u);
     size_t cpuMismatch = 0, embreeMismatch = 0;
     for (size_t i = 0; i < set->size(); ++i) {
       const bvh::OracleRay& r = (*set)[i];
@@ -63,7 +57,7 @@ TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
     EXPECT_LE(double(embreeMismatch), 1e-4 * double(set->size())) << embreeMismatch << " of " << set->size();
   }
   // Any-hit shadow rays agree with rtcOccluded1.
-  const std::vector<gpu::GpuHit> shadow = tracer.trace(toGpu(d.secondary.shadow), RB_RQ_TERMINATE_ON_FIRST_HIT);
+  const std::vector<gpu::GpuHit> shadow = tracer.trace(bvh::toGpuRays(d.secondary.shadow), RB_RQ_TERMINATE_ON_FIRST_HIT);
   size_t shadowMismatch = 0;
   for (size_t i = 0; i < shadow.size(); ++i) shadowMismatch += bool(shadow[i].flags & 1u) != d.oracle.occluded(d.secondary.shadow[i]);
   EXPECT_LE(double(shadowMismatch), 1e-4 * double(shadow.size())) << shadowMismatch << " of " << shadow.size();
@@ -74,7 +68,7 @@ TEST_F(TracerGpu, MatchesTheCpuReferenceAndEmbreeOnTheDefaultScene) {
 TEST_F(TracerGpu, BinnedOrderChangesNoHit) {
   const DefaultSceneRays d(192, 144, 5);
   passes::BatchTracer tracer(ctx, d.bvh);
-  const std::vector<gpu::GpuRay> rays = toGpu(d.secondary.incoherent);
+  const std::vector<gpu::GpuRay> rays = bvh::toGpuRays(d.secondary.incoherent);
   const std::vector<gpu::GpuHit> given = tracer.trace(rays, 0u);
   EXPECT_EQ(tracer.lastBinMs(), 0.0);
   const std::vector<gpu::GpuHit> binned = tracer.trace(rays, 0u, passes::BatchTracer::Order::Binned);
@@ -104,7 +98,7 @@ void expectNativeMatchesCompute(const vk::Context& ctx, const Scene& scene, uint
   for (int kind = 0; kind < 3; ++kind) {
     const auto& set = kind == 0 ? primary : kind == 1 ? secondary.incoherent : secondary.shadow;
     const uint32_t flags = kind == 2 ? RB_RQ_TERMINATE_ON_FIRST_HIT : 0u;
-    const std::vector<gpu::GpuHit> a = compute.trace(toGpu(set), flags), b = native.trace(toGpu(set), flags);
+    const std::vector<gpu::GpuHit> a = compute.trace(bvh::toGpuRays(set), flags), b = native.trace(bvh::toGpuRays(set), flags);
     size_t hitMismatch = 0, attributeMismatch = 0, embreeMismatch = 0;
     for (size_t i = 0; i < set.size(); ++i) {
       const bool ha = a[i].flags & 1u, hb = b[i].flags & 1u;

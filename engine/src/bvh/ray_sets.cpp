@@ -49,4 +49,11 @@ SecondaryRays secondaryRays(const Scene& scene, const EmbreeOracle& oracle, cons
   return out;
 }
 
+std::vector<gpu::GpuRay> toGpuRays(const std::vector<OracleRay>& rays) {
+  std::vector<gpu::GpuRay> out;
+  out.reserve(rays.size());
+  for (const OracleRay& r : rays) out.push_back({glm::vec4(r.origin, r.tMin), glm::vec4(r.dir, r.tMax)});
+  return out;
+}
+
 }  // namespace raybudget::bvh

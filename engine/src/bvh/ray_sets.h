@@ -8,6 +8,7 @@
 #include "bvh/embree_oracle.h"
 #include "raybudget/camera.h"
 #include "raybudget/scene.h"
+#include "shared/bvh.h"
 
 namespace raybudget::bvh {
 
@@ -21,6 +22,9 @@ struct SecondaryRays {
 };
 SecondaryRays secondaryRays(const Scene& scene, const EmbreeOracle& oracle, const std::vector<OracleRay>& primary,
                             const glm::vec3& light, uint32_t seed);
+
+// The same rays in the batch tracer's layout (shared/bvh.h).
+std::vector<gpu::GpuRay> toGpuRays(const std::vector<OracleRay>& rays);
 
 // Small deterministic generator (PCG-style hash), the same on every platform.
 struct Rng {

@@ -4,7 +4,6 @@
 #include <cstring>
 
 #include "bvh/ray_binning.h"
-
 #include "passes/bvh_buffers.h"
 #include "passes/native_accel.h"
 #include "trace_rays_comp.h"

@@ -23,7 +23,7 @@ class BatchTracer {
   BatchTracer(const BatchTracer&) = delete;
   BatchTracer& operator=(const BatchTracer&) = delete;
 
-  // How trace() hands rays to the device: as given, or binned by direction and origin
+  // How trace() hands rays to the device: as given, or binned by origin and direction
   // first (bvh/ray_binning.h) so each SIMD group gets rays that walk the same nodes. The
   // hits come back in the caller's order either way, and each ray's hit is the same.
   enum class Order { AsGiven, Binned };
