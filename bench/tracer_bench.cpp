@@ -89,9 +89,11 @@ int main(int argc, char** argv) {
       float blasSah = 0.0f;
       for (const auto& b : bvh.blas) blasSah = std::max(blasSah, b.sahCost);
       std::printf("\n%s: %zu triangles, %zu objects; BVH build %.1f ms (BLAS) + %.2f ms (TLAS), %zu nodes, %.1f bytes/triangle, "
-                  "SAH cost: TLAS %.1f, largest BLAS %.1f\n",
+                  "SAH cost: TLAS %.1f, largest BLAS %.1f; spatial splits in %zu of %zu meshes, %zu leaf references (+%.1f%%)\n",
                   std::filesystem::path(path).filename().c_str(), bvh.stats.triangles, scene.objects.size(), bvh.stats.blasMs,
-                  bvh.stats.tlasMs, bvh.stats.nodes, bvh.stats.bytesPerTriangle, bvh.tlasSahCost, blasSah);
+                  bvh.stats.tlasMs, bvh.stats.nodes, bvh.stats.bytesPerTriangle, bvh.tlasSahCost, blasSah, bvh.stats.splitMeshes,
+                  bvh.blas.size(), bvh.stats.references,
+                  100.0 * (double(bvh.stats.references) / double(std::max<size_t>(1, bvh.stats.triangles)) - 1.0));
       if (native)
         std::printf("native VK_KHR_ray_query: build %.1f ms on the device, %.1f bytes/triangle\n", native->buildMs(),
                     double(native->accelBytes()) / double(std::max<size_t>(1, bvh.stats.triangles)));

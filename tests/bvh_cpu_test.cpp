@@ -1,10 +1,14 @@
 // The BVH build and the shared traversal, run on the CPU, against Embree: the same rays
 // must hit the same triangles at the same distances.
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "bvh/cpu_rayquery.h"
 #include "bvh/embree_oracle.h"
 #include "support/gltf_fixture.h"
+#include "support/procedural.h"
 #include "bvh/ray_sets.h"
 #include "support/test_scenes.h"
 
@@ -59,8 +63,8 @@ void expectAgreement(const Agreement& a, const std::string& what) {
   EXPECT_LE(double(a.primitiveMismatch), 1e-4 * double(a.rays)) << a.primitiveMismatch << " hits at equal t on other, non-coplanar triangles";
 }
 
-void checkScene(const Scene& scene, const std::string& name) {
-  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+void checkScene(const Scene& scene, const std::string& name, const bvh::BuildOptions& options) {
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene, options);
   const bvh::EmbreeOracle oracle(scene);
   const Camera cam = defaultCamera(scene, 4.0f / 3.0f);
   const auto primary = bvh::primaryRays(cam, 160, 120);
@@ -74,38 +78,101 @@ void checkScene(const Scene& scene, const std::string& name) {
   EXPECT_LE(double(shadowMismatch), 1e-4 * double(secondary.shadow.size()) + 1.0) << name << " shadow rays";
 }
 
-TEST(BvhCpu, AgreesWithEmbreeOnTheDefaultScene) { checkScene(loadScene(test::defaultScenePath()), "default"); }
+// Spatial splits change the tree, never a hit: every scene is checked with them forced on too.
+TEST(BvhCpu, AgreesWithEmbreeOnTheDefaultScene) {
+  for (const auto splits : {SpatialSplits::Auto, SpatialSplits::Always})
+    checkScene(loadScene(test::defaultScenePath()), "default", {splits});
+}
 
 TEST(BvhCpu, AgreesWithEmbreeOnEveryCiScene) {
   RB_REQUIRE_SHARED_SCENES();
-  for (const auto& path : test::manifestScenes("ci")) checkScene(loadScene(path), path.filename().string());
+  for (const auto& path : test::manifestScenes("ci"))
+    for (const auto splits : {SpatialSplits::Auto, SpatialSplits::Always}) checkScene(loadScene(path), path.filename().string(), {splits});
+}
+
+// Leaf references of every BLAS: the leaf box (rounded outwards) and the mesh triangle.
+struct LeafRef {
+  glm::vec3 lo, hi;
+  uint32_t triangle;
+};
+
+std::vector<LeafRef> blasLeafRefs(const bvh::SceneBvh& bvh) {
+  std::vector<LeafRef> refs;
+  for (const gpu::GpuBvhNode& n : bvh.nodes) {
+    const std::ptrdiff_t at = &n - bvh.nodes.data();
+    if (at == RB_BVH_TLAS_ROOT_NODE || at >= std::ptrdiff_t(bvh.tlasRoot)) continue;  // TLAS leaves hold instances
+    for (int side = 0; side < 2; ++side) {
+      const glm::vec4 lo = side ? n.rightMinIndex : n.leftMinIndex, hi = side ? n.rightMaxCount : n.leftMaxCount;
+      const uint32_t index = std::bit_cast<uint32_t>(lo.w), count = std::bit_cast<uint32_t>(hi.w);
+      if (count == 0 || lo.x > hi.x) continue;  // inner node, or the empty child of a one-leaf tree
+      for (uint32_t t = index; t < index + count; ++t)
+        refs.push_back({glm::vec3(lo), glm::vec3(hi), std::bit_cast<uint32_t>(bvh.triangles[t].v0Primitive.w)});
+    }
+  }
+  return refs;
+}
+
+// Every object once in the TLAS; every triangle of a one-mesh scene in at least one leaf
+// (exactly one without spatial splits), and every point of it inside the box of a leaf that
+// holds it: sampled points, vertices included, computed in double.
+void expectWellFormed(const Scene& scene, const bvh::SceneBvh& bvh) {
+  const bool splits = bvh.stats.splitMeshes > 0;
+  ASSERT_EQ(bvh.instances.size(), scene.objects.size());
+  std::vector<int> seen(scene.objects.size(), 0);
+  for (const gpu::GpuInstance& i : bvh.instances) ++seen[i.blasObjectMask.y];
+  for (int s : seen) EXPECT_EQ(s, 1);
+  size_t triangles = 0;
+  for (const Mesh& m : scene.meshes) triangles += m.indices.size() / 3;
+  EXPECT_EQ(bvh.stats.triangles, triangles);
+  EXPECT_EQ(bvh.stats.references, bvh.triangles.size());
+  if (!splits) {
+    EXPECT_EQ(bvh.triangles.size(), triangles);
+  }
+  EXPECT_GT(bvh.stats.bytesPerTriangle, 48.0 * double(bvh.triangles.size()) / double(triangles));
+  if (scene.meshes.size() != 1) return;
+  const Mesh& mesh = scene.meshes[0];
+  std::vector<std::vector<LeafRef>> leavesOf(triangles);
+  for (const LeafRef& r : blasLeafRefs(bvh)) leavesOf[r.triangle].push_back(r);
+  bvh::Rng rng(3);
+  size_t uncovered = 0;
+  for (uint32_t t = 0; t < triangles; ++t) {
+    ASSERT_FALSE(leavesOf[t].empty()) << "triangle " << t << " is in no leaf";
+    if (!splits) {
+      EXPECT_EQ(leavesOf[t].size(), 1u);
+    }
+    glm::dvec3 v[3];
+    for (int k = 0; k < 3; ++k) v[k] = glm::dvec3(mesh.vertices[mesh.indices[t * 3 + uint32_t(k)]].position);
+    for (int s = 0; s < 64; ++s) {
+      double b1 = s < 3 ? double(s == 1) : rng.next(), b2 = s < 3 ? double(s == 2) : rng.next();
+      if (b1 + b2 > 1.0) b1 = 1.0 - b1, b2 = 1.0 - b2;
+      const glm::dvec3 p = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
+      uncovered += std::none_of(leavesOf[t].begin(), leavesOf[t].end(), [&](const LeafRef& r) {
+        return glm::all(glm::lessThanEqual(glm::dvec3(r.lo), p)) && glm::all(glm::lessThanEqual(p, glm::dvec3(r.hi)));
+      });
+    }
+  }
+  EXPECT_EQ(uncovered, 0u) << "points of triangles outside every leaf box that holds them";
 }
 
 TEST(BvhCpu, TreeIsWellFormed) {
   const Scene scene = loadScene(test::defaultScenePath());
   const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
-  // Every triangle appears exactly once per BLAS, every object once in the TLAS.
-  size_t triangles = 0;
-  for (const Mesh& m : scene.meshes) triangles += m.indices.size() / 3;
-  EXPECT_EQ(bvh.triangles.size(), triangles);
-  ASSERT_EQ(bvh.instances.size(), scene.objects.size());
-  std::vector<int> seen(scene.objects.size(), 0);
-  for (const gpu::GpuInstance& i : bvh.instances) ++seen[i.blasObjectMask.y];
-  for (int s : seen) EXPECT_EQ(s, 1);
-  // Child boxes contain their triangles (checked through the leaves of every BLAS).
-  for (const gpu::GpuBvhNode& n : bvh.nodes) {
-    for (int side = 0; side < 2; ++side) {
-      const glm::vec4 lo = side ? n.rightMinIndex : n.leftMinIndex, hi = side ? n.rightMaxCount : n.leftMaxCount;
-      const uint32_t index = std::bit_cast<uint32_t>(lo.w), count = std::bit_cast<uint32_t>(hi.w);
-      if (count == 0 || lo.x > hi.x) continue;  // inner node, or the empty child of a one-leaf tree
-      const std::ptrdiff_t at = &n - bvh.nodes.data();
-      if (at == RB_BVH_TLAS_ROOT_NODE || at >= std::ptrdiff_t(bvh.tlasRoot)) continue;  // TLAS leaves hold instances
-      for (uint32_t t = index; t < index + count; ++t)
-        for (const glm::vec4& v : {bvh.triangles[t].v0Primitive, bvh.triangles[t].v1Material, bvh.triangles[t].v2Flags})
-          EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::vec3(lo), glm::vec3(v))) && glm::all(glm::lessThanEqual(glm::vec3(v), glm::vec3(hi))));
-    }
-  }
-  EXPECT_GT(bvh.stats.bytesPerTriangle, 48.0);
+  EXPECT_EQ(bvh.stats.splitMeshes, 0u) << "the default scene's meshes are evenly tessellated";
+  expectWellFormed(scene, bvh);
+  const Scene sphere = test::sceneWithMesh(test::icosphere(3));
+  expectWellFormed(sphere, bvh::buildSceneBvh(sphere));
+}
+
+TEST(BvhCpu, SpatialSplitsCoverEveryTriangleAndAgreeWithEmbree) {
+  const Scene scene = test::sceneWithMesh(test::smallAndLargeTriangles(8, 8));
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  EXPECT_EQ(bvh.stats.splitMeshes, 1u) << "large triangles among small ones: Auto should split";
+  EXPECT_GT(bvh.stats.references, bvh.stats.triangles + 50) << "the large triangles were split into pieces";
+  expectWellFormed(scene, bvh);
+  EXPECT_EQ(bvh::buildSceneBvh(scene, {SpatialSplits::Never}).stats.references, bvh.stats.triangles);
+  checkScene(scene, "small and large triangles", {});
+  const Scene cube = test::sceneWithMesh(test::subdividedCube(6), glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(1, 2, 3)));
+  expectWellFormed(cube, bvh::buildSceneBvh(cube, {SpatialSplits::Always}));
 }
 
 TEST(BvhCpu, FlagsCullAndTerminate) {

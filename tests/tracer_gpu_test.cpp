@@ -134,15 +134,32 @@ TEST_F(TracerGpu, NativeRayQueryMatchesComputeOnTheCiScenes) {
   for (const auto& path : test::manifestScenes("ci")) expectNativeMatchesCompute(ctx, loadScene(path), 96, 72);
 }
 
+// `mesh` stretched 16:1:1/16 and turned, in its own object space: long diagonal triangles,
+// which the BLAS build splits spatially when asked to.
+Mesh stretched(Mesh mesh) {
+  const glm::mat4 xf = glm::rotate(glm::mat4(1.0f), 0.7f, glm::vec3(1, 2, 3)) * glm::scale(glm::mat4(1.0f), glm::vec3(16.0f, 1.0f, 1.0f / 16.0f));
+  for (Vertex& v : mesh.vertices) v.position = glm::vec3(xf * glm::vec4(v.position, 1.0f));
+  mesh.name += " (stretched)";
+  return mesh;
+}
+
 // Rays aimed exactly at vertices and at points of shared edges of closed meshes must all
 // hit. Each ray comes from a random direction for which it enters the mesh through that
 // point (-dir lies inside the normal cone of every face there), so a miss can only be a
-// ray slipping between triangles.
+// ray slipping between triangles, or past a box that a spatial split cut too tight (the
+// stretched meshes, built with splits).
 TEST_F(TracerGpu, NoRaySlipsThroughAClosedMesh) {
   size_t total = 0;
-  for (const Mesh& mesh : {test::icosphere(3), test::subdividedCube(8)}) {
+  const std::pair<Mesh, SpatialSplits> cases[] = {{test::icosphere(3), SpatialSplits::Auto},
+                                                       {test::subdividedCube(8), SpatialSplits::Auto},
+                                                       {stretched(test::icosphere(3)), SpatialSplits::Always},
+                                                       {stretched(test::subdividedCube(8)), SpatialSplits::Always}};
+  for (const auto& [mesh, splits] : cases) {
     const Scene scene = test::sceneWithMesh(mesh, glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(1, 2, 3)));
-    const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+    const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene, {splits});
+    if (splits == SpatialSplits::Always) {
+      EXPECT_GT(bvh.stats.references, bvh.stats.triangles * 11 / 10) << mesh.name << ": too few splits to test them";
+    }
     passes::BatchTracer tracer(ctx, bvh);
     const glm::mat4& xf = scene.objects[0].transform;
     std::vector<glm::vec3> world;
@@ -157,7 +174,7 @@ TEST_F(TracerGpu, NoRaySlipsThroughAClosedMesh) {
     }
     bvh::Rng rng(11);
     std::vector<gpu::GpuRay> rays;
-    const size_t perMesh = 500000;
+    const size_t perMesh = 250000;
     while (rays.size() < perMesh) {
       const uint32_t tri = uint32_t(rng.next() * float(triCount)) % uint32_t(triCount);
       const uint32_t a = mesh.indices[tri * 3], b = mesh.indices[tri * 3 + 1];

@@ -93,6 +93,33 @@ Mesh quad(float h) {
   return m;
 }
 
+Mesh smallAndLargeTriangles(int perAxis, int large) {
+  Mesh m;
+  m.name = "small and large triangles";
+  auto triangle = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+    for (const glm::vec3& p : {a, b, c}) {
+      m.vertices.push_back(Vertex{p, n, {}, glm::vec4(1.0f)});
+      m.indices.push_back(uint32_t(m.vertices.size() - 1));
+    }
+  };
+  const float step = 2.0f / float(perAxis), size = 0.3f * step;
+  for (int i = 0; i < perAxis; ++i)
+    for (int j = 0; j < perAxis; ++j)
+      for (int k = 0; k < perAxis; ++k) {
+        const glm::vec3 c = glm::vec3(-1.0f) + step * (glm::vec3(float(i), float(j), float(k)) + 0.5f);
+        const glm::vec3 u = glm::normalize(glm::vec3(float(i % 3) - 1.0f, 1.0f, float(k % 2))), v = glm::normalize(glm::cross(u, glm::vec3(0.3f, 0.1f, 1.0f)));
+        triangle(c - u * size, c + u * size, c + v * size);
+      }
+  for (int k = 0; k < large; ++k) {  // planes through the whole cube, each turned a little further
+    const float a = 6.2831853f * float(k) / float(large), h = 0.9f * (float(k) / float(std::max(1, large - 1)) - 0.5f);
+    const glm::vec3 d(std::cos(a), 0.0f, std::sin(a));
+    triangle(-1.2f * d + glm::vec3(0, -1.2f, 0), 1.2f * d + glm::vec3(0, h, 0), glm::vec3(-d.z, 1.2f, d.x) * 1.2f);
+  }
+  finish(m);
+  return m;
+}
+
 void addObject(Scene& scene, Mesh mesh, const glm::mat4& transform, const Material& material) {
   scene.materials.push_back(material);
   for (Primitive& p : mesh.primitives) p.material = int32_t(scene.materials.size() - 1);

@@ -8,6 +8,10 @@ namespace raybudget::test {
 Mesh icosphere(int subdivisions);        // unit radius, shared vertices: closed and watertight
 Mesh subdividedCube(int cellsPerEdge);   // [-1, 1]^3, shared vertices along every edge
 Mesh quad(float halfSize);               // the XZ plane, facing +y, two triangles
+// perAxis^3 small triangles spread through [-1, 1]^3 and `large` triangles cutting through
+// the whole cube: triangles of very different sizes whose boxes no object split can
+// separate, the mesh spatial splits are for.
+Mesh smallAndLargeTriangles(int perAxis, int large);
 
 // A scene holding `mesh` once, placed by `transform`, with a diffuse grey material.
 Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform = glm::mat4(1.0f));

@@ -51,6 +51,15 @@ void* createLeaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, 
   return l;
 }
 
+void splitPrimitive(const RTCBuildPrimitive* prim, unsigned int axis, float position, RTCBounds* left, RTCBounds* right, void* user) {
+  const auto& split = *static_cast<const SplitFunction*>(user);
+  const Box clip{{prim->lower_x, prim->lower_y, prim->lower_z}, {prim->upper_x, prim->upper_y, prim->upper_z}};
+  Box l, r;
+  split(prim->primID, clip, int(axis), position, l, r);
+  *left = RTCBounds{l.min.x, l.min.y, l.min.z, 0.0f, l.max.x, l.max.y, l.max.z, 0.0f};
+  *right = RTCBounds{r.min.x, r.min.y, r.min.z, 0.0f, r.max.x, r.max.y, r.max.z, 0.0f};
+}
+
 float area(const Box& b) {
   const glm::vec3 d = glm::max(b.max - b.min, glm::vec3(0.0f));
   return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
@@ -98,15 +107,16 @@ Box roundOutwards(const Box& b) {
   return r;
 }
 
-FlatTree buildTree(const std::vector<Box>& boxes, uint32_t maxDepth, uint32_t maxLeafSize, std::vector<gpu::GpuBvhNode>& nodes,
-                   const std::function<uint32_t(const uint32_t* ids, uint32_t count)>& emitLeaf) {
-  if (boxes.empty()) throw Error("BVH build over zero primitives");
+FlatTree buildTree(const std::vector<BuildRef>& refs, uint32_t maxDepth, uint32_t maxLeafSize, std::vector<gpu::GpuBvhNode>& nodes,
+                   const std::function<uint32_t(const uint32_t* ids, uint32_t count)>& emitLeaf, const SplitFunction& split) {
+  if (refs.empty()) throw Error("BVH build over zero primitives");
   static EmbreeDevice device;  // Embree keeps its thread pool per device: create it once
   if (!device.device) throw Error("Embree: rtcNewDevice failed");
-  std::vector<RTCBuildPrimitive> prims(boxes.size());
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    const Box& b = boxes[i];
-    prims[i] = RTCBuildPrimitive{b.min.x, b.min.y, b.min.z, 0u, b.max.x, b.max.y, b.max.z, uint32_t(i)};
+  // Spatial splits need room for the split references: Embree's manual asks for about twice.
+  std::vector<RTCBuildPrimitive> prims(split ? 2 * refs.size() : refs.size());
+  for (size_t i = 0; i < refs.size(); ++i) {
+    const Box& b = refs[i].box;
+    prims[i] = RTCBuildPrimitive{b.min.x, b.min.y, b.min.z, 0u, b.max.x, b.max.y, b.max.z, refs[i].id};
   }
   EmbreeBvh bvh(device.device);
   RTCBuildArguments args = rtcDefaultBuildArguments();
@@ -120,17 +130,21 @@ FlatTree buildTree(const std::vector<Box>& boxes, uint32_t maxDepth, uint32_t ma
   args.intersectionCost = 1.0f;
   args.bvh = bvh.bvh;
   args.primitives = prims.data();
-  args.primitiveCount = prims.size();
+  args.primitiveCount = refs.size();
   args.primitiveArrayCapacity = prims.size();
   args.createNode = createNode;
   args.setNodeChildren = setChildren;
   args.setNodeBounds = setBounds;
   args.createLeaf = createLeaf;
+  if (split) {
+    args.splitPrimitive = splitPrimitive;
+    args.userPtr = const_cast<SplitFunction*>(&split);
+  }
   auto* root = static_cast<TmpNode*>(rtcBuildBVH(&args));
   if (!root) throw Error("Embree: rtcBuildBVH failed (error " + std::to_string(int(rtcGetDeviceError(device.device))) + ")");
 
-  Box all = boxes[0];
-  for (const Box& b : boxes) all = merge(all, b);
+  Box all = refs[0].box;
+  for (const BuildRef& r : refs) all = merge(all, r.box);
   const float rootArea = std::max(area(all), std::numeric_limits<float>::min());
   FlatTree tree;
   tree.root = uint32_t(nodes.size());

@@ -1,5 +1,6 @@
-// A thin RAII layer over Embree's BVH builder (rtcBuildBVH, binned SAH): builds a binary
-// tree over boxes in Embree's own allocator and flattens it into our GPU node layout.
+// A thin RAII layer over Embree's BVH builder (rtcBuildBVH, binned SAH, optional spatial
+// splits): builds a binary tree over boxes in Embree's own allocator and flattens it into
+// our GPU node layout.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -16,18 +17,30 @@ struct Box {
   glm::vec3 max;
 };
 
+// A primitive reference for the build: a box and the ID its leaf reports. Several references
+// may share an ID (a split triangle).
+struct BuildRef {
+  Box box;
+  uint32_t id;
+};
+
 struct FlatTree {
   uint32_t root = 0;
   uint32_t nodeCount = 0;
   float sahCost = 0.0f;
 };
 
-// Builds an SAH BVH2 over `boxes` and appends its nodes to `nodes`. Each leaf's primitive
-// IDs (indices into `boxes`) go to `emitLeaf`, which stores them in the order it likes and
-// returns the absolute index of the first one. Leaves hold at most `maxLeafSize` primitives
-// (more only where the depth limit forces it). Throws raybudget::Error.
-FlatTree buildTree(const std::vector<Box>& boxes, uint32_t maxDepth, uint32_t maxLeafSize, std::vector<gpu::GpuBvhNode>& nodes,
-                   const std::function<uint32_t(const uint32_t* ids, uint32_t count)>& emitLeaf);
+// Splits primitive `id`, whose reference currently has box `clip`, at x[axis] == position into
+// the boxes of its parts on either side (bvh/spatial_split.h).
+using SplitFunction = std::function<void(uint32_t id, const Box& clip, int axis, float position, Box& left, Box& right)>;
+
+// Builds an SAH BVH2 over `refs` and appends its nodes to `nodes`. Each leaf's IDs go to
+// `emitLeaf`, which stores them in the order it likes and returns the absolute index of the
+// first one. Leaves hold at most `maxLeafSize` references (more only where the depth limit
+// forces it). With `split`, the builder may also split references spatially: an ID may then
+// appear in several leaves. Throws raybudget::Error.
+FlatTree buildTree(const std::vector<BuildRef>& refs, uint32_t maxDepth, uint32_t maxLeafSize, std::vector<gpu::GpuBvhNode>& nodes,
+                   const std::function<uint32_t(const uint32_t* ids, uint32_t count)>& emitLeaf, const SplitFunction& split = {});
 
 // The smallest float box containing `b` after rounding outwards by one ulp per side.
 Box roundOutwards(const Box& b);

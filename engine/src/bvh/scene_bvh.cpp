@@ -1,9 +1,11 @@
 #include "bvh/scene_bvh.h"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 
 #include "bvh/embree_build.h"
+#include "bvh/spatial_split.h"
 #include "raybudget/error.h"
 
 namespace raybudget::bvh {
@@ -20,9 +22,24 @@ double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SceneBvh& out) {
+// True when a few triangles are much larger than the typical one: the mean box surface area
+// is at least twice the median. Evenly tessellated meshes (spheres, grids, scans) stay well
+// below; they gain nothing from spatial splits (measured: docs/TRACER.md).
+bool unevenTriangleSizes(const std::vector<BuildRef>& refs) {
+  std::vector<float> area(refs.size());
+  double sum = 0.0;
+  for (size_t i = 0; i < refs.size(); ++i) {
+    const glm::vec3 d = refs[i].box.max - refs[i].box.min;
+    area[i] = d.x * d.y + d.y * d.z + d.z * d.x;
+    sum += double(area[i]);
+  }
+  std::nth_element(area.begin(), area.begin() + std::ptrdiff_t(area.size() / 2), area.end());
+  return sum / double(area.size()) >= 2.0 * double(area[area.size() / 2]);
+}
+
+BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SpatialSplits splits, SceneBvh& out) {
   const size_t triCount = mesh.indices.size() / 3;
-  std::vector<Box> boxes(triCount);
+  auto vertex = [&](size_t t, int k) { return mesh.vertices[mesh.indices[t * 3 + size_t(k)]].position; };
   std::vector<uint32_t> material(triCount);
   std::vector<uint32_t> flags(triCount);
   for (const Primitive& p : mesh.primitives) {
@@ -32,16 +49,21 @@ BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SceneBvh& out) {
       flags[t] = m.alphaMode == AlphaMode::Mask ? 0u : RB_TRIANGLE_OPAQUE;
     }
   }
+  std::vector<BuildRef> refs(triCount);
   for (size_t t = 0; t < triCount; ++t) {
-    const glm::vec3 a = mesh.vertices[mesh.indices[t * 3]].position, b = mesh.vertices[mesh.indices[t * 3 + 1]].position,
-                    c = mesh.vertices[mesh.indices[t * 3 + 2]].position;
-    boxes[t] = {glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
+    const glm::vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2);
+    refs[t] = {{glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))}, uint32_t(t)};
   }
   BlasInfo info;
   info.firstTriangle = uint32_t(out.triangles.size());
   info.triangleCount = uint32_t(triCount);
   if (triCount == 0) return info;  // every triangle was degenerate: no object uses this mesh
-  const FlatTree tree = buildTree(boxes, kBlasMaxDepth, RB_BVH_MAX_LEAF_SIZE, out.nodes, [&](const uint32_t* ids, uint32_t count) {
+  info.spatialSplits = splits == SpatialSplits::Always || (splits == SpatialSplits::Auto && unevenTriangleSizes(refs));
+  const SplitFunction split = [&](uint32_t t, const Box& clip, int axis, float position, Box& left, Box& right) {
+    const glm::vec3 v[3] = {vertex(t, 0), vertex(t, 1), vertex(t, 2)};
+    splitTriangleBox(v, clip, axis, position, left, right);
+  };
+  const FlatTree tree = buildTree(refs, kBlasMaxDepth, RB_BVH_MAX_LEAF_SIZE, out.nodes, [&](const uint32_t* ids, uint32_t count) {
     const uint32_t first = uint32_t(out.triangles.size());
     // The traversal packs a BLAS leaf into one stack entry: 28 bits of index, 3 of count.
     if (count > 8 || first + count >= (1u << 28))
@@ -50,13 +72,14 @@ BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SceneBvh& out) {
     for (uint32_t i = 0; i < count; ++i) {
       const uint32_t t = ids[i];
       gpu::GpuTriangle tri;
-      tri.v0Primitive = glm::vec4(mesh.vertices[mesh.indices[t * 3]].position, std::bit_cast<float>(t));
-      tri.v1Material = glm::vec4(mesh.vertices[mesh.indices[t * 3 + 1]].position, std::bit_cast<float>(material[t]));
-      tri.v2Flags = glm::vec4(mesh.vertices[mesh.indices[t * 3 + 2]].position, std::bit_cast<float>(flags[t]));
+      tri.v0Primitive = glm::vec4(vertex(t, 0), std::bit_cast<float>(t));
+      tri.v1Material = glm::vec4(vertex(t, 1), std::bit_cast<float>(material[t]));
+      tri.v2Flags = glm::vec4(vertex(t, 2), std::bit_cast<float>(flags[t]));
       out.triangles.push_back(tri);
     }
     return first;
-  });
+  }, info.spatialSplits ? split : SplitFunction{});
+  info.references = uint32_t(out.triangles.size()) - info.firstTriangle;
   info.root = tree.root;
   info.nodeCount = tree.nodeCount;
   info.sahCost = tree.sahCost;
@@ -70,9 +93,9 @@ void rebuildTlas(SceneBvh& bvh, std::span<const Object> objects) {
   // The TLAS always sits after the BLAS nodes: drop the old one.
   bvh.nodes.resize(bvh.tlasNodeCount > 0 ? bvh.tlasRoot : bvh.nodes.size());
   bvh.instances.clear();
-  std::vector<Box> boxes;
-  for (const Object& o : objects) boxes.push_back({o.boundsMin, o.boundsMax});
-  const FlatTree tree = buildTree(boxes, kTlasMaxDepth, 1, bvh.nodes, [&](const uint32_t* ids, uint32_t count) {
+  std::vector<BuildRef> refs;
+  for (const Object& o : objects) refs.push_back({{o.boundsMin, o.boundsMax}, uint32_t(refs.size())});
+  const FlatTree tree = buildTree(refs, kTlasMaxDepth, 1, bvh.nodes, [&](const uint32_t* ids, uint32_t count) {
     const uint32_t first = uint32_t(bvh.instances.size());
     for (uint32_t i = 0; i < count; ++i) {
       const Object& o = objects[ids[i]];
@@ -92,16 +115,20 @@ void rebuildTlas(SceneBvh& bvh, std::span<const Object> objects) {
   bvh.stats.nodes = bvh.nodes.size();
 }
 
-SceneBvh buildSceneBvh(const Scene& scene) {
+SceneBvh buildSceneBvh(const Scene& scene, const BuildOptions& options) {
   SceneBvh bvh;
   bvh.nodes.push_back({});  // node 0: the TLAS root's copy, filled by rebuildTlas
   const auto start = std::chrono::steady_clock::now();
-  for (const Mesh& m : scene.meshes) bvh.blas.push_back(buildBlas(scene, m, bvh));
+  for (const Mesh& m : scene.meshes) {
+    bvh.blas.push_back(buildBlas(scene, m, options.spatialSplits, bvh));
+    bvh.stats.triangles += bvh.blas.back().triangleCount;
+    bvh.stats.splitMeshes += bvh.blas.back().spatialSplits;
+  }
   bvh.stats.blasMs = msSince(start);
   rebuildTlas(bvh, scene.objects);
-  bvh.stats.triangles = bvh.triangles.size();
+  bvh.stats.references = bvh.triangles.size();
   bvh.stats.bytesPerTriangle = double(bvh.nodes.size() * sizeof(gpu::GpuBvhNode) + bvh.triangles.size() * sizeof(gpu::GpuTriangle)) /
-                               double(std::max<size_t>(bvh.triangles.size(), 1));
+                               double(std::max<size_t>(bvh.stats.triangles, 1));
   return bvh;
 }
 

@@ -6,16 +6,23 @@
 #include <span>
 #include <vector>
 
+#include "raybudget/bvh_options.h"
 #include "raybudget/scene.h"
 #include "shared/bvh.h"
 
 namespace raybudget::bvh {
 
+struct BuildOptions {
+  SpatialSplits spatialSplits = SpatialSplits::Auto;
+};
+
 struct BlasInfo {
   uint32_t root = 0;           // node index
   uint32_t nodeCount = 0;
-  uint32_t firstTriangle = 0;
-  uint32_t triangleCount = 0;
+  uint32_t firstTriangle = 0;  // first leaf entry in SceneBvh::triangles
+  uint32_t triangleCount = 0;  // the mesh's triangles
+  uint32_t references = 0;     // leaf entries: more than triangleCount where triangles were split
+  bool spatialSplits = false;  // built with spatial splits
   float sahCost = 0.0f;        // SAH cost with traversal 1, intersection 1, relative to the root box
 };
 
@@ -23,13 +30,15 @@ struct BuildStats {
   double blasMs = 0.0;  // all meshes
   double tlasMs = 0.0;
   size_t nodes = 0;
-  size_t triangles = 0;
-  double bytesPerTriangle = 0.0;  // nodes + triangles (the instance array is per object)
+  size_t triangles = 0;           // the meshes' triangles
+  size_t references = 0;          // leaf entries (SceneBvh::triangles): triangles plus split pieces
+  size_t splitMeshes = 0;         // meshes built with spatial splits
+  double bytesPerTriangle = 0.0;  // nodes + leaf entries per mesh triangle (the instance array is per object)
 };
 
 struct SceneBvh {
   std::vector<gpu::GpuBvhNode> nodes;        // node 0 (TLAS root copy), every BLAS, then the TLAS
-  std::vector<gpu::GpuTriangle> triangles;   // leaf order, per BLAS
+  std::vector<gpu::GpuTriangle> triangles;   // leaf order, per BLAS; a split triangle appears once per leaf it is in
   std::vector<gpu::GpuInstance> instances;   // TLAS leaf order
   std::vector<BlasInfo> blas;                // per mesh
   uint32_t tlasRoot = 0;
@@ -39,7 +48,7 @@ struct SceneBvh {
 };
 
 // Builds every BLAS and the TLAS. Objects get cull mask 0xFF.
-SceneBvh buildSceneBvh(const Scene& scene);
+SceneBvh buildSceneBvh(const Scene& scene, const BuildOptions& options = {});
 
 // Rebuilds only the TLAS (objects moved; meshes unchanged), replacing the old TLAS nodes.
 // The TLAS of N objects always has the same number of nodes, so its place in `nodes` stays.
