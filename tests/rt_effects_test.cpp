@@ -34,9 +34,9 @@ glm::vec3 geometricNormal(float packed) {
 }
 
 FrameImages renderScene(const Scene& scene, Policy policy, const Camera& camera, uint32_t w, uint32_t h, bool detail = false,
-                        float sky = 0.3f, std::vector<FrameTiming>* timings = nullptr, Tracer tracer = Tracer::Compute) {
+                        float sky = 0.3f, std::vector<FrameTiming>* timings = nullptr, const RayTracingSettings& rayTracing = {}) {
   RenderSettings s;
-  s.rayTracing.tracer = tracer;
+  s.rayTracing = rayTracing;
   s.width = w;
   s.height = h;
   s.validation = true;
@@ -101,7 +101,7 @@ TEST(RtTracers, NativeAndComputeRenderTheSameFrame) {
   const Scene scene = loadScene(test::defaultScenePath());
   const Camera cam = defaultCamera(scene, 1.5f);
   const FrameImages compute = renderScene(scene, Policy::All, cam, 192, 128, true);
-  const FrameImages native = renderScene(scene, Policy::All, cam, 192, 128, true, 0.3f, nullptr, Tracer::Native);
+  const FrameImages native = renderScene(scene, Policy::All, cam, 192, 128, true, 0.3f, nullptr, {.tracer = Tracer::Native});
   expectMaskMatchesEmbree(scene, native);
   size_t differ = 0, maskDiffer = 0;
   for (uint32_t y = 0; y < compute.height; ++y)
@@ -113,6 +113,35 @@ TEST(RtTracers, NativeAndComputeRenderTheSameFrame) {
   const size_t pixels = size_t(compute.width) * compute.height;
   EXPECT_LE(double(differ), 1e-3 * double(pixels)) << differ << " of " << pixels << " pixels differ";
   EXPECT_LE(double(maskDiffer), 1e-4 * double(compute.shadowMask.size())) << maskDiffer << " shadow-mask texels differ";
+}
+
+// Spatial splits change the BVH, not the picture: the full-RT frame with every mesh split
+// equals the one without.
+TEST(RtTracers, SpatialSplitsRenderTheSameFrame) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const Camera cam = defaultCamera(scene, 1.5f);
+  RenderSettings s;
+  s.width = 64;
+  s.height = 48;
+  for (const auto& [splits, more] : {std::pair{SpatialSplits::Always, true}, {SpatialSplits::Never, false}}) {
+    s.rayTracing.spatialSplits = splits;
+    const AccelStats a = Renderer(scene, s).accelStats();
+    size_t triangles = 0;
+    for (const Mesh& m : scene.meshes) triangles += m.indices.size() / 3;
+    EXPECT_EQ(a.triangles, triangles);
+    EXPECT_EQ(a.references > a.triangles, more) << "the setting reaches the build";
+    EXPECT_EQ(a.splitMeshes > 0, more);
+    EXPECT_GE(double(a.bytes), 48.0 * double(a.references)) << "every leaf entry is on the device";
+  }
+  const FrameImages split = renderScene(scene, Policy::All, cam, 192, 128, true, 0.3f, nullptr, {.spatialSplits = SpatialSplits::Always});
+  const FrameImages plain = renderScene(scene, Policy::All, cam, 192, 128, true, 0.3f, nullptr, {.spatialSplits = SpatialSplits::Never});
+  size_t differ = 0, maskDiffer = 0;
+  for (uint32_t y = 0; y < split.height; ++y)
+    for (uint32_t x = 0; x < split.width; ++x) differ += hdr(split, x, y) != hdr(plain, x, y);
+  for (size_t i = 0; i < split.shadowMask.size(); ++i) maskDiffer += split.shadowMask[i] != plain.shadowMask[i];
+  const size_t pixels = size_t(split.width) * split.height;
+  EXPECT_LE(double(differ), 1e-3 * double(pixels)) << differ << " of " << pixels << " pixels differ";
+  EXPECT_LE(double(maskDiffer), 1e-4 * double(split.shadowMask.size())) << maskDiffer << " shadow-mask texels differ";
 }
 
 // Moving an object rebuilds only the TLAS; the next frame traces it where it is now.

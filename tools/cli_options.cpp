@@ -42,6 +42,9 @@ render options:
   --tracer compute|native
                         compute: our BVH in compute shaders (default); native: the device's
                         VK_KHR_ray_query with Vulkan acceleration structures
+  --bvh-splits auto|always|never
+                        spatial splits in the compute tracer's BVH build: auto (default)
+                        splits meshes whose triangles differ much in size
   --no-rt-shadows, --no-rt-reflections, --no-rt-refractions
                         keep that effect on its raster fallback even where traced
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
@@ -104,6 +107,12 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       if (t == "compute") c.settings.rayTracing.tracer = Tracer::Compute;
       else if (t == "native") c.settings.rayTracing.tracer = Tracer::Native;
       else throw Error("--tracer must be compute or native, got '" + t + "'");
+    } else if (a == "--bvh-splits") {
+      const std::string t = value();
+      if (t == "auto") c.settings.rayTracing.spatialSplits = SpatialSplits::Auto;
+      else if (t == "always") c.settings.rayTracing.spatialSplits = SpatialSplits::Always;
+      else if (t == "never") c.settings.rayTracing.spatialSplits = SpatialSplits::Never;
+      else throw Error("--bvh-splits must be auto, always or never, got '" + t + "'");
     } else if (a == "--depth") c.settings.rayTracing.depth = parseUint(a, value(), 1, 4);
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;

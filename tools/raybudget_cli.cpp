@@ -1,5 +1,6 @@
 // The `raybudget` command: renders a glTF scene with the deferred renderer and writes the
 // last frame (PNG + EXR) and per-pass GPU times for every frame (stats.csv).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -20,6 +21,10 @@ int render(const raybudget::cli::RenderCommand& c) {
   Renderer renderer(scene, c.settings);
   std::cout << "device: " << renderer.deviceName() << ", policy " << policyName(c.settings.policy) << ", tracer "
             << tracerName(c.settings.rayTracing.tracer) << '\n';
+  const AccelStats accel = renderer.accelStats();
+  std::printf("acceleration structure: built in %.1f ms, %zu triangles in %zu leaf entries (spatial splits in %zu meshes), %.1f bytes/triangle\n",
+              accel.buildMs, accel.triangles, accel.references, accel.splitMeshes,
+              double(accel.bytes) / double(std::max<size_t>(1, accel.triangles)));
   std::filesystem::create_directories(c.out);
   StatsCsv stats(std::filesystem::path(c.out) / "stats.csv");
   std::vector<FrameTiming> all;

@@ -663,6 +663,8 @@ FrameImages Renderer::readback(bool gbufferDetail) {
   return out;
 }
 
+AccelStats Renderer::accelStats() const { return impl_->scene.accel; }
+
 std::string Renderer::deviceName() const { return impl_->ctx.properties().deviceName; }
 
 std::vector<std::string> Renderer::validationMessages() const { return impl_->ctx.validationMessages(); }

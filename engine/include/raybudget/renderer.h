@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "raybudget/bvh_options.h"
 #include "raybudget/camera.h"
 #include "raybudget/scene.h"
 
@@ -33,6 +34,7 @@ struct RayTracingSettings {
   bool refractions = true;   // rays through transmissive surfaces
   uint32_t depth = 1;        // reflection / refraction bounces, 1..4
   Tracer tracer = Tracer::Compute;
+  SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };
 
 struct RenderSettings {
@@ -116,6 +118,15 @@ struct FrameImages {
   std::vector<float> shadowMask;
 };
 
+// The ray tracer's acceleration structure, built once when the Renderer is made.
+struct AccelStats {
+  double buildMs = 0.0;     // compute tracer: BLAS + TLAS on the CPU; native: on the device
+  size_t triangles = 0;
+  size_t references = 0;    // leaf entries: compute tracer, triangles plus spatial-split pieces
+  size_t splitMeshes = 0;   // meshes built with spatial splits (compute tracer)
+  size_t bytes = 0;         // device memory
+};
+
 class Renderer {
  public:
   Renderer(const Scene& scene, const RenderSettings& settings);
@@ -152,6 +163,7 @@ class Renderer {
   // ID; needs RenderSettings::objectMetrics.
   std::vector<ObjectMetrics> objectMetrics();
 
+  AccelStats accelStats() const;
   std::string deviceName() const;
   std::vector<std::string> validationMessages() const;
   float aspect() const;

@@ -209,10 +209,21 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   if (settings.rayTracing.tracer == Tracer::Native) {
     gpu.native = std::make_unique<NativeAccel>(ctx, scene);
   } else {
-    gpu.bvh = bvh::buildSceneBvh(scene);
+    gpu.bvh = bvh::buildSceneBvh(scene, {settings.rayTracing.spatialSplits});
   }
   // (Native: empty one-element buffers keep the descriptor set's shape.)
   gpu.bvhBuffers = uploadBvh(ctx, gpu.bvh, true);
+  for (const Mesh& m : scene.meshes) gpu.accel.triangles += m.indices.size() / 3;
+  if (gpu.native) {
+    gpu.accel.buildMs = gpu.native->buildMs();
+    gpu.accel.references = gpu.accel.triangles;
+    gpu.accel.bytes = gpu.native->memoryBytes();
+  } else {
+    gpu.accel.buildMs = gpu.bvh.stats.blasMs + gpu.bvh.stats.tlasMs;
+    gpu.accel.references = gpu.bvh.stats.references;
+    gpu.accel.splitMeshes = gpu.bvh.stats.splitMeshes;
+    gpu.accel.bytes = gpu.bvhBuffers.bytes();
+  }
   gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
   gpu.bvh.triangles.shrink_to_fit();
   gpu.shell = scene;

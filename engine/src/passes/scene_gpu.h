@@ -44,6 +44,7 @@ struct SceneGpu {
   BvhBuffers bvhBuffers;
   // With Tracer::Native, the Vulkan acceleration structures instead of the compute BVH.
   std::unique_ptr<NativeAccel> native;
+  AccelStats accel;  // whichever of the two was built
   vk::Buffer vertices;
   vk::Buffer indices;
   vk::Buffer objects;
