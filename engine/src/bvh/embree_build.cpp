@@ -107,7 +107,7 @@ Box roundOutwards(const Box& b) {
   return r;
 }
 
-FlatTree buildTree(const std::vector<BuildRef>& refs, uint32_t maxDepth, uint32_t maxLeafSize, std::vector<gpu::GpuBvhNode>& nodes,
+FlatTree buildTree(const std::vector<BuildRef>& refs, const TreeShape& shape, std::vector<gpu::GpuBvhNode>& nodes,
                    const std::function<uint32_t(const uint32_t* ids, uint32_t count)>& emitLeaf, const SplitFunction& split) {
   if (refs.empty()) throw Error("BVH build over zero primitives");
   static EmbreeDevice device;  // Embree keeps its thread pool per device: create it once
@@ -123,11 +123,11 @@ FlatTree buildTree(const std::vector<BuildRef>& refs, uint32_t maxDepth, uint32_
   args.byteSize = sizeof(args);
   args.buildQuality = RTC_BUILD_QUALITY_HIGH;
   args.maxBranchingFactor = 2;
-  args.maxDepth = maxDepth;
+  args.maxDepth = shape.maxDepth;
   args.minLeafSize = 1;
-  args.maxLeafSize = maxLeafSize;
+  args.maxLeafSize = shape.maxLeafSize;
   args.traversalCost = 1.0f;
-  args.intersectionCost = 1.0f;
+  args.intersectionCost = shape.intersectionCost;
   args.bvh = bvh.bvh;
   args.primitives = prims.data();
   args.primitiveCount = refs.size();
