@@ -90,6 +90,8 @@ TEST(BvhCpu, AgreesWithEmbreeOnEveryCiScene) {
     for (const auto splits : {SpatialSplits::Auto, SpatialSplits::Always}) checkScene(loadScene(path), path.filename().string(), {splits});
 }
 
+glm::vec3 vertexOfMesh(const Mesh& m, uint32_t t, int k) { return m.vertices[m.indices[t * 3 + uint32_t(k)]].position; }
+
 // Leaf references of every BLAS: the leaf box (rounded outwards) and the mesh triangle.
 struct LeafRef {
   glm::vec3 lo, hi;
@@ -121,9 +123,17 @@ void expectWellFormed(const Scene& scene, const bvh::SceneBvh& bvh) {
   std::vector<int> seen(scene.objects.size(), 0);
   for (const gpu::GpuInstance& i : bvh.instances) ++seen[i.blasObjectMask.y];
   for (int s : seen) EXPECT_EQ(s, 1);
-  size_t triangles = 0;
-  for (const Mesh& m : scene.meshes) triangles += m.indices.size() / 3;
-  EXPECT_EQ(bvh.stats.triangles, triangles);
+  size_t triangles = 0, shared = 0;
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    if (bvh.blas[i].sharedWith >= 0) {
+      ++shared;
+      EXPECT_EQ(bvh.blas[i].root, bvh.blas[size_t(bvh.blas[i].sharedWith)].root);
+    } else {
+      triangles += scene.meshes[i].indices.size() / 3;
+    }
+  }
+  EXPECT_EQ(bvh.stats.triangles, triangles) << "triangles of the BLASes built, a shared one once";
+  EXPECT_EQ(bvh.stats.sharedMeshes, shared);
   EXPECT_EQ(bvh.stats.references, bvh.triangles.size());
   if (!splits) {
     EXPECT_EQ(bvh.triangles.size(), triangles);
@@ -161,6 +171,50 @@ TEST(BvhCpu, TreeIsWellFormed) {
   expectWellFormed(scene, bvh);
   const Scene sphere = test::sceneWithMesh(test::icosphere(3));
   expectWellFormed(sphere, bvh::buildSceneBvh(sphere));
+}
+
+// Meshes with the same triangles share one BLAS when they differ only in their one material;
+// each instance brings its material. Not when the triangles' flags differ (an alpha-masked
+// copy) or the materials are per triangle (several primitives).
+TEST(BvhCpu, MeshesDifferingOnlyInMaterialShareABlas) {
+  Scene scene = test::sceneWithMesh(test::icosphere(2));
+  auto material = [](glm::vec3 color, AlphaMode alpha) {
+    Material m;
+    m.baseColorFactor = glm::vec4(color, 1.0f);
+    m.alphaMode = alpha;
+    return m;
+  };
+  const auto at = [](float x) { return glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.0f, 0.0f)); };
+  test::addObject(scene, test::icosphere(2), at(3.0f), material({1, 0, 0}, AlphaMode::Opaque));  // mesh 1: shares mesh 0's BLAS
+  test::addObject(scene, test::icosphere(2), at(6.0f), material({0, 1, 0}, AlphaMode::Mask));    // mesh 2: other flags
+  Mesh twoMaterials = test::icosphere(2);
+  const uint32_t half = uint32_t(twoMaterials.indices.size() / 6 * 3);
+  twoMaterials.primitives = {Primitive{0, half, 0}, Primitive{half, uint32_t(twoMaterials.indices.size()) - half, 0}};
+  test::addObject(scene, twoMaterials, at(9.0f), material({0, 0, 1}, AlphaMode::Opaque));       // mesh 3: per-triangle materials
+  scene.meshes[3].primitives[1].material = int32_t(scene.materials.size() - 1);
+  scene.meshes[3].primitives[0].material = 1;
+  const bvh::SceneBvh bvh = bvh::buildSceneBvh(scene);
+  ASSERT_EQ(bvh.blas.size(), 4u);
+  EXPECT_EQ(bvh.blas[1].sharedWith, 0);
+  EXPECT_EQ(bvh.blas[1].root, bvh.blas[0].root);
+  EXPECT_EQ(bvh.blas[2].sharedWith, -1) << "alpha-masked triangles differ in their flags";
+  EXPECT_EQ(bvh.blas[3].sharedWith, -1) << "per-triangle materials differ";
+  EXPECT_EQ(bvh.stats.sharedMeshes, 1u);
+  expectWellFormed(scene, bvh);
+  // Each object's hits report its own material, on both halves of the two-material sphere.
+  for (const Object& o : scene.objects) {
+    const Mesh& m = scene.meshes[o.mesh];
+    for (uint32_t t = 0; t < m.indices.size() / 3; t += 7) {
+      glm::vec3 c(0.0f);
+      for (int k = 0; k < 3; ++k) c += vertexOfMesh(m, t, k) / 3.0f;
+      const glm::vec3 target = glm::vec3(o.transform * glm::vec4(c, 1.0f)), from = target + glm::normalize(c) * 0.5f;
+      const bvh::TraceResult r = bvh::traceCpu(bvh, from, target - from, 0.0f, 1.5f, RB_RQ_OPAQUE);
+      ASSERT_TRUE(r.hit);
+      ASSERT_EQ(r.object, o.id);
+      const Primitive& p = m.primitives[r.primitive * 3 >= m.primitives[0].indexCount ? 1 : 0];
+      EXPECT_EQ(r.material, uint32_t(p.material)) << "object " << o.id << " triangle " << r.primitive;
+    }
+  }
 }
 
 TEST(BvhCpu, SpatialSplitsCoverEveryTriangleAndAgreeWithEmbree) {

@@ -128,7 +128,8 @@ TEST(RtTracers, SpatialSplitsRenderTheSameFrame) {
     const AccelStats a = Renderer(scene, s).accelStats();
     size_t triangles = 0;
     for (const Mesh& m : scene.meshes) triangles += m.indices.size() / 3;
-    EXPECT_EQ(a.triangles, triangles);
+    EXPECT_GT(a.sharedMeshes, 0u) << "the court's copies of one sphere and one cube share a BLAS";
+    EXPECT_LT(a.triangles, triangles);
     EXPECT_EQ(a.references > a.triangles, more) << "the setting reaches the build";
     EXPECT_EQ(a.splitMeshes > 0, more);
     EXPECT_GE(double(a.bytes), 48.0 * double(a.references)) << "every leaf entry is on the device";

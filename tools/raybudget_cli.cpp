@@ -22,8 +22,9 @@ int render(const raybudget::cli::RenderCommand& c) {
   std::cout << "device: " << renderer.deviceName() << ", policy " << policyName(c.settings.policy) << ", tracer "
             << tracerName(c.settings.rayTracing.tracer) << '\n';
   const AccelStats accel = renderer.accelStats();
-  std::printf("acceleration structure: built in %.1f ms, %zu triangles in %zu leaf entries (spatial splits in %zu meshes), %.1f bytes/triangle\n",
-              accel.buildMs, accel.triangles, accel.references, accel.splitMeshes,
+  std::printf("acceleration structure: built in %.1f ms, %zu triangles in %zu leaf entries (spatial splits in %zu meshes, %zu meshes "
+              "sharing another's), %.1f bytes/triangle\n",
+              accel.buildMs, accel.triangles, accel.references, accel.splitMeshes, accel.sharedMeshes,
               double(accel.bytes) / double(std::max<size_t>(1, accel.triangles)));
   std::filesystem::create_directories(c.out);
   StatsCsv stats(std::filesystem::path(c.out) / "stats.csv");

@@ -23,14 +23,17 @@ struct GpuBvhNode {
 // 48 bytes: a triangle in leaf order, in its mesh's object space.
 struct GpuTriangle {
   vec4 v0Primitive;  // xyz vertex 0, w original triangle index in the mesh (uint bits)
-  vec4 v1Material;   // xyz vertex 1, w material index (uint bits)
+  vec4 v1Material;   // xyz vertex 1, w material index relative to the instance's material base (uint bits)
   vec4 v2Flags;      // xyz vertex 2, w flags (uint bits): RB_TRIANGLE_OPAQUE
 };
 
 // 64 bytes: an object instance in the TLAS.
 struct GpuInstance {
   vec4 worldToObject[3];  // rows of the affine world -> object transform
-  uvec4 blasObjectMask;   // x BLAS root node, y object ID, z cull mask (8 bits), w unused
+  // x BLAS root node, y object ID, z cull mask (8 bits), w material base: a hit's material
+  // is w plus the triangle's material field. One-material meshes store 0 in every triangle
+  // and their material here, so meshes that differ only in material share one BLAS.
+  uvec4 blasObjectMask;
 };
 
 // 32 bytes: a ray for the batch tracer (tests, benchmarks).

@@ -47,6 +47,7 @@ struct RayQuery {
   uint leafEnd;
   uint instance;     // the instance (TLAS leaf) whose BLAS is being traversed
   uint instanceObject;  // its object ID
+  uint instanceMaterialBase;  // added to the triangles' material fields
   bool inBlas;
   bool done;
   // Committed hit; tMax shrinks to it.
@@ -90,6 +91,7 @@ RB_INLINE void rqInitialize(RB_INOUT(RayQuery) q, uint flags, uint cullMask, vec
   q.leafEnd = 0u;
   q.instance = 0u;
   q.instanceObject = 0u;
+  q.instanceMaterialBase = 0u;
   q.inBlas = false;
   q.done = false;
   q.committedType = RB_RQ_HIT_NONE;
@@ -184,7 +186,7 @@ RB_INLINE bool rqTestTriangle(RB_INOUT(RayQuery) q, uint index) {
   q.candidateT = t;
   q.candidateObject = q.instanceObject;
   q.candidatePrimitive = floatBitsToUint(tri.v0Primitive.w);
-  q.candidateMaterial = floatBitsToUint(tri.v1Material.w);
+  q.candidateMaterial = q.instanceMaterialBase + floatBitsToUint(tri.v1Material.w);
   q.candidateBary = vec2(bary.y, bary.z);
   q.candidateFrontFace = front;
   bool opaque = (q.flags & RB_RQ_OPAQUE) != 0u || (floatBitsToUint(tri.v2Flags.w) & RB_TRIANGLE_OPAQUE) != 0u;
@@ -228,6 +230,7 @@ RB_INLINE bool rqProceed(RB_INOUT(RayQuery) q) {
       if ((instance.blasObjectMask.z & q.cullMask) == 0u) continue;
       q.instance = inst;
       q.instanceObject = instance.blasObjectMask.y;
+      q.instanceMaterialBase = instance.blasObjectMask.w;
       vec4 o = vec4(q.worldOrigin, 1.0f), d = vec4(q.worldDir, 0.0f);
       rqSetRay(q, vec3(dot(instance.worldToObject[0], o), dot(instance.worldToObject[1], o), dot(instance.worldToObject[2], o)),
                vec3(dot(instance.worldToObject[0], d), dot(instance.worldToObject[1], d), dot(instance.worldToObject[2], d)));

@@ -121,9 +121,10 @@ struct FrameImages {
 // The ray tracer's acceleration structure, built once when the Renderer is made.
 struct AccelStats {
   double buildMs = 0.0;     // compute tracer: BLAS + TLAS on the CPU; native: on the device
-  size_t triangles = 0;
+  size_t triangles = 0;     // in the per-mesh structures (compute tracer: a shared one once)
   size_t references = 0;    // leaf entries: compute tracer, triangles plus spatial-split pieces
   size_t splitMeshes = 0;   // meshes built with spatial splits (compute tracer)
+  size_t sharedMeshes = 0;  // meshes using another's structure, same triangles (compute tracer)
   size_t bytes = 0;         // device memory
 };
 

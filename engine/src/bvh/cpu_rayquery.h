@@ -35,6 +35,7 @@ struct TraceResult {
   float t = 0.0f;
   uint32_t object = 0;
   uint32_t primitive = 0;
+  uint32_t material = 0;
   glm::vec2 barycentrics{0.0f};
   bool frontFace = false;
   uint32_t nodesVisited = 0;
@@ -52,6 +53,7 @@ inline TraceResult traceCpu(const SceneBvh& bvh, glm::vec3 origin, glm::vec3 dir
   r.t = q.tMax;
   r.object = q.committedObject;
   r.primitive = q.committedPrimitive;
+  r.material = q.committedMaterial;
   r.barycentrics = q.committedBary;
   r.frontFace = q.committedFrontFace;
   r.nodesVisited = q.nodesVisited;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <unordered_map>
 
 #include "bvh/embree_build.h"
 #include "bvh/spatial_split.h"
@@ -43,18 +44,57 @@ bool unevenTriangleSizes(const std::vector<BuildRef>& refs) {
   return sum / double(area.size()) >= 2.0 * double(area[area.size() / 2]);
 }
 
-BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SpatialSplits splits, SceneBvh& out) {
+// What a mesh's BLAS stores per triangle besides the vertices: the material field (relative
+// to the instance's material base) and the flags.
+struct TriangleFields {
+  std::vector<uint32_t> material, flags;
+  uint32_t materialBase = 0;  // goes into each instance of the mesh
+};
+
+TriangleFields triangleFields(const Scene& scene, const Mesh& mesh) {
   const size_t triCount = mesh.indices.size() / 3;
-  auto vertex = [&](size_t t, int k) { return mesh.vertices[mesh.indices[t * 3 + size_t(k)]].position; };
-  std::vector<uint32_t> material(triCount);
-  std::vector<uint32_t> flags(triCount);
+  TriangleFields f;
+  f.material.assign(triCount, 0u);
+  f.flags.assign(triCount, 0u);
+  // One material: it goes to the instance, so meshes differing only in it share a BLAS.
+  const bool oneMaterial = mesh.primitives.size() == 1;
+  if (oneMaterial) f.materialBase = uint32_t(mesh.primitives[0].material);
   for (const Primitive& p : mesh.primitives) {
     const Material& m = scene.materials[size_t(p.material)];
     for (uint32_t t = p.firstIndex / 3; t < (p.firstIndex + p.indexCount) / 3; ++t) {
-      material[t] = uint32_t(p.material);
-      flags[t] = m.alphaMode == AlphaMode::Mask ? 0u : RB_TRIANGLE_OPAQUE;
+      f.material[t] = oneMaterial ? 0u : uint32_t(p.material);
+      f.flags[t] = m.alphaMode == AlphaMode::Mask ? 0u : RB_TRIANGLE_OPAQUE;
     }
   }
+  return f;
+}
+
+glm::vec3 vertexOf(const Mesh& mesh, size_t triangle, int k) { return mesh.vertices[mesh.indices[triangle * 3 + size_t(k)]].position; }
+
+// Same triangles (positions, in order) and the same per-triangle fields: one BLAS serves both.
+bool sameBlas(const Mesh& a, const TriangleFields& fa, const Mesh& b, const TriangleFields& fb) {
+  if (a.indices.size() != b.indices.size() || fa.material != fb.material || fa.flags != fb.flags) return false;
+  for (size_t t = 0; t < a.indices.size() / 3; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (vertexOf(a, t, k) != vertexOf(b, t, k)) return false;
+  return true;
+}
+
+uint64_t blasHash(const Mesh& mesh, const TriangleFields& f) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a over the positions' bits and the fields
+  auto mix = [&](uint32_t v) { h = (h ^ v) * 1099511628211ull; };
+  for (size_t t = 0; t < mesh.indices.size() / 3; ++t) {
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) mix(std::bit_cast<uint32_t>(vertexOf(mesh, t, k)[c]));
+    mix(f.material[t]);
+    mix(f.flags[t]);
+  }
+  return h;
+}
+
+BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, const TriangleFields& fields, SpatialSplits splits, SceneBvh& out) {
+  const size_t triCount = mesh.indices.size() / 3;
+  auto vertex = [&](size_t t, int k) { return vertexOf(mesh, t, k); };
   std::vector<BuildRef> refs(triCount);
   for (size_t t = 0; t < triCount; ++t) {
     const glm::vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2);
@@ -63,6 +103,7 @@ BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SpatialSplits splits, S
   BlasInfo info;
   info.firstTriangle = uint32_t(out.triangles.size());
   info.triangleCount = uint32_t(triCount);
+  info.materialBase = fields.materialBase;
   if (triCount == 0) return info;  // every triangle was degenerate: no object uses this mesh
   info.spatialSplits = splits == SpatialSplits::Always || (splits == SpatialSplits::Auto && unevenTriangleSizes(refs));
   const SplitFunction split = [&](uint32_t t, const Box& clip, int axis, float position, Box& left, Box& right) {
@@ -79,8 +120,8 @@ BlasInfo buildBlas(const Scene& scene, const Mesh& mesh, SpatialSplits splits, S
       const uint32_t t = ids[i];
       gpu::GpuTriangle tri;
       tri.v0Primitive = glm::vec4(vertex(t, 0), std::bit_cast<float>(t));
-      tri.v1Material = glm::vec4(vertex(t, 1), std::bit_cast<float>(material[t]));
-      tri.v2Flags = glm::vec4(vertex(t, 2), std::bit_cast<float>(flags[t]));
+      tri.v1Material = glm::vec4(vertex(t, 1), std::bit_cast<float>(fields.material[t]));
+      tri.v2Flags = glm::vec4(vertex(t, 2), std::bit_cast<float>(fields.flags[t]));
       out.triangles.push_back(tri);
     }
     return first;
@@ -108,7 +149,7 @@ void rebuildTlas(SceneBvh& bvh, std::span<const Object> objects) {
       const glm::mat4 inv = glm::inverse(o.transform);
       gpu::GpuInstance inst;
       for (int r = 0; r < 3; ++r) inst.worldToObject[r] = glm::vec4(inv[0][r], inv[1][r], inv[2][r], inv[3][r]);
-      inst.blasObjectMask = glm::uvec4(bvh.blas[o.mesh].root, o.id, 0xFFu, 0u);
+      inst.blasObjectMask = glm::uvec4(bvh.blas[o.mesh].root, o.id, 0xFFu, bvh.blas[o.mesh].materialBase);
       bvh.instances.push_back(inst);
     }
     return first;
@@ -125,8 +166,25 @@ SceneBvh buildSceneBvh(const Scene& scene, const BuildOptions& options) {
   SceneBvh bvh;
   bvh.nodes.push_back({});  // node 0: the TLAS root's copy, filled by rebuildTlas
   const auto start = std::chrono::steady_clock::now();
-  for (const Mesh& m : scene.meshes) {
-    bvh.blas.push_back(buildBlas(scene, m, options.spatialSplits, bvh));
+  // Meshes with the same triangles and fields (typically copies differing in material) share
+  // the first one's BLAS.
+  std::unordered_map<uint64_t, std::vector<uint32_t>> built;  // hash -> meshes with a BLAS of their own
+  std::vector<TriangleFields> fields;
+  for (const Mesh& m : scene.meshes) fields.push_back(triangleFields(scene, m));
+  for (uint32_t i = 0; i < scene.meshes.size(); ++i) {
+    const Mesh& m = scene.meshes[i];
+    std::vector<uint32_t>& same = built[blasHash(m, fields[i])];
+    const auto owner = std::find_if(same.begin(), same.end(), [&](uint32_t j) { return sameBlas(scene.meshes[j], fields[j], m, fields[i]); });
+    if (owner != same.end() && !m.indices.empty()) {
+      BlasInfo shared = bvh.blas[*owner];
+      shared.materialBase = fields[i].materialBase;
+      shared.sharedWith = *owner;
+      bvh.blas.push_back(shared);
+      ++bvh.stats.sharedMeshes;
+      continue;
+    }
+    same.push_back(i);
+    bvh.blas.push_back(buildBlas(scene, m, fields[i], options.spatialSplits, bvh));
     bvh.stats.triangles += bvh.blas.back().triangleCount;
     bvh.stats.splitMeshes += bvh.blas.back().spatialSplits;
   }

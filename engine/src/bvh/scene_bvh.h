@@ -1,6 +1,7 @@
-// The two-level BVH of a scene in the GPU layout of shaders/shared/bvh.h: one BLAS per mesh,
-// built on the CPU with Embree's rtcBuildBVH (binned SAH), and a TLAS over the objects.
-// Plain C++ (Embree, no Vulkan).
+// The two-level BVH of a scene in the GPU layout of shaders/shared/bvh.h: one BLAS per mesh
+// (meshes with the same triangles share one) built on the CPU with Embree's rtcBuildBVH
+// (binned SAH, spatial splits where they pay), and a TLAS over the objects. Plain C++
+// (Embree, no Vulkan).
 #pragma once
 #include <cstdint>
 #include <span>
@@ -23,6 +24,8 @@ struct BlasInfo {
   uint32_t triangleCount = 0;  // the mesh's triangles
   uint32_t references = 0;     // leaf entries: more than triangleCount where triangles were split
   bool spatialSplits = false;  // built with spatial splits
+  uint32_t materialBase = 0;   // this mesh's instances' material base (shaders/shared/bvh.h)
+  int32_t sharedWith = -1;     // the mesh whose BLAS this one uses (same triangles), or -1
   float sahCost = 0.0f;        // SAH cost with traversal 1, intersection 1, relative to the root box
 };
 
@@ -30,10 +33,11 @@ struct BuildStats {
   double blasMs = 0.0;  // all meshes
   double tlasMs = 0.0;
   size_t nodes = 0;
-  size_t triangles = 0;           // the meshes' triangles
+  size_t triangles = 0;           // triangles of the BLASes built (a shared BLAS counts once)
   size_t references = 0;          // leaf entries (SceneBvh::triangles): triangles plus split pieces
   size_t splitMeshes = 0;         // meshes built with spatial splits
-  double bytesPerTriangle = 0.0;  // nodes + leaf entries per mesh triangle (the instance array is per object)
+  size_t sharedMeshes = 0;        // meshes that use another mesh's BLAS
+  double bytesPerTriangle = 0.0;  // nodes + leaf entries per BLAS triangle (the instance array is per object)
 };
 
 struct SceneBvh {

@@ -213,15 +213,17 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   }
   // (Native: empty one-element buffers keep the descriptor set's shape.)
   gpu.bvhBuffers = uploadBvh(ctx, gpu.bvh, true);
-  for (const Mesh& m : scene.meshes) gpu.accel.triangles += m.indices.size() / 3;
   if (gpu.native) {
+    for (const Mesh& m : scene.meshes) gpu.accel.triangles += m.indices.size() / 3;
     gpu.accel.buildMs = gpu.native->buildMs();
     gpu.accel.references = gpu.accel.triangles;
     gpu.accel.bytes = gpu.native->memoryBytes();
   } else {
     gpu.accel.buildMs = gpu.bvh.stats.blasMs + gpu.bvh.stats.tlasMs;
+    gpu.accel.triangles = gpu.bvh.stats.triangles;
     gpu.accel.references = gpu.bvh.stats.references;
     gpu.accel.splitMeshes = gpu.bvh.stats.splitMeshes;
+    gpu.accel.sharedMeshes = gpu.bvh.stats.sharedMeshes;
     gpu.accel.bytes = gpu.bvhBuffers.bytes();
   }
   gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
