@@ -45,8 +45,8 @@ using SplitFunction = std::function<void(uint32_t id, const Box& clip, int axis,
 // Builds an SAH BVH2 over `refs` and appends its nodes to `nodes`. Each leaf's IDs go to
 // `emitLeaf`, which stores them in the order it likes and returns the absolute index of the
 // first one. Leaves hold at most `shape.maxLeafSize` references (more only where the depth
-// limit forces it). With `split`, the builder may also split references spatially: an ID may then
-// appear in several leaves. Throws raybudget::Error.
+// limit forces it). With `split`, the builder may also split references spatially: an ID
+// may then appear in several leaves. Throws raybudget::Error.
 FlatTree buildTree(const std::vector<BuildRef>& refs, const TreeShape& shape, std::vector<gpu::GpuBvhNode>& nodes,
                    const std::function<uint32_t(const uint32_t* ids, uint32_t count)>& emitLeaf, const SplitFunction& split = {});
 
