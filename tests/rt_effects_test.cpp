@@ -662,3 +662,48 @@ TEST(RtBudget, RestartedSelectionEqualsANewRenderer) {
 
 }  // namespace
 }  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+// A benchmark's configurations must not depend on what ran before them: restartSelection
+// keeps the time scale and the stage overhead another configuration pushed around, and
+// setCostModel puts back a saved state. With timing feedback on, a configuration restored
+// to the saved state selects exactly what it selected alone until its own first
+// measurement arrives (two frames later), whatever ran in between.
+TEST(RtBudget, ASavedCostModelMakesAConfigurationIndependentOfWhatRanBefore) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s = budgetedSettings(Policy::Density, 2.0f, 160, 96);
+  Camera start = defaultCamera(scene, 160.0f / 96.0f);
+  start.position = glm::mix(start.target, start.position, 0.5f);
+  Renderer renderer(scene, s);
+  (void)renderOrbit(renderer, start, 12);  // learn at T = 2 ms
+  const CostModel saved = renderer.costModel();
+  EXPECT_GT(saved.msPerWorkUnit, 0.0);
+  EXPECT_GT(saved.stageOverheadMs, 0.0) << "coverage and select take time, which T must pay for";
+  EXPECT_EQ(saved.msPerPaperCost, 0.0) << "paper has not run: its unit is still the prior";
+
+  renderer.restartSelection(Policy::Density, 0.4f);
+  renderer.setCostModel(saved);
+  const std::vector<Picked> alone = orbitSelections(renderer, start, 2);
+  // Something else runs: the paper's policy and density at a budget where everything fits.
+  renderer.restartSelection(Policy::Paper, 3.0f);
+  (void)renderOrbit(renderer, start, 8);
+  renderer.restartSelection(Policy::Density, 50.0f);
+  (void)renderOrbit(renderer, start, 8);
+  renderer.restartSelection(Policy::Density, 0.4f);
+  EXPECT_NE(renderer.costModel(), saved) << "the runs in between should have moved the model, or the test shows nothing";
+  renderer.setCostModel(saved);
+  EXPECT_EQ(renderer.costModel(), saved);
+  EXPECT_EQ(orbitSelections(renderer, start, 2), alone);
+  for (const FrameTiming& t : renderOrbit(renderer, start, 4)) {
+    EXPECT_LE(t.traceBudgetMs, t.budgetMs) << "the selection gets T less the coverage and select passes";
+    EXPECT_GT(t.rtStageMs(), t.traceMs());
+  }
+  EXPECT_THROW(renderer.setCostModel({-1.0, 0.0, 0.0}), Error);
+  EXPECT_THROW(renderer.setCostModel({0.0, std::nan(""), 0.0}), Error);
+  test::expectValidationClean(renderer.validationMessages());
+}
+
+}  // namespace
+}  // namespace raybudget

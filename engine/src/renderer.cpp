@@ -86,6 +86,14 @@ double FrameTiming::totalMs() const {
   return sum;
 }
 
+double FrameTiming::traceMs() const {
+  return passMs[size_t(Pass::TraceShadows)].value_or(0.0) + passMs[size_t(Pass::TraceEffects)].value_or(0.0);
+}
+
+double FrameTiming::rtStageMs() const {
+  return passMs[size_t(Pass::Coverage)].value_or(0.0) + passMs[size_t(Pass::Select)].value_or(0.0) + traceMs();
+}
+
 namespace {
 
 constexpr uint32_t kFramesInFlight = 2;
@@ -122,6 +130,7 @@ struct Renderer::Impl {
     bool selected = false;     // the frame ran the select pass
     bool budgeted = false;     // ... with a budgeted policy
     double kappa = 0.0;        // the cost model the frame was selected with
+    float traceBudgetMs = 0.0f;  // ... and the part of T it gave the trace passes
   };
 
   RenderSettings settings;
@@ -148,6 +157,9 @@ struct Renderer::Impl {
   // random; 1: the paper's C), kept across restartSelection: it describes the device and
   // the scene, not the selection. 0 = not learned yet.
   std::array<double, 2> learnedKappa{0.0, 0.0};
+  // The coverage and select passes' time (EWMA of their timestamps), which the selection
+  // takes off T: T bounds the whole ray-tracing stage. Kept across restartSelection.
+  double stageOverheadMs = 0.0;
   passes::ShadowMapPass shadowMaps;
   passes::EnvironmentPass environment;
   passes::ScreenPass lighting;
@@ -285,6 +297,7 @@ struct Renderer::Impl {
     const auto* r = static_cast<const uint32_t*>(slot.selectResult.mapped);
     const double predicted = std::bit_cast<float>(r[1]);
     t.budgetMs = settings.budgetMs;
+    t.traceBudgetMs = slot.traceBudgetMs;
     t.predictedTraceMs = predicted;
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
@@ -295,20 +308,23 @@ struct Renderer::Impl {
       std::vector<select::Candidate> c;
       for (uint32_t i = 0; i < r[0]; ++i) c.push_back({g[i].id, g[i].cost, g[i].value, g[i].distance});
       if (settings.optimalBound) {
-        t.optimalValueBound = select::optimalValueBound(c, settings.budgetMs);
+        t.optimalValueBound = select::optimalValueBound(c, slot.traceBudgetMs);
         if (!c.empty())
           t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
+        for (const select::Candidate& x : c) t.candidatesMs += x.cost;
       }
       if (settings.checkSelection) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
         std::vector<uint32_t> gpuIds;
         for (uint32_t i = 0; i < scene.objectSpheres.size(); ++i)
           if (flags[i]) gpuIds.push_back(i);
-        t.selectionMatchesCpu = gpuIds == select::selectObjects(selectPolicy(), c, settings.budgetMs, policyOptions()).ids;
+        t.selectionMatchesCpu = gpuIds == select::selectObjects(selectPolicy(), c, slot.traceBudgetMs, policyOptions()).ids;
       }
     }
-    t.measuredTraceMs = t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
+    t.measuredTraceMs = t.traceMs();
     if (!settings.learnTimeScale) return;
+    const double overhead = t.rtStageMs() - t.measuredTraceMs;
+    stageOverheadMs = stageOverheadMs > 0.0 ? 0.7 * stageOverheadMs + 0.3 * overhead : overhead;
     if (predicted > 1e-3 && t.measuredTraceMs > 1e-3) {
       // One frame moves kappa by at most 1.3x (the measurement arrives two frames late, a
       // bigger step overshoots), and a shader compiled on first use or a busy machine
@@ -439,11 +455,12 @@ struct Renderer::Impl {
     if (settings.objectMetrics || slot.selected) timed(Pass::Coverage, [&] { coverage.record(fc); });
     slot.budgeted = isBudgeted(settings.policy);
     slot.kappa = kappa;
+    slot.traceBudgetMs = float(std::max(0.0, double(settings.budgetMs) - stageOverheadMs));
     if (slot.selected) {
       computeToCompute(cmd);
       timed(Pass::Select, [&] {
         if (slot.budgeted) {
-          selector->recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), settings.budgetMs, float(kappa), policyOptions());
+          selector->recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), slot.traceBudgetMs, float(kappa), policyOptions());
           vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                             VK_ACCESS_2_TRANSFER_READ_BIT);
           const VkBufferCopy copy{0, 0, 32};
@@ -551,6 +568,21 @@ struct Renderer::Impl {
     return done;
   }
 
+  CostModel costModel() const {
+    std::array<double, 2> k = learnedKappa;
+    if (isBudgeted(settings.policy)) k[costUnit(settings.policy)] = kappa;
+    return {k[0], k[1], stageOverheadMs};
+  }
+
+  void setCostModel(const CostModel& m) {
+    for (double v : {m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs})
+      if (!std::isfinite(v) || v < 0.0 || v > 1e6) throw Error("cost model values must be finite and within 0..1e6, got " + std::to_string(v));
+    learnedKappa = {m.msPerWorkUnit, m.msPerPaperCost};
+    stageOverheadMs = m.stageOverheadMs;
+    const double learned = learnedKappa[costUnit(settings.policy)];
+    kappa = learned > 0.0 ? learned : priorKappa();
+  }
+
   std::vector<FrameTiming> finish() {
     std::vector<FrameTiming> done;
     // Oldest first: the slot after the last-used one holds the older frame.
@@ -574,6 +606,10 @@ std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->
 std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
 
 std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs) { return impl_->restartSelection(policy, budgetMs); }
+
+CostModel Renderer::costModel() const { return impl_->costModel(); }
+
+void Renderer::setCostModel(const CostModel& model) { impl_->setCostModel(model); }
 
 void Renderer::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
   raybudget::setObjectTransform(impl_->scene.shell, objectId, transform);

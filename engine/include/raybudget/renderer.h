@@ -47,12 +47,14 @@ struct RenderSettings {
   float skyIntensity = 0.3f;       // sky radiance scale (ambient, reflections, background)
   std::string environmentMap;      // equirectangular OpenEXR replacing the procedural sky
   Policy policy = Policy::None;
-  float budgetMs = 4.0f;           // the trace passes' time budget T, budgeted policies only
+  // The ray-tracing stage's time budget T, budgeted policies only: coverage + select + the
+  // trace passes. The selection gets T less the coverage and select passes' learned time.
+  float budgetMs = 4.0f;
   uint32_t graphPointers = 4;      // `paper`: N
   uint32_t seed = 1;               // `random`
-  // Learn the cost model's time scale from the trace timestamps (off: the prior stays, so a
-  // run selects the same objects on any machine; per-object work per pixel is learned from
-  // the deterministic work counters either way).
+  // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
+  // timestamps (off: the prior stays, so a run selects the same objects on any machine;
+  // per-object work per pixel is learned from the deterministic work counters either way).
   bool learnTimeScale = true;
   // Benchmarks: read each frame's candidates back and compute the 0/1-knapsack bound on the
   // value any selection within T could reach (FrameTiming::optimalValueBound).
@@ -76,9 +78,12 @@ struct FrameTiming {
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   uint32_t tracedTiles = 0;    // 8x8 tiles the trace passes ran over (0: none selected or nothing traced)
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
-  // Budgeted policies: the budget, the cost model's prediction for the selection and the
-  // measured trace time (the trace passes' sum), objects selected and their summed R.
+  // Budgeted policies: the stage budget T, the part of it the selection got for the trace
+  // passes (T less the learned coverage + select time), the cost model's prediction for the
+  // selection and the measured trace time (the trace passes' sum), objects selected and
+  // their summed R.
   double budgetMs = 0.0;
+  double traceBudgetMs = 0.0;
   double predictedTraceMs = 0.0;
   double measuredTraceMs = 0.0;
   uint32_t selectedObjects = 0;
@@ -88,12 +93,25 @@ struct FrameTiming {
   bool selectionSorted = false;
   double optimalValueBound = 0.0;  // with RenderSettings::optimalBound: the knapsack bound on the value
   double cheapestCandidateMs = 0.0;  // with RenderSettings::optimalBound: the least predicted cost of a candidate (0: none)
+  double candidatesMs = 0.0;         // with RenderSettings::optimalBound: the candidates' summed predicted cost
   double selectedValue = 0.0;
   // With RenderSettings::checkSelection: whether the GPU selected exactly the objects the
   // CPU reference (engine/src/select/policies.h) selects from the frame's candidates.
   std::optional<bool> selectionMatchesCpu;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
+  double traceMs() const;    // the trace passes (shadows, effects)
+  double rtStageMs() const;  // the ray-tracing stage T bounds: coverage + select + trace
+};
+
+// What the cost model has learned: trace milliseconds per unit of predicted work (our work
+// units for density, nearest and random; the paper's C for paper), and the coverage and
+// select passes' time, which the selection subtracts from T. 0 = not learned (the prior).
+struct CostModel {
+  double msPerWorkUnit = 0.0;
+  double msPerPaperCost = 0.0;
+  double stageOverheadMs = 0.0;
+  bool operator==(const CostModel&) const = default;
 };
 
 // The paper's per-object quantities as the GPU computed them (engine/src/select/metrics.h
@@ -150,6 +168,13 @@ class Renderer {
   // would. Finishes the frames in flight and returns their timings. Throws Error on a bad
   // budget.
   std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs);
+
+  // The cost model as learned so far (the current policy's unit included), and a way to
+  // start from a saved one: a benchmark gives every configuration the same learned state,
+  // so that its results do not depend on what ran before. setCostModel applies from the
+  // next frame on; zero fields mean the prior. Throws Error on negative or non-finite values.
+  CostModel costModel() const;
+  void setCostModel(const CostModel& model);
 
   // Moves an object (animation, the editor): from the next frame on, its raster draws, its
   // BVH instance (only the TLAS is rebuilt) and its bounds follow. Throws Error on a bad
