@@ -1,13 +1,17 @@
 #!/usr/bin/env python3
-"""Writes raybudget's default scene, data/default/court.gltf + court.bin.
+"""Writes raybudget's generated scenes: the default scene data/default/court.gltf + court.bin
+and a larger level for the benchmark, data/plaza/plaza.gltf + plaza.bin.
 
-A walled court: a floor, three walls, a mirror panel and a chrome sphere, a glass sphere
+The court: a walled court: a floor, three walls, a mirror panel and a chrome sphere, a glass sphere
 and a tinted glass block, pillars, crates and several dozen smaller objects from near to
 far, lit by a sun, two point lights and a spot light. Some objects carry
 extras.raybudget {K, Q, I} so that the budget has authored priorities to respect.
+The plaza: a game level of some 150 objects of mixed size, distance and material on a 64 x 64
+square, with mirrors, chrome, glass, market stalls, arcades of pillars, crates and a crowd of
+small props, lit by a sun, three point lights and a spot light.
 Deterministic: the same bytes on every run (a fixed LCG, no library randomness).
 
-usage: make_default_scene.py [OUT_DIR]   (default: data/default beside this repo's tools/)
+usage: make_default_scene.py [DATA_DIR]   (default: data/ beside this repo's tools/)
 """
 import json
 import math
@@ -102,10 +106,10 @@ def plane_mesh():
 
 
 class GltfWriter:
-    def __init__(self):
+    def __init__(self, name):
         self.bin = bytearray()
         self.doc = {"asset": {"version": "2.0", "generator": "raybudget tools/make_default_scene.py"},
-                    "scene": 0, "scenes": [{"name": "court", "nodes": []}], "nodes": [], "meshes": [],
+                    "scene": 0, "scenes": [{"name": name, "nodes": []}], "nodes": [], "meshes": [],
                     "materials": [], "accessors": [], "bufferViews": [], "buffers": [],
                     "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
                                        "KHR_materials_volume", "KHR_materials_emissive_strength"],
@@ -195,10 +199,8 @@ def yaw(angle):
     return (0.0, math.sin(angle / 2), 0.0, math.cos(angle / 2))
 
 
-def build():
-    g = GltfWriter()
-    rnd = Lcg(20241124)
-    m = {
+def materials(g):
+    return {
         "floor": g.material("floor", (0.55, 0.52, 0.48), roughness=0.85),
         "wall": g.material("wall", (0.75, 0.72, 0.66), roughness=0.9),
         "mirror": g.material("mirror", (0.95, 0.95, 0.97), metallic=1.0, roughness=0.02),
@@ -214,6 +216,12 @@ def build():
         "wood": g.material("wood", (0.45, 0.3, 0.18), roughness=0.75),
         "lamp": g.material("lamp", (1.0, 0.9, 0.7), emissive=((1.0, 0.85, 0.6), 6.0)),
     }
+
+
+def build():
+    g = GltfWriter("court")
+    rnd = Lcg(20241124)
+    m = materials(g)
     cube = {k: g.mesh("cube_" + k, box_mesh(), m[k]) for k in ("wall", "mirror", "stone", "red", "blue", "wood", "tinted", "lamp")}
     sphere = {k: g.mesh("sphere_" + k, sphere_mesh(), m[k]) for k in ("chrome", "glass", "gold", "red", "blue", "stone")}
     pillar = g.mesh("pillar", cylinder_mesh(), m["stone"])
@@ -274,11 +282,103 @@ def build():
     return g
 
 
+def build_level():
+    """The plaza: a level whose budget must choose among many objects at every distance."""
+    g = GltfWriter("plaza")
+    rnd = Lcg(20261201)
+    m = materials(g)
+    m["brass"] = g.material("brushed brass", (0.95, 0.8, 0.5), metallic=1.0, roughness=0.2)
+    m["green"] = g.material("green paint", (0.2, 0.5, 0.25), roughness=0.55)
+    m["cloth"] = g.material("awning cloth", (0.8, 0.65, 0.3), roughness=0.9)
+    cube = {k: g.mesh("cube_" + k, box_mesh(), m[k])
+            for k in ("wall", "mirror", "stone", "red", "blue", "wood", "tinted", "lamp", "green", "cloth")}
+    sphere = {k: g.mesh("sphere_" + k, sphere_mesh(), m[k]) for k in ("chrome", "glass", "gold", "red", "blue", "stone", "brass")}
+    pillar = g.mesh("pillar", cylinder_mesh(), m["stone"])
+    brass_post = g.mesh("brass_post", cylinder_mesh(), m["brass"])
+    floor = g.mesh("floor", plane_mesh(), m["floor"])
+
+    # The square: 64 x 64, walls on the far and side edges, a raised centre platform.
+    g.node("floor", floor, s=(64, 1, 64))
+    g.node("wall_back", cube["wall"], t=(0, 4, -32), s=(64, 8, 0.6))
+    g.node("wall_left", cube["wall"], t=(-32, 4, 0), s=(0.6, 8, 64))
+    g.node("wall_right", cube["wall"], t=(32, 4, 0), s=(0.6, 8, 64))
+    g.node("platform", cube["stone"], t=(0, 0.25, -6), s=(12, 0.5, 12))
+    # Reflective and transmissive centrepieces, near and far, with authored priorities.
+    g.node("mirror_back", cube["mirror"], t=(0, 3.5, -31.6), s=(14, 6, 0.1), params={"K": 3.0, "I": 0.5})
+    g.node("mirror_left", cube["mirror"], t=(-31.6, 2.5, -10), s=(0.1, 4, 9), params={"K": 2.0, "I": 0.5})
+    g.node("mirror_stand", cube["mirror"], t=(9, 1.6, 6), s=(3, 3, 0.1), r=yaw(-0.6), params={"K": 2.0, "I": 0.5})
+    g.node("chrome_centre", sphere["chrome"], t=(0, 2.5, -6), s=(2, 2, 2), params={"K": 2.5, "I": 0.5})
+    g.node("glass_centre", sphere["glass"], t=(-4, 1.7, -3), s=(1.2, 1.2, 1.2), params={"K": 2.5, "Q": 4.0, "I": 0.5})
+    g.node("glass_block_centre", cube["tinted"], t=(4, 1.5, -3), s=(1.6, 2, 1), r=yaw(0.4), params={"K": 1.5, "I": 0.5})
+    for i, (x, z) in enumerate(((-18, -20), (20, -22), (-12, 14), (16, 12))):
+        g.node("chrome_%d" % i, sphere["chrome"], t=(x, 0.9, z), s=(0.9, 0.9, 0.9), params={"K": 1.5})
+        g.node("glass_%d" % i, sphere["glass"], t=(x + 2.2, 0.7, z + 1.0), s=(0.7, 0.7, 0.7), params={"Q": 4.0})
+    for i, (x, z, a) in enumerate(((-22, -4, 0.3), (24, -8, -0.5), (-6, 20, 1.1))):
+        g.node("glass_pane_%d" % i, cube["tinted"], t=(x, 1.4, z), s=(2.4, 2.8, 0.2), r=yaw(a))
+    # Arcades: pillars along both sides, brass posts around the platform.
+    for i in range(9):
+        z = -26 + 6.5 * i
+        for side in (-1, 1):
+            g.node("pillar_%d_%s" % (i, "l" if side < 0 else "r"), pillar, t=(side * 27, 0, z), s=(0.6, 7, 0.6))
+    for i in range(8):
+        a = 2 * math.pi * i / 8
+        g.node("post_%d" % i, brass_post, t=(7.5 * math.cos(a), 0, -6 + 7.5 * math.sin(a)), s=(0.12, 1.4, 0.12))
+    # Market stalls: a counter, an awning, goods on top.
+    for i, (x, z, a) in enumerate(((-16, -8, 0.2), (-15, 2, -0.1), (15, -4, 0.4), (17, 4, -0.3), (-8, -18, 0.0), (8, -18, 0.1))):
+        g.node("stall_%d_counter" % i, cube["wood"], t=(x, 0.5, z), s=(3, 1, 1.4), r=yaw(a))
+        g.node("stall_%d_awning" % i, cube["cloth"], t=(x, 2.4, z), s=(3.4, 0.1, 2), r=yaw(a))
+        for k in range(3):
+            kind = (sphere["red"], sphere["gold"], cube["green"])[(i + k) % 3]
+            g.node("stall_%d_good_%d" % (i, k), kind, t=(x + (k - 1) * 0.9, 1.2, z), s=(0.2, 0.2, 0.2))
+    # Crates in stacks near the walls.
+    for i in range(12):
+        x, z = rnd.uniform(-29, 29), rnd.uniform(-29, -22) if i % 2 else rnd.uniform(-29, 29)
+        if i % 2 == 0:
+            x = rnd.uniform(-30, -24) if i % 4 == 0 else rnd.uniform(24, 30)
+        size = rnd.uniform(0.8, 1.8)
+        g.node("crate_%02d" % i, cube["wood"], t=(x, size / 2, z), s=(size, size, size), r=yaw(rnd.uniform(0, 1.5)))
+    # Lamp posts with emissive heads.
+    for i, (x, z) in enumerate(((-10, -12), (10, -12), (-10, 8), (10, 8))):
+        g.node("lamp_post_%d" % i, pillar, t=(x, 0, z), s=(0.08, 3.2, 0.08))
+        g.node("lamp_%d" % i, cube["lamp"], t=(x, 3.35, z), s=(0.4, 0.3, 0.4), params={"Q": 0.0})
+    # The crowd: small props everywhere, near to far.
+    kinds = [sphere["red"], sphere["blue"], sphere["stone"], sphere["brass"], cube["red"], cube["blue"], cube["stone"], cube["green"]]
+    for i in range(60):
+        x, z = rnd.uniform(-26, 26), rnd.uniform(-28, 26)
+        if abs(x) < 7 and -13 < z < 1:  # off the platform
+            z += 16
+        size = rnd.uniform(0.2, 1.0)
+        mesh = kinds[i % len(kinds)]
+        if mesh in (sphere["red"], sphere["blue"], sphere["stone"], sphere["brass"]):
+            g.node("prop_%02d" % i, mesh, t=(x, size, z), s=(size, size, size))
+        else:
+            h = size * rnd.uniform(0.6, 2.0)
+            g.node("prop_%02d" % i, mesh, t=(x, h / 2, z), s=(size, h, size), r=yaw(rnd.uniform(0, math.pi)))
+    # Close to the camera: large on screen.
+    g.node("near_sphere", sphere["blue"], t=(-3, 0.6, 25), s=(0.6, 0.6, 0.6))
+    g.node("near_crate", cube["wood"], t=(3.5, 0.45, 26), s=(0.9, 0.9, 0.9), r=yaw(0.5))
+    g.node("near_chrome", sphere["chrome"], t=(6, 0.5, 23), s=(0.5, 0.5, 0.5), params={"K": 1.5})
+
+    sun = g.light({"name": "sun", "type": "directional", "color": [1.0, 0.96, 0.9], "intensity": 3.0})
+    g.node("sun", t=(0, 20, 0), r=(-0.4226183, 0.2418448, 0.1148070, 0.8660254), light=sun)
+    for i, (x, z, color) in enumerate(((-10, -12, [1.0, 0.75, 0.45]), (10, 8, [1.0, 0.8, 0.55]), (-18, 10, [0.55, 0.7, 1.0]))):
+        light = g.light({"name": "point %d" % i, "type": "point", "color": color, "intensity": 40.0, "range": 18.0})
+        g.node("point_%d" % i, t=(x, 3.9 if i < 2 else 4.5, z), light=light)
+    spot = g.light({"name": "spot", "type": "spot", "color": [1.0, 1.0, 0.95], "intensity": 120.0, "range": 30.0,
+                    "spot": {"innerConeAngle": 0.25, "outerConeAngle": 0.45}})
+    g.node("spot", t=(0, 12, 4), r=(-0.5, 0.0, 0.0, 0.8660254), light=spot)
+
+    g.doc["cameras"].append({"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.1, "zfar": 150.0}})
+    g.node("camera", t=(0, 4.0, 31), r=(-0.0871557, 0.0, 0.0, 0.9961947), camera=0)
+    return g
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "data", "default")
-    build().write(out, "court")
-    print("wrote", os.path.join(out, "court.gltf"))
+    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "data")
+    for folder, name, scene in (("default", "court", build()), ("plaza", "plaza", build_level())):
+        scene.write(os.path.join(out, folder), name)
+        print("wrote", os.path.join(out, folder, name + ".gltf"))
 
 
 if __name__ == "__main__":
