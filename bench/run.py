@@ -1,20 +1,22 @@
 #!/usr/bin/env python3
-"""Run time against error: drives `raybudget sweep` over the default scene and every scene
-of ../shared/scenes/bench that loads, scores each frame with FLIP (NVIDIA's flip-evaluator)
-against the full-RT reference, and writes results/<date>/: frames.csv, summary.csv,
-headline.md, plots and image strips (the per-scene sweeps and their images under raw/).
+"""Run time against error: drives `raybudget sweep` over the generated scenes (data/default,
+data/plaza) and every scene of ../shared/scenes/bench that loads, scores each frame with FLIP
+(NVIDIA's flip-evaluator) against the full-RT reference, computes the oracle bound, and writes
+results/<date>/: frames.csv, summary.csv, headline.md, headline.json, plots and image strips
+(the per-scene sweeps and their images under raw/). docs/BENCHMARKS.md defines every figure.
 
 usage: bench/run.py [--quick] [--out DIR] [--publish DIR] [--scenes FILE...]
                     [--policies LIST] [--budgets N] [--frames N] [--warmup N]
-                    [--repeats N] [--size WxH] [--paths LIST] [--validation]
+                    [--repeats N] [--size WxH] [--paths LIST] [--order-seed S]
+                    [--validation] [--compare OTHER_RUN_DIR]
 
 Needs numpy, matplotlib and flip-evaluator (scripts/bench-deps.sh makes .venv-bench).
 """
 import argparse
 import csv
 import datetime
+import json
 import math
-import os
 import pathlib
 import shutil
 import subprocess
@@ -23,28 +25,38 @@ import time
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BENCH_SCENES = ROOT.parent / "shared" / "scenes" / "bench"
+GENERATED = [ROOT / "data" / "default" / "court.gltf", ROOT / "data" / "plaza" / "plaza.gltf"]
 POLICIES = ["paper", "density", "nearest", "random"]
-COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "none": "black", "all": "tab:red"}
+FRACTIONS = [0.10, 0.25, 0.50]  # of `all`'s stage cost
+ADHERENCE_SLACK = 1.05          # the promise: rt_stage_ms <= T + 5%
+COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "none": "black",
+          "all": "tab:red", "oracle": "tab:gray"}
 
 
 def parse_args(argv):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--quick", action="store_true", help="the default scene and one bench scene, fewer frames and budgets (under 5 minutes)")
+    p.add_argument("--quick", action="store_true", help="court and one bench scene, fewer frames and budgets (under 5 minutes)")
     p.add_argument("--out", help="output folder (default results/<date>)")
-    p.add_argument("--scenes", nargs="+", help="scene files (default: data/default/court.gltf and every bench scene)")
+    p.add_argument("--scenes", nargs="+", help="scene files (default: the generated scenes and every bench scene)")
     p.add_argument("--policies", default=",".join(POLICIES))
     p.add_argument("--budgets", type=int)
     p.add_argument("--frames", type=int)
     p.add_argument("--warmup", type=int)
     p.add_argument("--repeats", type=int)
-    p.add_argument("--size", default="320x180")
+    p.add_argument("--size")
     p.add_argument("--paths", default="orbit,flythrough")
+    p.add_argument("--order-seed", type=int, default=1, help="shuffles each repeat's configurations (0: a fixed order)")
     p.add_argument("--raybudget", default=str(ROOT / "build" / "tools" / "raybudget"))
     p.add_argument("--validation", action="store_true")
-    p.add_argument("--publish", help="also copy summary.csv, headline.md, plots/ and strips/ into this folder (docs/benchmarks)")
+    p.add_argument("--prior-time-scale", action="store_true", help="passed to the sweep: never learn the time scale")
+    p.add_argument("--budget-list", help="passed to the sweep: explicit budgets in ms")
+    p.add_argument("--publish", help="also copy summary.csv, headline.md, headline.json, plots/ and strips/ into this folder")
+    p.add_argument("--compare", help="a finished run's folder: print its headline figures beside this run's")
+    p.add_argument("--aggregate-only", action="store_true", help="no sweeps: recompute the tables, plots and strips from --out's "
+                   "frames.csv and oracle.csv")
     a = p.parse_args(argv)
-    full = dict(budgets=8, frames=6, warmup=3, repeats=3)
-    quick = dict(budgets=6, frames=4, warmup=2, repeats=3)
+    full = dict(budgets=6, frames=4, warmup=8, repeats=2, size="640x360")
+    quick = dict(budgets=4, frames=3, warmup=6, repeats=2, size="320x180")
     for k, v in (quick if a.quick else full).items():
         if getattr(a, k) is None:
             setattr(a, k, v)
@@ -55,7 +67,7 @@ def parse_args(argv):
 
 def bench_scenes():
     if not BENCH_SCENES.is_dir():
-        print(f"run.py: {BENCH_SCENES} is absent: only the default scene is benchmarked", file=sys.stderr)
+        print(f"run.py: {BENCH_SCENES} is absent: only the generated scenes are benchmarked", file=sys.stderr)
         return []
     found = []
     for d in sorted(BENCH_SCENES.iterdir()):
@@ -66,11 +78,10 @@ def bench_scenes():
 
 
 def default_scenes(quick):
-    scenes = [ROOT / "data" / "default" / "court.gltf"]
     bench = bench_scenes()
     if quick:
-        bench = [s for s in bench if s.parent.name == "TransmissionTest"]
-    return scenes + bench
+        return GENERATED[:1] + [s for s in bench if s.parent.name == "TransmissionTest"]
+    return GENERATED + bench
 
 
 class Progress:
@@ -81,12 +92,12 @@ class Progress:
         self.tty, self.last = sys.stdout.isatty(), 0.0
 
     def update(self, done, total):
-        # Every scene renders the same number of frames; heavier ones take longer per frame.
+        # Every scene renders about the same number of frames; heavier ones take longer per frame.
         all_done = self.finished_scenes * total + done
         all_total = self.scenes * total
         elapsed = time.time() - self.start
         eta = elapsed / all_done * (all_total - all_done) if all_done else 0.0
-        text = f"  frames {all_done}/{all_total}  elapsed {elapsed / 60:5.1f} min  ETA {eta / 60:5.1f} min"
+        text = f"  frames {all_done}/{all_total}  elapsed {elapsed / 60:5.1f} min  ETA {eta / 60:5.1f} min (rendering)"
         if self.tty:
             sys.stdout.write("\r" + text + " ")
         elif time.time() - self.last > 30 or done == total:  # a log: a line every 30 s
@@ -99,9 +110,13 @@ def run_sweep(a, scene, out, progress):
     w, h = a.size.split("x")
     cmd = [a.raybudget, "sweep", str(scene), "--out", str(out), "--width", w, "--height", h, "--frames", str(a.frames),
            "--warmup", str(a.warmup), "--budgets", str(a.budgets), "--repeats", str(a.repeats), "--policies", a.policies,
-           "--paths", a.paths]
+           "--paths", a.paths, "--order-seed", str(a.order_seed)]
     if a.validation:
         cmd.append("--validation")
+    if a.prior_time_scale:
+        cmd.append("--prior-time-scale")
+    if a.budget_list:
+        cmd += ["--budget-list", a.budget_list]
     log = []
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     for line in proc.stdout:
@@ -117,16 +132,49 @@ def run_sweep(a, scene, out, progress):
     return proc.returncode
 
 
+def reference_image(base_dir, image):
+    """The reference frame of an imaged frame: images/PATH/LABEL/rK/F.png -> images/PATH/reference/F.png."""
+    p = pathlib.Path(image)
+    return base_dir / p.parents[2] / "reference" / p.name
+
+
 def score_flip(out_dir, rows):
-    """FLIP (LDR, display images) of every imaged frame against the `all` frame of its path."""
+    """FLIP (LDR, display images) of every imaged frame against the path's reference frame."""
     import flip_evaluator as flip
     for r in rows:
         if not r["image"]:
             r["flip"] = ""
             continue
-        ref = out_dir / "images" / r["path"] / "all" / pathlib.Path(r["image"]).name
-        _, mean, _ = flip.evaluate(str(ref), str(out_dir / r["image"]), "LDR", applyMagma=False)
-        r["flip"] = f"{mean:.6g}"
+        _, err, _ = flip.evaluate(str(reference_image(out_dir, r["image"])), str(out_dir / r["image"]), "LDR", applyMagma=False)
+        r["flip"] = f"{err:.6g}"
+
+
+def oracle_bound(out_dir, scene, rows):
+    """Per path: the FLIP of composites that take the reference's pixels where `none` is most
+    wrong (the top 10/25/50% of its per-pixel FLIP) and `none`'s elsewhere, averaged over
+    the frames. What a selector that knew the reference could reach at a cost proportional to
+    pixels."""
+    import flip_evaluator as flip
+    import numpy as np
+    out = []
+    for path in sorted({r["path"] for r in rows}):
+        none = sorted((r for r in rows if r["path"] == path and r["policy"] == "none" and r["repeat"] == "0" and r["image"]),
+                      key=lambda r: int(r["frame"]))
+        per_fraction = {f: [] for f in FRACTIONS}
+        for r in none:
+            ref = flip.load(str(reference_image(out_dir, r["image"])))
+            test = flip.load(str(out_dir / r["image"]))
+            errmap, _, _ = flip.evaluate(ref, test, "LDR", applyMagma=False)
+            order = np.argsort(-errmap.reshape(-1), kind="stable")
+            for f in FRACTIONS:
+                composite = test.reshape(-1, test.shape[-1]).copy()
+                top = order[: int(round(f * order.size))]
+                composite[top] = ref.reshape(-1, ref.shape[-1])[top]
+                _, err, _ = flip.evaluate(ref, composite.reshape(test.shape), "LDR", applyMagma=False)
+                per_fraction[f].append(err)
+        for f in FRACTIONS:
+            out.append({"scene": scene, "path": path, "fraction": f, "flip": mean(per_fraction[f])})
+    return out
 
 
 def num(x):
@@ -134,8 +182,12 @@ def num(x):
 
 
 def median(v):
+    """The median (the mean of the two middle values for an even count); nan when empty."""
     v = sorted(x for x in v if not math.isnan(x))
-    return v[len(v) // 2] if v else math.nan
+    if not v:
+        return math.nan
+    k = len(v) // 2
+    return v[k] if len(v) % 2 else 0.5 * (v[k - 1] + v[k])
 
 
 def mean(v):
@@ -143,143 +195,281 @@ def mean(v):
     return sum(v) / len(v) if v else math.nan
 
 
-def summarize(rows):
-    """One row per scene/path/policy/budget: timings as the median over repeats of each
-    repeat's mean; errors from the imaged repeat."""
+def spread(v):
+    """(median, min, max) over the values that are numbers."""
+    v = [x for x in v if not math.isnan(x)]
+    return (median(v), min(v), max(v)) if v else (math.nan, math.nan, math.nan)
+
+
+def stage_budget_frames(rows):
+    """Frames whose candidates' predicted stage time (their summed trace cost plus the
+    stage's overhead the selection took off T) exceeds T: the budget binds, so it should be used."""
+    return [r for r in rows if num(r["candidates_ms"]) > num(r["trace_budget_ms"])]
+
+
+def repeat_points(rows):
+    """One point per scene/path/policy/budget/repeat: each repeat's means over its frames."""
     groups = {}
     for r in rows:
-        groups.setdefault((r["scene"], r["path"], r["policy"], int(r["budget_index"])), []).append(r)
+        groups.setdefault((r["scene"], r["path"], r["policy"], int(r["budget_index"]), int(r["repeat"])), []).append(r)
+    points = []
+    for (scene, path, policy, b, rep), g in sorted(groups.items()):
+        budget = num(g[0]["budget_ms"])
+        points.append({
+            "scene": scene, "path": path, "policy": policy, "budget_index": b, "repeat": rep, "budget_ms": budget,
+            "rt_stage_ms": mean([num(r["rt_stage_ms"]) for r in g]), "trace_ms": mean([num(r["trace_ms"]) for r in g]),
+            "frame_ms": mean([num(r["frame_ms"]) for r in g]), "shadow_maps_ms": mean([num(r["shadow_maps_ms"]) for r in g]),
+            "flip": mean([num(r["flip"]) for r in g]), "rmse": mean([num(r["rmse"]) for r in g]),
+            "frames": g,
+        })
+    return points
+
+
+def summarize(points):
+    """One row per scene/path/policy/budget: median over repeats with min and max."""
+    groups = {}
+    for p in points:
+        groups.setdefault((p["scene"], p["path"], p["policy"], p["budget_index"]), []).append(p)
     out = []
     for (scene, path, policy, b), g in sorted(groups.items()):
-        repeats = {}
-        for r in g:
-            repeats.setdefault(r["repeat"], []).append(r)
-        budget = num(g[0]["budget_ms"])
-        trace = median([mean([num(r["trace_ms"]) for r in rr]) for rr in repeats.values()])
-        frame = median([mean([num(r["frame_ms"]) for r in rr]) for rr in repeats.values()])
-        within = [num(r["trace_ms"]) <= budget * 1.2 for r in g] if budget > 0 else []
-        over = [num(r["trace_ms"]) / budget for r in g] if budget > 0 else []
-        ratio = [num(r["selected_value"]) / num(r["optimal_value_bound"]) for r in g if num(r["optimal_value_bound"]) > 0]
-        imaged = [r for r in g if r["image"]]
-        out.append({
-            "scene": scene, "path": path, "policy": policy, "budget_index": b, "budget_ms": budget,
-            "trace_ms": trace, "frame_ms": frame,
-            "within_1.2T": sum(within) / len(within) if within else math.nan,
-            "trace_over_T": median(over) if over else math.nan,
-            "objects": mean([num(r["selected_objects"]) for r in g]), "rays": mean([num(r["rays"]) for r in g]),
-            "value_over_bound": mean(ratio) if ratio else math.nan,
-            "changes_per_frame": mean([num(r["selection_changes"]) for r in g]),
-            "flip": mean([num(r["flip"]) for r in imaged]), "rmse": mean([num(r["rmse"]) for r in imaged]),
-            "psnr": mean([num(r["psnr"]) for r in imaged]),
-        })
+        frames = [r for p in g for r in p["frames"]]
+        budget = g[0]["budget_ms"]
+        row = {"scene": scene, "path": path, "policy": policy, "budget_index": b, "budget_ms": budget, "repeats": len(g)}
+        for key in ("rt_stage_ms", "flip"):
+            row[key], row[key + "_min"], row[key + "_max"] = spread([p[key] for p in g])
+        for key in ("trace_ms", "frame_ms", "shadow_maps_ms", "rmse"):
+            row[key] = median([p[key] for p in g])
+        budgeted = budget > 0
+        row["within_T+5%"] = mean([float(num(r["rt_stage_ms"]) <= ADHERENCE_SLACK * budget) for r in frames]) if budgeted else math.nan
+        binding = stage_budget_frames(frames) if budgeted else []
+        row["binding_frames"] = len(binding)
+        row["budget_use"] = median([num(r["rt_stage_ms"]) / budget for r in binding]) if binding else math.nan
+        row["objects"] = mean([num(r["selected_objects"]) for r in frames])
+        row["rays"] = mean([num(r["rays"]) for r in frames])
+        ratios = [num(r["selected_value"]) / num(r["optimal_value_bound"]) for r in frames if num(r["optimal_value_bound"]) > 0]
+        row["value_over_bound"] = mean(ratios) if ratios else math.nan
+        row["changes_per_frame"] = mean([num(r["selection_changes"]) for r in frames])
+        out.append(row)
     return out
 
 
 def write_csv(path, rows, fields=None):
     fields = fields or list(rows[0].keys())
     with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=fields)
+        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         w.writeheader()
         for r in rows:
             w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
 
 
-def curve(summary, scene, path, policy):
-    pts = [(s["trace_ms"], s["flip"]) for s in summary if (s["scene"], s["path"], s["policy"]) == (scene, path, policy)]
-    return sorted(p for p in pts if not math.isnan(p[0]) and not math.isnan(p[1]))
+# --- The aggregations (docs/BENCHMARKS.md defines them) -----------------------------------
+
+def curve(points, case, policy, repeat, none_flip):
+    """A policy's measured (stage ms, FLIP) points of one repeat, sorted by cost, with `none`
+    at cost 0: below its cheapest budget a budgeted renderer traces nothing."""
+    pts = [(p["rt_stage_ms"], p["flip"]) for p in points
+           if (p["scene"], p["path"], p["policy"], p["repeat"]) == (*case, policy, repeat) and not math.isnan(p["flip"])]
+    return [(0.0, none_flip)] + sorted(pts)
 
 
-def error_at(pts, t):
-    """The policy's error at trace time t: interpolated in log time along its budget sweep
-    (sorted by measured time); nan outside the measured range."""
-    if not pts or t < pts[0][0] or t > pts[-1][0]:
-        return math.nan
-    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
-        if t0 <= t <= t1:
-            if t1 - t0 < 1e-9:
-                return min(e0, e1)
-            k = (math.log(max(t, 1e-6)) - math.log(max(t0, 1e-6))) / (math.log(max(t1, 1e-6)) - math.log(max(t0, 1e-6)))
-            return e0 + k * (e1 - e0)
-    return pts[-1][1]
+def error_at_cost(pts, cost):
+    """The error at `cost`: interpolated in log cost between the measured points around it
+    when they are no further apart than a factor 2, else the last measured point at or below it."""
+    below = [p for p in pts if p[0] <= cost]
+    above = [p for p in pts if p[0] > cost]
+    c0, e0 = below[-1]
+    if above and c0 > 0 and above[0][0] <= 2 * c0:
+        c1, e1 = above[0]
+        return e0 + (e1 - e0) * (math.log(cost) - math.log(c0)) / (math.log(c1) - math.log(c0))
+    return e0
 
 
-def equal_time_errors(summary, case, policies):
-    """Each policy's mean FLIP over the trace times that any of them measured inside the
-    range all of them cover (each curve interpolated in log time). None when a policy has
-    no curve."""
-    curves = {p: curve(summary, *case, p) for p in policies}
-    if not all(curves.values()):
-        return None, math.nan, math.nan, []
-    lo, hi = max(v[0][0] for v in curves.values()), min(v[-1][0] for v in curves.values())
-    times = sorted({t for v in curves.values() for t, _ in v if lo <= t <= hi})
-    return [mean([error_at(curves[p], t) for t in times]) if times else math.nan for p in policies], lo, hi, times
+def recovered(e, none_flip, all_flip):
+    gap = none_flip - all_flip
+    return (none_flip - e) / gap if gap > 1e-9 else math.nan
 
 
-def headline(summary, policies):
-    """The figures the issue asks for, per scene/path and overall."""
-    cases = sorted({(s["scene"], s["path"]) for s in summary})
+def cost_at_error(pts, target):
+    """The cost where the curve first reaches `target`, interpolated linearly between the two
+    measured points around the crossing; nan when it never does."""
+    for (c0, e0), (c1, e1) in zip(pts, pts[1:]):
+        if e0 > target >= e1:
+            return c0 + (c1 - c0) * (e0 - target) / (e0 - e1)
+    return math.nan
+
+
+class Cases:
+    """Per scene/path: `all`'s stage cost and FLIP, `none`'s FLIP, per repeat and as medians."""
+
+    def __init__(self, points):
+        self.points = points
+        self.list = sorted({(p["scene"], p["path"]) for p in points})
+        self.repeats = sorted({p["repeat"] for p in points})
+
+    def of(self, case, policy):
+        return [p for p in self.points if (p["scene"], p["path"], p["policy"]) == (*case, policy)]
+
+    def value(self, case, policy, key):
+        return median([p[key] for p in self.of(case, policy)])
+
+    def none_flip(self, case, repeat):
+        return next((p["flip"] for p in self.of(case, "none") if p["repeat"] == repeat), math.nan)
+
+    def all_flip(self, case, repeat):
+        return next((p["flip"] for p in self.of(case, "all") if p["repeat"] == repeat), math.nan)
+
+    def full_cost(self, case):
+        return self.value(case, "all", "rt_stage_ms")
+
+    def recovered_at(self, case, policy, repeat, fraction):
+        n, a = self.none_flip(case, repeat), self.all_flip(case, repeat)
+        pts = curve(self.points, case, policy, repeat, n)
+        return recovered(error_at_cost(pts, fraction * self.full_cost(case)), n, a)
+
+    def speedup(self, case, policy, repeat):
+        """Equal error: full RT's stage cost over the cost where the policy halves `none`'s
+        error gap; 1.0 (full RT) when it never does."""
+        n, a = self.none_flip(case, repeat), self.all_flip(case, repeat)
+        c = cost_at_error(curve(self.points, case, policy, repeat, n), a + 0.5 * (n - a))
+        return self.full_cost(case) / c if c and not math.isnan(c) and c > 0 else 1.0
+
+    def reached(self, case, policy, repeat):
+        n, a = self.none_flip(case, repeat), self.all_flip(case, repeat)
+        return not math.isnan(cost_at_error(curve(self.points, case, policy, repeat, n), a + 0.5 * (n - a)))
+
+
+def fmt_spread(s, digits=2, suffix=""):
+    m, lo, hi = s
+    if math.isnan(m):
+        return "n/a"
+    if abs(hi - lo) < 0.5 * 10 ** -digits:
+        return f"{m:.{digits}f}{suffix}"
+    return f"{m:.{digits}f}{suffix} ({lo:.{digits}f}-{hi:.{digits}f})"
+
+
+def headline(points, summary, oracle, calibration, policies):
+    """The headline figures and their tables. Returns (markdown, figures as a dict)."""
+    cases = Cases(points)
+    figures = {"recovered": {}, "speedup": {}, "adherence": {}, "budget_use": {}, "oracle": {}}
     lines = []
-    ref = {c: next((s for s in summary if (s["scene"], s["path"]) == c and s["policy"] == "all"), None) for c in cases}
-    none = {c: next((s for s in summary if (s["scene"], s["path"]) == c and s["policy"] == "none"), None) for c in cases}
-    # 1. At equal trace time: each policy's FLIP, interpolated along its measured sweep, at
-    # every trace time any policy measured inside the range all of them cover.
-    lines.append("### At equal trace time: mean FLIP at the trace times inside the range every policy covers\n")
-    lines.append("| scene | path | common range ms | none | " + " | ".join(policies) + " |")
-    lines.append("|---|---|---|---|" + "---|" * len(policies))
-    agg = {p: [] for p in policies}
-    for c in cases:
-        cells, lo, hi, times = equal_time_errors(summary, c, policies)
-        if cells is None:
-            continue
-        for p, m in zip(policies, cells):
-            agg[p].append(m)
-        n = none[c]["flip"] if none[c] else math.nan
-        lines.append(f"| {c[0]} | {c[1]} | {lo:.2f}-{hi:.2f} ({len(times)} points) | {n:.4f} | " + " | ".join(f"{x:.4f}" for x in cells) + " |")
-    lines.append("| **mean** | | | " + f"{mean([none[c]['flip'] for c in cases if none[c]]):.4f} | " +
-                 " | ".join(f"**{mean(agg[p]):.4f}**" for p in policies) + " |\n")
-    # 2. At equal error: trace time to remove half of the fallback's error, against full RT.
-    lines.append("### At equal error: trace time to halve the raster fallback's FLIP, as a speed-up over full RT\n")
-    lines.append("| scene | path | full RT ms | " + " | ".join(policies) + " |")
-    lines.append("|---|---|---|" + "---|" * len(policies))
-    speed = {p: [] for p in policies}
-    for c in cases:
-        if not ref[c] or not none[c]:
-            continue
-        target = 0.5 * none[c]["flip"]
+    orc = {(o["scene"], o["path"], o["fraction"]): o["flip"] for o in oracle}
+
+    def oracle_recovered(case, fraction):
+        n, a = cases.value(case, "none", "flip"), cases.value(case, "all", "flip")
+        return recovered(orc.get((*case, fraction), math.nan), n, a)
+
+    # 1. Error recovered at a fraction of full RT's stage cost: median over cases, per repeat.
+    lines.append("### Error recovered at a fraction of full RT's ray-tracing stage cost (median over cases; "
+                 "range over repeats)\n")
+    lines.append("| at | oracle | " + " | ".join(policies) + " |")
+    lines.append("|---|---|" + "---|" * len(policies))
+    for f in FRACTIONS:
+        o = median([oracle_recovered(c, f) for c in cases.list])
+        figures["oracle"][f"{f:.2f}"] = o
         cells = []
         for p in policies:
-            pts = curve(summary, *c, p)
-            t = next((t for t, e in pts if e <= target), math.nan)
-            s = ref[c]["trace_ms"] / t if t and not math.isnan(t) and t > 0 else math.nan
-            speed[p].append(s)
-            cells.append("not reached" if math.isnan(s) else f"{s:.1f}x")
-        lines.append(f"| {c[0]} | {c[1]} | {ref[c]['trace_ms']:.2f} | " + " | ".join(cells) + " |")
-    lines.append("| **median** | | | " + " | ".join(
-        f"**{median(speed[p]):.1f}x** ({sum(not math.isnan(x) for x in speed[p])}/{len(speed[p])} reached)" for p in policies) + " |\n")
-    # 3. Value against the optimal bound; adherence; flicker.
-    lines.append("### Selected value against the 0/1-knapsack bound, budget adherence and flicker (all budgets)\n")
-    lines.append("| policy | ΣR / bound (mean) | frames within 1.2 T (all budgets) | within 1.2 T (budgets >= 1 ms) | "
-                 "median trace / T | selection changes per frame |")
-    lines.append("|---|---|---|---|---|---|")
+            per_repeat = [median([cases.recovered_at(c, p, r, f) for c in cases.list]) for r in cases.repeats]
+            s = spread(per_repeat)
+            figures["recovered"].setdefault(p, {})[f"{f:.2f}"] = list(s)
+            cells.append(fmt_spread(s, 3) + (f", {s[0] / o:.0%} of oracle" if o and not math.isnan(o) and o > 0 else ""))
+        lines.append(f"| {f:.0%} | {o:.3f} | " + " | ".join(cells) + " |")
+    # 2. Equal error.
+    lines.append("\n### Speed-up over full RT at half of the fallback's error (median over cases, not reached = 1.0x; "
+                 "range over repeats)\n")
+    lines.append("| | " + " | ".join(policies) + " |")
+    lines.append("|---|" + "---|" * len(policies))
+    cells = []
+    for p in policies:
+        per_repeat = [median([cases.speedup(c, p, r) for c in cases.list]) for r in cases.repeats]
+        reached = [sum(cases.reached(c, p, r) for c in cases.list) for r in cases.repeats]
+        s = spread(per_repeat)
+        figures["speedup"][p] = list(s)
+        cells.append(fmt_spread(s, 2, "x") + f", reached in {min(reached)}-{max(reached)} of {len(cases.list)}")
+    lines.append("| median speed-up | " + " | ".join(cells) + " |")
+    # 3. Two-sided adherence.
+    lines.append("\n### Budget adherence, both sides (all budgets; range over repeats)\n")
+    lines.append("| policy | frames with stage <= T + 5% | budget use: median stage / T where the candidates exceed T |")
+    lines.append("|---|---|---|")
+    for p in policies:
+        within, use = [], []
+        for r in cases.repeats:
+            frames = [x for q in points if q["policy"] == p and q["repeat"] == r for x in q["frames"]]
+            within.append(mean([float(num(x["rt_stage_ms"]) <= ADHERENCE_SLACK * num(x["budget_ms"])) for x in frames]))
+            use.append(median([num(x["rt_stage_ms"]) / num(x["budget_ms"]) for x in stage_budget_frames(frames)]))
+        figures["adherence"][p], figures["budget_use"][p] = list(spread(within)), list(spread(use))
+        lines.append(f"| {p} | {fmt_spread(spread(within), 3)} | {fmt_spread(spread(use), 2)} |")
+    # 4. Per case at 25%, with the stage's cost and its fixed part.
+    lines.append("\n### Per case: error recovered at 25% of full RT's stage cost (median over repeats)\n")
+    lines.append("| scene | path | full-RT stage ms (range) | fixed stage ms (share) | none FLIP | oracle | "
+                 + " | ".join(policies) + " |")
+    lines.append("|---|---|---|---|---|---|" + "---|" * len(policies))
+    for c in cases.list:
+        full = spread([p["rt_stage_ms"] for p in cases.of(c, "all")])
+        fixed = calibration.get(c, math.nan)
+        cells = [f"{median([cases.recovered_at(c, p, r, 0.25) for r in cases.repeats]):.3f}" for p in policies]
+        lines.append(f"| {c[0]} | {c[1]} | {fmt_spread(full, 2)} | {fixed:.2f} ({fixed / full[0]:.0%}) | "
+                     f"{cases.value(c, 'none', 'flip'):.4f} | {oracle_recovered(c, 0.25):.3f} | " + " | ".join(cells) + " |")
+    # 5. Per case, equal error.
+    lines.append("\n### Per case: speed-up over full RT at half of the fallback's error (median over repeats; "
+                 "- : not reached in any repeat)\n")
+    lines.append("| scene | path | " + " | ".join(policies) + " |")
+    lines.append("|---|---|" + "---|" * len(policies))
+    for c in cases.list:
+        cells = []
+        for p in policies:
+            s = median([cases.speedup(c, p, r) for r in cases.repeats])
+            cells.append(f"{s:.2f}x" if any(cases.reached(c, p, r) for r in cases.repeats) else "-")
+        lines.append(f"| {c[0]} | {c[1]} | " + " | ".join(cells) + " |")
+    # 6. Frame time, with the fallbacks kept or skipped.
+    lines.append("\n### Frame time and the shadow-map fallback: whole-frame GPU ms (shadow-map pass ms; - : skipped), "
+                 "policies at the budget nearest 25% of full RT's stage cost\n")
+    lines.append("| scene | path | none | all | " + " | ".join(policies) + " |")
+    lines.append("|---|---|---|---|" + "---|" * len(policies))
+    for c in cases.list:
+        def cell(rows):
+            if not rows:
+                return "n/a"
+            sm = median([r["shadow_maps_ms"] for r in rows])
+            return f"{median([r['frame_ms'] for r in rows]):.1f} ({'-' if math.isnan(sm) else f'{sm:.1f}'})"
+        cells = [cell(cases.of(c, "none")), cell(cases.of(c, "all"))]
+        for p in policies:
+            rows = [s for s in summary if (s["scene"], s["path"], s["policy"]) == (*c, p)]
+            target = 0.25 * cases.full_cost(c)
+            b = min(rows, key=lambda s: abs(s["budget_ms"] - target))["budget_index"] if rows else None
+            cells.append(cell([q for q in cases.of(c, p) if q["budget_index"] == b]))
+        lines.append(f"| {c[0]} | {c[1]} | " + " | ".join(cells) + " |")
+    # 7. Value against the knapsack bound and flicker.
+    lines.append("\n### Selected value against the 0/1-knapsack bound and flicker (all budgets)\n")
+    lines.append("| policy | ΣR / bound (mean) | selection changes per frame |")
+    lines.append("|---|---|---|")
     for p in policies:
         g = [s for s in summary if s["policy"] == p]
-        big = [s for s in g if s["budget_ms"] >= 1.0]
-        lines.append(f"| {p} | {mean([s['value_over_bound'] for s in g]):.3f} | {mean([s['within_1.2T'] for s in g]):.3f} | "
-                     f"{mean([s['within_1.2T'] for s in big]):.3f} | {median([s['trace_over_T'] for s in g]):.2f} | "
-                     f"{mean([s['changes_per_frame'] for s in g]):.2f} |")
-    # 4. Density against the paper's graph.
-    if "density" in policies and "paper" in policies:
-        wins = []
-        for c in cases:
-            cells, _, _, times = equal_time_errors(summary, c, ["density", "paper"])
-            if cells is not None and times:
-                wins.append((c, cells[1] - cells[0]))  # paper's error minus density's
-        better = sum(1 for _, x in wins if x > 0)
-        lines.append(f"\n### density against paper\n\nAt equal trace time (both interpolated over the range both cover) density's "
-                     f"mean FLIP is lower than paper's in {better} of {len(wins)} scene/path cases; higher in: "
-                     + (", ".join(f"{c[0]}/{c[1]} (+{-x:.4f})" for c, x in wins if x < 0) or "none") + ".")
+        lines.append(f"| {p} | {mean([s['value_over_bound'] for s in g]):.3f} | {mean([s['changes_per_frame'] for s in g]):.2f} |")
+    return "\n".join(lines) + "\n", figures
+
+
+def compare(a_fig, b_fig):
+    """The headline figures of two runs side by side (run-to-run spread)."""
+    lines = ["| figure | policy | this run | other run |", "|---|---|---|---|"]
+
+    def m(x):
+        return f"{x[0]:.3f}" if isinstance(x, list) else f"{x:.3f}"
+    for key in ("recovered", "speedup", "adherence", "budget_use"):
+        for p, v in a_fig[key].items():
+            w = b_fig.get(key, {}).get(p)
+            if isinstance(v, dict):
+                for f, x in v.items():
+                    y = w.get(f) if w else None
+                    lines.append(f"| {key} at {float(f):.0%} | {p} | {m(x)} | {m(y) if y else 'n/a'} |")
+            else:
+                lines.append(f"| {key} | {p} | {m(v)} | {m(w) if w else 'n/a'} |")
+    for f, x in a_fig["oracle"].items():
+        y = b_fig.get("oracle", {}).get(f)
+        lines.append(f"| oracle at {float(f):.0%} | | {m(x)} | {m(y) if y is not None else 'n/a'} |")
     return "\n".join(lines) + "\n"
 
+
+# --- Plots and strips ------------------------------------------------------------------------
 
 def label(ax, xlabel, ylabel, title):
     ax.set_xlabel(xlabel)
@@ -295,31 +485,42 @@ def save(plt, fig, path):
     plt.close(fig)
 
 
-def plots(out_dir, summary, rows, policies):
+def plots(out_dir, summary, oracle, policies):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     plot_dir = out_dir / "plots"
     plot_dir.mkdir(exist_ok=True)
     cases = sorted({(s["scene"], s["path"]) for s in summary})
-    scenes = sorted({c[0] for c in cases})
-    for scene in scenes:
+    for scene in sorted({c[0] for c in cases}):
         paths = [c[1] for c in cases if c[0] == scene]
         fig, axes = plt.subplots(1, len(paths), figsize=(5.5 * len(paths), 4), squeeze=False)
         for ax, path in zip(axes[0], paths):
+            rows = [s for s in summary if (s["scene"], s["path"]) == (scene, path)]
+            full = next((s for s in rows if s["policy"] == "all"), None)
             for p in policies:
-                pts = curve(summary, scene, path, p)
+                pts = sorted((s for s in rows if s["policy"] == p), key=lambda s: s["rt_stage_ms"])
                 if pts:
-                    ax.plot([t for t, _ in pts], [e for _, e in pts], "o-", color=COLORS.get(p), label=p, ms=4)
+                    x = [s["rt_stage_ms"] for s in pts]
+                    y = [s["flip"] for s in pts]
+                    xerr = [[s["rt_stage_ms"] - s["rt_stage_ms_min"] for s in pts], [s["rt_stage_ms_max"] - s["rt_stage_ms"] for s in pts]]
+                    yerr = [[s["flip"] - s["flip_min"] for s in pts], [s["flip_max"] - s["flip"] for s in pts]]
+                    ax.errorbar(x, y, xerr=xerr, yerr=yerr, fmt="o-", color=COLORS.get(p), label=p, ms=4, capsize=2)
             for p in ("none", "all"):
-                s = next((s for s in summary if (s["scene"], s["path"], s["policy"]) == (scene, path, p)), None)
+                s = next((s for s in rows if s["policy"] == p), None)
                 if s:
-                    ax.plot([max(s["trace_ms"], 1e-3)], [s["flip"]], "s", color=COLORS[p], label=p, ms=7)
+                    ax.plot([max(s["rt_stage_ms"], 1e-2)], [s["flip"]], "s", color=COLORS[p], label=p, ms=7)
+            if full:
+                o = [(f * full["rt_stage_ms"], x["flip"]) for f in FRACTIONS for x in oracle
+                     if (x["scene"], x["path"], x["fraction"]) == (scene, path, f)]
+                if o:
+                    ax.plot([t for t, _ in o], [e for _, e in o], "x--", color=COLORS["oracle"], label="oracle (pixels)")
             ax.set_xscale("log")
-            label(ax, "trace-pass GPU time per frame (ms, log)", "mean FLIP against full RT", f"{scene}: {path}")
+            label(ax, "ray-tracing stage GPU ms per frame (coverage + select + trace, log)", "mean FLIP against full RT", f"{scene}: {path}")
         save(plt, fig, plot_dir / f"error_vs_time_{scene}.png")
-    # Adherence and flicker per policy against the budget index, over all scenes.
-    for key, ylabel, name in (("within_1.2T", "frames with trace time <= 1.2 T", "adherence"),
+    # Adherence and budget use per policy against the budget index, over all scenes.
+    for key, ylabel, name in (("within_T+5%", "frames with stage <= T + 5%", "adherence"),
+                              ("budget_use", "median stage / T where the candidates exceed T", "budget_use"),
                               ("changes_per_frame", "selection changes per frame", "flicker")):
         fig, ax = plt.subplots(figsize=(6, 4))
         for p in policies:
@@ -329,13 +530,13 @@ def plots(out_dir, summary, rows, policies):
                     by_b.setdefault(s["budget_index"], []).append(s[key])
             bs = sorted(by_b)
             ax.plot(bs, [mean(by_b[b]) for b in bs], "o-", color=COLORS.get(p), label=p)
-        label(ax, "budget point (0 = cheapest object ... last = full-RT trace time)", ylabel, f"{name}, mean over scenes and paths")
+        label(ax, "budget point (0 = twice the stage's fixed cost ... last = full RT)", ylabel, f"{name}, mean over scenes and paths")
         save(plt, fig, plot_dir / f"{name}.png")
 
 
-def strips(out_dir, rows):
-    """Reference / hybrid (density, middle budget) / fallback-only / FLIP error map, for the
-    first frame of each scene's first path."""
+def strips(out_dir, rows, summary):
+    """Reference / hybrid (density, the budget nearest 25% of full RT) / fallback only / FLIP
+    error map, for the first frame of each scene's first path, repeat 0."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -343,19 +544,23 @@ def strips(out_dir, rows):
     strip_dir = out_dir / "strips"
     strip_dir.mkdir(exist_ok=True)
     for scene in sorted({r["scene"] for r in rows}):
-        imaged = [r for r in rows if r["scene"] == scene and r["image"] and r["frame"] == "0"]
+        imaged = [r for r in rows if r["scene"] == scene and r["image"] and r["frame"] == "0" and r["repeat"] == "0"]
         if not imaged:
             continue
         path = imaged[0]["path"]
         imaged = [r for r in imaged if r["path"] == path]
-        budgets = sorted({int(r["budget_index"]) for r in imaged if r["policy"] == "density"})
-        hybrid = next((r for r in imaged if r["policy"] == "density" and int(r["budget_index"]) == budgets[len(budgets) // 2]), None) if budgets else None
-        ref = next((r for r in imaged if r["policy"] == "all"), None)
+        full = next((s for s in summary if (s["scene"], s["path"], s["policy"]) == (scene, path, "all")), None)
+        dens = [s for s in summary if (s["scene"], s["path"], s["policy"]) == (scene, path, "density")]
         fallback = next((r for r in imaged if r["policy"] == "none"), None)
-        if not (hybrid and ref and fallback):
+        if not (full and dens and fallback):
             continue
-        images = [flip.load(str(out_dir / r["image"])) for r in (ref, hybrid, fallback)]
-        errmap, _, _ = flip.evaluate(str(out_dir / ref["image"]), str(out_dir / hybrid["image"]), "LDR")
+        b = min(dens, key=lambda s: abs(s["budget_ms"] - 0.25 * full["rt_stage_ms"]))["budget_index"]
+        hybrid = next((r for r in imaged if r["policy"] == "density" and int(r["budget_index"]) == b), None)
+        if not hybrid:
+            continue
+        ref_path = str(reference_image(out_dir, hybrid["image"]))
+        images = [flip.load(p) for p in (ref_path, str(out_dir / hybrid["image"]), str(out_dir / fallback["image"]))]
+        errmap, _, _ = flip.evaluate(ref_path, str(out_dir / hybrid["image"]), "LDR")
         titles = ["reference (all)", f"hybrid (density, T = {num(hybrid['budget_ms']):.2f} ms)", "fallback only (none)",
                   f"FLIP hybrid vs reference ({num(hybrid['flip']):.4f})"]
         fig, axes = plt.subplots(1, 4, figsize=(16, 2.6))
@@ -366,17 +571,20 @@ def strips(out_dir, rows):
         save(plt, fig, strip_dir / f"{scene}.png")
 
 
-def main(argv):
-    a = parse_args(argv)
-    out_dir = pathlib.Path(a.out)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    scenes = [pathlib.Path(s) for s in a.scenes] if a.scenes else default_scenes(a.quick)
-    policies = [p for p in a.policies.split(",") if p]
-    print(f"run.py: {len(scenes)} scenes x {a.paths} x policies {policies} x {a.budgets} budgets x {a.repeats} repeats, "
-          f"{a.frames} frames (+{a.warmup} warm-up) at {a.size} -> {out_dir}")
-    started = time.time()
+def read_calibration(sdir, scene):
+    with open(sdir / "calibration.csv") as f:
+        return {(scene, r["path"]): num(r["fixed_stage_ms"]) for r in csv.DictReader(f)}
+
+
+def read_rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def sweep_scenes(a, scenes, out_dir):
+    """Runs and scores every scene's sweep. Returns (frame rows, oracle rows, calibration, failed scenes)."""
     progress = Progress(len(scenes))
-    rows, skipped = [], []
+    rows, oracle, calibration, skipped = [], [], {}, []
     for scene in scenes:
         name = scene.stem
         print(f"{name}:")
@@ -389,34 +597,70 @@ def main(argv):
             continue
         with open(sdir / "frames.csv") as f:
             srows = list(csv.DictReader(f))
+        scoring = time.time()
         score_flip(sdir, srows)
+        oracle += oracle_bound(sdir, name, srows)
+        calibration.update(read_calibration(sdir, name))
+        print(f"  scored {sum(1 for r in srows if r['image'])} frames with FLIP in {time.time() - scoring:.0f} s")
         for r in srows:
             r["image"] = f"raw/{name}/{r['image']}" if r["image"] else ""
         rows += srows
-    if not rows:
-        print("run.py: no scene rendered", file=sys.stderr)
-        return 1
-    fields = list(rows[0].keys())
-    write_csv(out_dir / "frames.csv", rows, fields)
-    summary = summarize(rows)
+    return rows, oracle, calibration, skipped
+
+
+def main(argv):
+    a = parse_args(argv)
+    out_dir = pathlib.Path(a.out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    scenes = [pathlib.Path(s) for s in a.scenes] if a.scenes else default_scenes(a.quick)
+    policies = [p for p in a.policies.split(",") if p]
+    started = time.time()
+    if a.aggregate_only:
+        rows = read_rows(out_dir / "frames.csv")
+        oracle = [dict(r, fraction=num(r["fraction"]), flip=num(r["flip"])) for r in read_rows(out_dir / "oracle.csv")]
+        calibration, skipped = {}, []
+        for sdir in sorted((out_dir / "raw").iterdir()):
+            calibration.update(read_calibration(sdir, sdir.name))
+        scenes = sorted({r["scene"] for r in rows})
+    else:
+        print(f"run.py: {len(scenes)} scenes x {a.paths} x policies {policies} x {a.budgets} budgets x {a.repeats} repeats, "
+              f"{a.frames} frames (+{a.warmup} warm-up per configuration) at {a.size}, order seed {a.order_seed} -> {out_dir}")
+        rows, oracle, calibration, skipped = sweep_scenes(a, scenes, out_dir)
+        if not rows:
+            print("run.py: no scene rendered", file=sys.stderr)
+            return 1
+        write_csv(out_dir / "frames.csv", rows, list(rows[0].keys()))
+    points = repeat_points(rows)
+    summary = summarize(points)
     write_csv(out_dir / "summary.csv", summary)
-    text = headline(summary, policies)
+    write_csv(out_dir / "oracle.csv", oracle)
+    text, figures = headline(points, summary, oracle, calibration, policies)
     minutes = (time.time() - started) / 60
     cmd = "bench/run.py " + " ".join(argv)
+    preamble = (f"Command: `{cmd.strip()}`, {minutes:.1f} min, {len(scenes) - len(skipped)} scenes"
+                + (f"; failed: {', '.join(f'{n} (exit {rc})' for n, rc in skipped)}" if skipped else "")
+                + f"; {a.size}, {a.frames} frames per path after {a.warmup} warm-up, {a.budgets} budgets, {a.repeats} repeats\n\n")
+    if a.aggregate_only:  # the sweep's own command, time and settings
+        with open(out_dir / "headline.json") as f:
+            preamble = json.load(f)["preamble"]
     with open(out_dir / "headline.md", "w") as f:
-        f.write(f"Command: `{cmd.strip()}`, {minutes:.1f} min, {len(scenes) - len(skipped)} scenes"
-                + (f"; failed: {', '.join(f'{n} (exit {rc})' for n, rc in skipped)}" if skipped else "") + "\n\n" + text)
-    plots(out_dir, summary, rows, policies)
-    strips(out_dir, rows)
+        f.write(preamble + text)
+    with open(out_dir / "headline.json", "w") as f:
+        json.dump({"preamble": preamble, "figures": figures}, f, indent=1)
+    plots(out_dir, summary, oracle, policies)
+    strips(out_dir, rows, summary)
     if a.publish:
         pub = pathlib.Path(a.publish)
         pub.mkdir(parents=True, exist_ok=True)
-        for name in ("summary.csv", "headline.md"):
+        for name in ("summary.csv", "oracle.csv", "headline.md", "headline.json"):
             shutil.copy(out_dir / name, pub / name)
         for folder in ("plots", "strips"):
             shutil.copytree(out_dir / folder, pub / folder, dirs_exist_ok=True)
-    print(text)
-    print(f"run.py: wrote {out_dir}/frames.csv, summary.csv, headline.md, plots/, strips/ in {minutes:.1f} min")
+    print(preamble + text)
+    if a.compare:
+        with open(pathlib.Path(a.compare) / "headline.json") as f:
+            print("Against " + a.compare + ":\n\n" + compare(figures, json.load(f)["figures"]))
+    print(f"run.py: wrote {out_dir}/frames.csv, summary.csv, oracle.csv, headline.md, headline.json, plots/, strips/ in {minutes:.1f} min")
     return 0
 
 

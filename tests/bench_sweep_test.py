@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
-"""The benchmark end to end on a tiny sweep: one ci scene, 2 policies, 2 budgets, 3 frames.
-Checks the CSV columns, that `all` against itself has zero error and `none` a positive one,
-and that the summary, headline and plots are written.
+"""The benchmark end to end on a tiny sweep: one ci scene, 2 policies, 2 budgets, 3 frames,
+2 repeats. Checks the CSV columns, that `all` matches the reference (zero error) and `none`
+does not, that every repeat is imaged, that the stage time covers its passes, and that the
+summary, oracle, headline and plots are written. Then order independence: with the time
+scale at its prior (no timing feedback), every configuration selects the same objects
+frame by frame whether its repeat's order is shuffled or not, and alone.
 
 usage: bench_sweep_test.py RAYBUDGET OUT_DIR   (exit 77: skipped, the ci scenes are absent)
 """
@@ -14,9 +17,11 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCENE = ROOT.parent / "shared" / "scenes" / "ci" / "CornellBox"
 
-FRAME_COLUMNS = ["scene", "path", "policy", "budget_index", "budget_ms", "repeat", "frame", "trace_ms", "frame_ms",
-                 "predicted_trace_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound",
-                 "selection_changes", "rmse", "psnr", "image", "flip"]
+FRAME_COLUMNS = ["scene", "path", "policy", "budget_index", "budget_ms", "repeat", "order", "frame", "coverage_ms", "select_ms",
+                 "trace_ms", "rt_stage_ms", "shadow_maps_ms", "env_fallback_ms", "frame_ms", "predicted_trace_ms", "trace_budget_ms",
+                 "candidates_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound", "selection_changes", "rmse",
+                 "psnr", "image", "flip"]
+SELECTION = ["selected_objects", "rays", "selected_value", "predicted_trace_ms"]
 
 
 def fail(message):
@@ -31,7 +36,7 @@ def main(raybudget, out):
         return 77
     shutil.rmtree(out, ignore_errors=True)
     cmd = [sys.executable, str(ROOT / "bench" / "run.py"), "--raybudget", raybudget, "--scenes", str(scenes[0]),
-           "--policies", "density,random", "--budgets", "2", "--frames", "3", "--warmup", "1", "--repeats", "1",
+           "--policies", "density,random", "--budgets", "2", "--frames", "3", "--warmup", "2", "--repeats", "2",
            "--paths", "orbit", "--size", "96x64", "--validation", "--out", out]
     run = subprocess.run(cmd, capture_output=True, text=True)
     print(run.stdout[-4000:], run.stderr[-4000:])
@@ -48,15 +53,27 @@ def main(raybudget, out):
         by_policy.setdefault(r["policy"], []).append(r)
     if sorted(by_policy) != ["all", "density", "none", "random"]:
         fail(f"policies in frames.csv: {sorted(by_policy)}")
-    if len(by_policy["all"]) != 3 or len(by_policy["none"]) != 3 or len(by_policy["density"]) != 2 * 3:
-        fail("expected 3 frames per configuration and 2 budgets: " + str({k: len(v) for k, v in by_policy.items()}))
+    if len(by_policy["all"]) != 2 * 3 or len(by_policy["none"]) != 2 * 3 or len(by_policy["density"]) != 2 * 2 * 3:
+        fail("expected 3 frames per configuration, 2 budgets, 2 repeats: " + str({k: len(v) for k, v in by_policy.items()}))
+    for r in rows:
+        if not r["image"] or not (out / r["image"]).is_file():
+            fail(f"every recorded frame of every repeat is imaged: {r['policy']} repeat {r['repeat']} frame {r['frame']}")
+        stage = float(r["rt_stage_ms"])
+        parts = sum(float(r[k]) for k in ("coverage_ms", "select_ms") if r[k]) + float(r["trace_ms"])
+        if abs(stage - parts) > 1e-3 * max(1.0, stage):
+            fail(f"rt_stage_ms {stage} is not coverage + select + trace ({parts})")
     for r in by_policy["all"]:
         if float(r["flip"]) != 0.0 or float(r["rmse"]) != 0.0:
-            fail(f"`all` against itself: flip {r['flip']}, rmse {r['rmse']} (frame {r['frame']})")
-        if float(r["trace_ms"]) <= 0.0 or int(r["rays"]) <= 0:
-            fail(f"`all` traced nothing in frame {r['frame']}")
-    none_flip = sum(float(r["flip"]) for r in by_policy["none"]) / 3
-    none_rmse = sum(float(r["rmse"]) for r in by_policy["none"]) / 3
+            fail(f"`all` against the reference: flip {r['flip']}, rmse {r['rmse']} (repeat {r['repeat']}, frame {r['frame']})")
+        if float(r["trace_ms"]) <= 0.0 or int(r["rays"]) <= 0 or not r["coverage_ms"] or not r["select_ms"]:
+            fail(f"`all` traced nothing, or its stage was not timed, in frame {r['frame']}")
+        if r["shadow_maps_ms"]:
+            fail("`all` traces every shadow: its shadow-map pass should be skipped")
+    for r in by_policy["none"]:
+        if float(r["rt_stage_ms"]) != 0.0 or not r["shadow_maps_ms"]:
+            fail(f"`none` runs no ray-tracing stage and keeps the shadow maps: {r}")
+    none_flip = sum(float(r["flip"]) for r in by_policy["none"]) / 6
+    none_rmse = sum(float(r["rmse"]) for r in by_policy["none"]) / 6
     if not (none_flip > 0.0 and none_rmse > 0.0):
         fail(f"`none` should differ from the full-RT reference: flip {none_flip}, rmse {none_rmse}")
     for r in by_policy["density"]:
@@ -66,12 +83,49 @@ def main(raybudget, out):
         summary = list(csv.DictReader(f))
     if len(summary) != 2 + 2 * 2:
         fail(f"summary.csv has {len(summary)} rows, expected 6 (all, none, 2 policies x 2 budgets)")
-    for name in ["headline.md", "plots/adherence.png", "plots/flicker.png", f"plots/error_vs_time_{scenes[0].stem}.png",
-                 f"strips/{scenes[0].stem}.png"]:
+    if any(int(r["repeats"]) != 2 for r in summary):
+        fail("every summary row should come from both repeats")
+    with open(out / "oracle.csv") as f:
+        oracle = list(csv.DictReader(f))
+    if [float(r["fraction"]) for r in oracle] != [0.1, 0.25, 0.5] or not all(0.0 <= float(r["flip"]) < none_flip for r in oracle):
+        fail(f"the oracle composites should score below `none` at 10, 25 and 50% of the pixels: {oracle}")
+    for name in ["headline.md", "headline.json", "plots/adherence.png", "plots/budget_use.png", "plots/flicker.png",
+                 f"plots/error_vs_time_{scenes[0].stem}.png", f"strips/{scenes[0].stem}.png"]:
         if not (out / name).is_file() or (out / name).stat().st_size == 0:
             fail(f"{name} was not written")
+    check_order_independence(raybudget, scenes[0], out / "order")
     print(f"ok: {len(rows)} frames; none: FLIP {none_flip:.4f}, RMSE {none_rmse:.4f}")
     return 0
+
+
+def sweep_selections(raybudget, scene, out, *args):
+    cmd = [raybudget, "sweep", str(scene), "--out", str(out), "--width", "96", "--height", "64", "--frames", "3", "--warmup", "2",
+           "--paths", "orbit", "--prior-time-scale", "--validation", *args]
+    run = subprocess.run(cmd, capture_output=True, text=True)
+    if run.returncode != 0:
+        fail(f"{' '.join(cmd)} exited {run.returncode}: {run.stdout[-2000:]} {run.stderr[-2000:]}")
+    with open(out / "frames.csv") as f:
+        rows = [r for r in csv.DictReader(f) if r["policy"] not in ("all", "none")]
+    return {(r["policy"], r["budget_ms"], r["repeat"], r["frame"]): [r[k] for k in SELECTION] for r in rows}, rows
+
+
+def check_order_independence(raybudget, scene, out):
+    canonical, _ = sweep_selections(raybudget, scene, out / "canonical", "--policies", "density,random", "--budget-list", "0.05,0.4",
+                                    "--repeats", "2", "--order-seed", "0")
+    shuffled, rows = sweep_selections(raybudget, scene, out / "shuffled", "--policies", "density,random", "--budget-list", "0.05,0.4",
+                                      "--repeats", "2", "--order-seed", "9")
+    alone, _ = sweep_selections(raybudget, scene, out / "alone", "--policies", "density", "--budget-list", "0.4", "--repeats", "1")
+    orders = {(r["repeat"], r["policy"], r["budget_ms"]): r["order"] for r in rows}
+    if all(orders[("0", p, b)] == orders[("1", p, b)] for _, p, b in orders):
+        fail("the shuffled sweep ran both repeats in the same order: the test shows nothing")
+    if canonical != shuffled:
+        diff = [k for k in canonical if canonical[k] != shuffled.get(k)]
+        fail(f"shuffling the configurations changed the selections: {diff[:5]}")
+    for k, v in alone.items():
+        if canonical.get(k) != v:
+            fail(f"density at 0.4 ms alone selected {v}, inside the sweep {canonical.get(k)} (frame {k})")
+    if len({tuple(v) for v in canonical.values()}) < 2:
+        fail("every configuration selected alike: the test shows nothing")
 
 
 if __name__ == "__main__":

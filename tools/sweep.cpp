@@ -1,7 +1,6 @@
 #include "sweep.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +8,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <random>
 #include <sstream>
 
 #include <glm/gtc/packing.hpp>
@@ -19,12 +19,15 @@
 namespace raybudget::cli {
 
 const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [options]
-  --out DIR             output folder (default ./sweep): frames.csv, paths/*.json, images/
-  --width W --height H  image size (default 320x180)
-  --frames N            recorded frames per camera path (default 8)
-  --warmup N            frames on the path's first camera before it, not recorded (default 4)
-  --budgets N           log-spaced budgets from the cheapest object to full RT (default 8)
-  --repeats N           runs of each configuration; images from the first (default 3)
+  --out DIR             output folder (default ./sweep): frames.csv, calibration.csv, paths/*.json, images/
+  --width W --height H  image size (default 640x360)
+  --frames N            recorded frames per camera path and configuration (default 4)
+  --warmup N            frames on the path's first camera before them, not recorded (default 8)
+  --budgets N           log-spaced budgets from twice the stage's fixed cost to full RT (default 6)
+  --budget-list LIST    comma-separated budgets in ms instead
+  --repeats N           runs of every configuration, each imaged (default 3)
+  --order-seed S        shuffles each repeat's configurations (default 1; 0: all, none, budgets ascending)
+  --prior-time-scale    never learn the cost model's time scale: selections independent of timing
   --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random)
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
   --device NAME, --validation
@@ -74,7 +77,7 @@ double meanSquaredError(const std::vector<float>& a, const std::vector<float>& b
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 std::string frameFile(size_t frame) {
@@ -83,18 +86,25 @@ std::string frameFile(size_t frame) {
   return name;
 }
 
-double traceMs(const FrameTiming& t) {
-  return t.passMs[size_t(Pass::TraceShadows)].value_or(0.0) + t.passMs[size_t(Pass::TraceEffects)].value_or(0.0);
+std::string passCell(const FrameTiming& t, Pass p) {
+  return t.passMs[size_t(p)] ? std::to_string(*t.passMs[size_t(p)]) : std::string();  // empty: skipped
 }
 
-// One configuration over one camera path: warm-up, then the recorded frames; with images,
-// each frame is read back, its display image written and its HDR error taken against the
-// reference (or kept as the reference).
-struct Run {
+// One configuration of the sweep: a policy at a budget (all and none: index 0, no budget).
+struct Config {
   Policy policy;
-  uint32_t budgetIndex;  // 0 for all / none
-  float budgetMs;
-  uint32_t repeat;
+  uint32_t budgetIndex = 0;
+  float budgetMs = 0.0f;
+  std::string label() const { return policyName(policy) + (isBudgeted(policy) ? "-b" + std::to_string(budgetIndex) : std::string()); }
+};
+
+// Where a run's images go and what its rows say: a repeat (with its place in the repeat's
+// order), or the path's pilot / calibration runs (not in frames.csv).
+struct RunKind {
+  bool recorded = false;
+  uint32_t repeat = 0, order = 0;
+  std::string imageDir;  // relative to --out; empty: no images
+  bool reference = false;  // this run's images are the path's reference
 };
 
 class Sweep {
@@ -102,13 +112,17 @@ class Sweep {
   Sweep(const SweepCommand& c, const Scene& scene, Renderer& renderer, std::ofstream& csv, uint64_t totalFrames)
       : c_(c), scene_(scene), renderer_(renderer), csv_(csv), total_(totalFrames) {}
 
-  // Returns the recorded frames' timings.
-  std::vector<FrameTiming> run(const std::string& pathName, const std::vector<Camera>& path, const Run& r, bool record) {
-    renderer_.restartSelection(r.policy, r.budgetMs);
-    const bool images = record && r.repeat == 0;
-    const std::string label = policyName(r.policy) + (isBudgeted(r.policy) ? "-b" + std::to_string(r.budgetIndex) : std::string());
-    const std::filesystem::path dir = std::filesystem::path(c_.out) / "images" / pathName / label;
-    if (images) std::filesystem::create_directories(dir);
+  // Every configuration starts from this learned state (budgeted policies).
+  void startFrom(const CostModel& model) { start_ = model; }
+
+  // One configuration over one camera path: restart the selection from the saved cost
+  // model, warm up on the first camera at the configuration's budget, then the recorded
+  // frames, each read back when imaged. Returns the recorded frames' timings.
+  std::vector<FrameTiming> run(const std::string& pathName, const std::vector<Camera>& path, const Config& cfg, const RunKind& kind) {
+    renderer_.restartSelection(cfg.policy, isBudgeted(cfg.policy) ? cfg.budgetMs : 1.0f);
+    if (isBudgeted(cfg.policy)) renderer_.setCostModel(start_);
+    const std::filesystem::path dir = std::filesystem::path(c_.out) / kind.imageDir;
+    if (!kind.imageDir.empty()) std::filesystem::create_directories(dir);
     std::vector<FrameTiming> all;
     std::vector<double> rmse(path.size(), -1.0);
     auto collect = [&](const std::vector<FrameTiming>& done) { all.insert(all.end(), done.begin(), done.end()); };
@@ -116,37 +130,44 @@ class Sweep {
     for (uint32_t w = 0; w < c_.warmup; ++w) render(path.front(), collect);
     for (size_t f = 0; f < path.size(); ++f) {
       render(path[f], collect);
-      if (!images) continue;
+      if (kind.imageDir.empty()) continue;
       const FrameImages img = renderer_.readback();
       writePng(dir / frameFile(f), img.width, img.height, img.ldrRgba8);
       std::vector<float> rgb = linearRgb(img);
-      if (r.policy == Policy::All) reference_[f] = std::move(rgb);  // the reference: error 0
-      rmse[f] = r.policy == Policy::All ? 0.0 : std::sqrt(meanSquaredError(rgb, reference_.at(f)));
+      if (kind.reference) reference_[f] = std::move(rgb);
+      rmse[f] = std::sqrt(meanSquaredError(kind.reference ? reference_.at(f) : rgb, reference_.at(f)));
     }
     collect(renderer_.finish());
     std::vector<FrameTiming> recorded;
     for (const FrameTiming& t : all) {
       if (t.frame < first) continue;
-      const size_t f = size_t(t.frame - first);
       recorded.push_back(t);
-      if (!record) continue;
-      csv_ << std::filesystem::path(scene_.path).stem().string() << ',' << pathName << ',' << policyName(r.policy) << ',' << r.budgetIndex << ',' << (isBudgeted(r.policy) ? r.budgetMs : 0.0f)
-           << ',' << r.repeat << ',' << f << ',' << traceMs(t) << ',' << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.selectedObjects << ','
-           << t.raysTraced << ',' << t.selectedValue << ',' << t.optimalValueBound << ',' << t.selectionChanges << ',';
-      if (images) {
-        const double mse = rmse[f] * rmse[f];
-        csv_ << rmse[f] << ',' << (mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity()) << ','
-             << (std::filesystem::path("images") / pathName / label / frameFile(f)).string();
-      } else {
-        csv_ << ",,";
-      }
-      csv_ << '\n';
+      if (kind.recorded) writeRow(pathName, cfg, kind, size_t(t.frame - first), t, rmse[size_t(t.frame - first)]);
     }
     csv_.flush();
     return recorded;
   }
 
+  void newPath() { reference_.clear(); }
+
  private:
+  void writeRow(const std::string& pathName, const Config& cfg, const RunKind& kind, size_t f, const FrameTiming& t, double rmse) {
+    const bool budgeted = isBudgeted(cfg.policy);
+    csv_ << std::filesystem::path(scene_.path).stem().string() << ',' << pathName << ',' << policyName(cfg.policy) << ',' << cfg.budgetIndex << ','
+         << (budgeted ? cfg.budgetMs : 0.0f) << ',' << kind.repeat << ',' << kind.order << ',' << f << ',' << passCell(t, Pass::Coverage) << ','
+         << passCell(t, Pass::Select) << ',' << t.traceMs() << ',' << t.rtStageMs() << ',' << passCell(t, Pass::ShadowMaps) << ','
+         << passCell(t, Pass::EnvFallback) << ',' << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
+         << t.selectedObjects << ',' << t.raysTraced << ',' << t.selectedValue << ',' << t.optimalValueBound << ',' << t.selectionChanges << ',';
+    if (rmse >= 0.0) {
+      const double mse = rmse * rmse;
+      csv_ << rmse << ',' << (mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity()) << ','
+           << (std::filesystem::path(kind.imageDir) / frameFile(f)).string();
+    } else {
+      csv_ << ",,";
+    }
+    csv_ << '\n';
+  }
+
   template <typename Collect>
   void render(const Camera& camera, Collect&& collect) {
     collect(renderer_.render(camera));
@@ -163,8 +184,33 @@ class Sweep {
   Renderer& renderer_;
   std::ofstream& csv_;
   uint64_t total_, done_ = 0, rendered_ = 0;
+  CostModel start_;
   std::map<size_t, std::vector<float>> reference_;
 };
+
+std::vector<double> stageTimes(const std::vector<FrameTiming>& t) {
+  std::vector<double> v;
+  for (const FrameTiming& x : t) v.push_back(x.rtStageMs());
+  return v;
+}
+
+// Log-spaced budgets from twice the stage's fixed cost (where something beyond the fixed
+// passes can be traced) to the full-RT stage cost.
+std::vector<float> budgetSweep(double fixedMs, double fullMs, uint32_t count) {
+  const double top = std::max(fullMs, 1e-3);
+  const double low = std::clamp(2.0 * fixedMs, top / 64.0, top / 2.0);
+  std::vector<float> out;
+  for (uint32_t b = 0; b < count; ++b) out.push_back(float(low * std::pow(top / low, double(b) / double(count - 1))));
+  return out;
+}
+
+// Fisher-Yates with mt19937, which the standard specifies exactly (std::shuffle's
+// algorithm is the library's): the same order on every platform.
+template <typename T>
+void shuffle(std::vector<T>& v, uint32_t seed) {
+  std::mt19937 rng(seed);
+  for (size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[rng() % i]);
+}
 
 }  // namespace
 
@@ -183,9 +229,15 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
     else if (a == "--warmup") c.warmup = parseUint(a, value(), 0, 1000);
     else if (a == "--budgets") c.budgets = parseUint(a, value(), 2, 64);
     else if (a == "--repeats") c.repeats = parseUint(a, value(), 1, 100);
+    else if (a == "--order-seed") c.orderSeed = parseUint(a, value(), 0, 0x7FFFFFFF);
+    else if (a == "--prior-time-scale") c.priorTimeScale = true;
     else if (a == "--device") c.device = value();
     else if (a == "--validation") c.validation = true;
-    else if (a == "--policies") {
+    else if (a == "--budget-list") {
+      c.budgetList.clear();
+      for (const std::string& b : splitList(value())) c.budgetList.push_back(parsePositive(a, b));
+      if (c.budgetList.empty()) throw Error("--budget-list needs at least one budget");
+    } else if (a == "--policies") {
       c.policies.clear();
       for (const std::string& p : splitList(value())) {
         const Policy policy = parsePolicy(p);
@@ -214,39 +266,74 @@ int runSweep(const SweepCommand& c) {
   s.device = c.device;
   s.validation = c.validation;
   s.optimalBound = true;
+  s.learnTimeScale = !c.priorTimeScale;
   s.policy = Policy::All;
   Renderer renderer(scene, s);
-  std::filesystem::create_directories(std::filesystem::path(c.out) / "paths");
-  std::ofstream csv(std::filesystem::path(c.out) / "frames.csv");
-  csv << "scene,path,policy,budget_index,budget_ms,repeat,frame,trace_ms,frame_ms,predicted_trace_ms,selected_objects,rays,selected_value,"
-         "optimal_value_bound,selection_changes,rmse,psnr,image\n";
-  const uint64_t perPath = uint64_t(c.frames + c.warmup) * (uint64_t(c.repeats) * (2 + c.policies.size() * c.budgets) + c.policies.size());
+  const std::filesystem::path out(c.out);
+  std::filesystem::create_directories(out / "paths");
+  std::ofstream csv(out / "frames.csv");
+  csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
+         "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,rmse,psnr,image\n";
+  std::ofstream calibration(out / "calibration.csv");
+  calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,stage_overhead_ms,budgets_ms\n";
+  const bool paper = std::find(c.policies.begin(), c.policies.end(), Policy::Paper) != c.policies.end();
+  const bool work = std::any_of(c.policies.begin(), c.policies.end(), [](Policy p) { return p != Policy::Paper; });
+  const uint32_t budgets = c.budgetList.empty() ? c.budgets : uint32_t(c.budgetList.size());
+  const uint32_t calibrationRuns = c.budgetList.empty() ? 2 + 1 + 2 * (uint32_t(paper) + uint32_t(work)) : 1;
+  const uint64_t perPath = uint64_t(c.frames + c.warmup) * (calibrationRuns + uint64_t(c.repeats) * (2 + c.policies.size() * budgets));
   Sweep sweep(c, scene, renderer, csv, perPath * c.paths.size());
   std::cout << "sweep " << c.scene << ": " << scene.objects.size() << " objects, device " << renderer.deviceName() << '\n';
   const Camera start = pathStartCamera(scene, renderer.aspect());
-  for (const std::string& pathName : c.paths) {
+  for (size_t pathIndex = 0; pathIndex < c.paths.size(); ++pathIndex) {
+    const std::string& pathName = c.paths[pathIndex];
     const std::vector<Camera> path = cameraPath(pathName, start, c.frames);
-    writePathJson(std::filesystem::path(c.out) / "paths" / (pathName + ".json"), pathName, path);
-    std::vector<double> fullTrace;
-    for (uint32_t r = 0; r < c.repeats; ++r)
-      for (const FrameTiming& t : sweep.run(pathName, path, {Policy::All, 0, 1.0f, r}, true)) fullTrace.push_back(traceMs(t));
-    for (uint32_t r = 0; r < c.repeats; ++r) sweep.run(pathName, path, {Policy::None, 0, 1.0f, r}, true);
-    // The sweep's ends: full RT's trace time, and the cheapest candidate's predicted cost.
-    // Each policy runs the path once at the full budget first, not recorded: the cost
-    // model learns the device's time scale (kept across restarts, per cost unit) as an
-    // engine running for a while would have, and the probes give the cheapest candidate.
-    const double most = std::max(median(fullTrace), 1e-3);
-    std::vector<double> cheapest;
-    for (const Policy p : c.policies)
-      for (const FrameTiming& t : sweep.run(pathName, path, {p, 0, float(most), 0}, false))
-        if (t.cheapestCandidateMs > 0.0 && p != Policy::Paper) cheapest.push_back(t.cheapestCandidateMs);
-    double least = cheapest.empty() ? most / 64.0 : median(cheapest);
-    if (least > most / 8.0) least = most / 8.0;
-    std::printf("%s: full-RT trace %.3f ms, cheapest object %.4f ms\n", pathName.c_str(), most, least);
-    for (uint32_t b = 0; b < c.budgets; ++b) {
-      const float budget = float(least * std::pow(most / least, double(b) / double(c.budgets - 1)));
-      for (const Policy p : c.policies)
-        for (uint32_t r = 0; r < c.repeats; ++r) sweep.run(pathName, path, {p, b, budget, r}, true);
+    writePathJson(out / "paths" / (pathName + ".json"), pathName, path);
+    sweep.newPath();
+    // Calibration, not recorded: the reference images (`all`, deterministic), the full-RT
+    // stage cost (median of two runs), the stage's fixed cost (a budget nothing fits:
+    // coverage, select and the empty trace dispatches) and the cost model learned at the
+    // full budget, twice over the path for each cost unit: the state every configuration
+    // then starts from.
+    const std::string pathImages = (std::filesystem::path("images") / pathName).string();
+    std::vector<double> full = stageTimes(sweep.run(pathName, path, {Policy::All}, {false, 0, 0, pathImages + "/reference", true}));
+    float fullMs = 0.0f, fixedMs = 0.0f;
+    std::vector<float> points = c.budgetList;
+    if (points.empty()) {
+      for (double t : stageTimes(sweep.run(pathName, path, {Policy::All}, {}))) full.push_back(t);
+      fullMs = float(median(full));
+      fixedMs = float(median(stageTimes(sweep.run(pathName, path, {Policy::Density, 0, 1e-4f}, {}))));
+      CostModel learned;
+      for (const Policy p : {Policy::Paper, Policy::Density}) {
+        if ((p == Policy::Paper && !paper) || (p == Policy::Density && !work)) continue;
+        sweep.startFrom(learned);
+        for (int pass = 0; pass < 2; ++pass) {
+          sweep.run(pathName, path, {p, 0, fullMs}, {});
+          sweep.startFrom(renderer.costModel());
+        }
+        learned = renderer.costModel();
+      }
+      sweep.startFrom(learned);
+      points = budgetSweep(fixedMs, fullMs, c.budgets);
+    } else {
+      fullMs = float(median(full));
+    }
+    const CostModel model = renderer.costModel();
+    calibration << pathName << ',' << fullMs << ',' << fixedMs << ',' << model.msPerWorkUnit << ',' << model.msPerPaperCost << ',' << model.stageOverheadMs << ',';
+    for (size_t b = 0; b < points.size(); ++b) calibration << (b ? ";" : "") << points[b];
+    calibration << '\n';
+    std::printf("%s: full-RT stage %.3f ms, fixed stage cost %.4f ms, budgets %.4f..%.3f ms\n", pathName.c_str(), fullMs, fixedMs, points.front(), points.back());
+    // The repeats: every configuration once per repeat, `all` and `none` among them, in an
+    // order shuffled per repeat (or the canonical one with --order-seed 0).
+    std::vector<Config> configs{{Policy::All}, {Policy::None}};
+    for (uint32_t b = 0; b < points.size(); ++b)
+      for (const Policy p : c.policies) configs.push_back({p, b, points[b]});
+    for (uint32_t r = 0; r < c.repeats; ++r) {
+      std::vector<Config> order = configs;
+      if (c.orderSeed != 0) shuffle(order, c.orderSeed * 7919u + uint32_t(pathIndex) * 131u + r);
+      for (uint32_t k = 0; k < order.size(); ++k) {
+        const std::string dir = pathImages + "/" + order[k].label() + "/r" + std::to_string(r);
+        sweep.run(pathName, path, order[k], {true, r, k, dir, false});
+      }
     }
   }
   const auto messages = renderer.validationMessages();

@@ -1,9 +1,12 @@
-// `raybudget sweep`: run time against error for one scene. Renders the full-RT reference
-// (`all`), the raster-only frame (`none`) and every budgeted policy at a log-spaced sweep of
-// budgets from the cheapest object's predicted cost to the full-RT trace time, on an orbit
-// and a fly-through, repeated; writes one CSV row per frame with GPU times, the selection's
-// stats and the image error against the reference (RMSE and PSNR on linear HDR), and the
-// display images that bench/run.py scores with FLIP.
+// `raybudget sweep`: run time against error for one scene. On an orbit and a fly-through it
+// renders the full-RT reference (`all`), the raster-only frame (`none`) and every budgeted
+// policy at log-spaced budgets from twice the ray-tracing stage's fixed cost to the full-RT
+// stage cost, in repeats whose configurations run in a shuffled order, `all` and `none`
+// among them. Every configuration starts from the same learned cost model (calibrated once
+// per path at the full budget) and warms up on its own, so its results do not depend on what
+// ran before. Writes one CSV row per frame with GPU times per pass, the selection's stats
+// and the image error against the reference (RMSE and PSNR on linear HDR), every recorded
+// frame's display image (which bench/run.py scores with FLIP), and per path the calibration.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -16,11 +19,14 @@ namespace raybudget::cli {
 struct SweepCommand {
   std::string scene;
   std::string out = "sweep";
-  uint32_t width = 320, height = 180;
-  uint32_t frames = 8;   // per camera path, after the warm-up
-  uint32_t warmup = 4;   // frames on the path's first camera, not recorded: the cost model settles
-  uint32_t budgets = 8;  // log-spaced points
-  uint32_t repeats = 3;  // images and errors from the first repeat; timings from all
+  uint32_t width = 640, height = 360;
+  uint32_t frames = 4;   // recorded per camera path and configuration, after the warm-up
+  uint32_t warmup = 8;   // frames on the path's first camera at the configuration's budget, not recorded
+  uint32_t budgets = 6;  // log-spaced points (unless budgetList is given)
+  uint32_t repeats = 3;  // each repeat runs every configuration once; every repeat is imaged
+  uint32_t orderSeed = 1;  // shuffles each repeat's configurations; 0: all, none, then budgets ascending
+  std::vector<float> budgetList;  // explicit budgets in ms instead of the calibrated sweep
+  bool priorTimeScale = false;    // never learn the time scale: selections independent of timing (tests)
   std::vector<Policy> policies{Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random};
   std::vector<std::string> paths{"orbit", "flythrough"};
   std::string device;
