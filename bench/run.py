@@ -55,8 +55,8 @@ def parse_args(argv):
     p.add_argument("--aggregate-only", action="store_true", help="no sweeps: recompute the tables, plots and strips from --out's "
                    "frames.csv and oracle.csv")
     a = p.parse_args(argv)
-    full = dict(budgets=6, frames=4, warmup=8, repeats=2, size="640x360")
-    quick = dict(budgets=4, frames=3, warmup=6, repeats=2, size="320x180")
+    full = dict(budgets=5, frames=3, warmup=6, repeats=2, size="640x360")
+    quick = dict(budgets=4, frames=3, warmup=5, repeats=2, size="320x180")
     for k, v in (quick if a.quick else full).items():
         if getattr(a, k) is None:
             setattr(a, k, v)
