@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: renders the bundled default scene (data/default/court.gltf) at 1280x720 on
 # an orbit of 60 frames, ray tracing the objects the density policy selects within a 40 ms
-# trace budget, and writes out/default/{frame.png, frame.exr, stats.csv}.
+# ray-tracing budget (coverage + select + trace), and writes out/default/{frame.png, frame.exr, stats.csv}.
 # Extra arguments go to `raybudget render` (e.g. --frames 10, --budget-ms 20, --policy paper).
 set -euo pipefail
 cd "$(dirname "$0")/.."
