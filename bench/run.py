@@ -17,7 +17,6 @@ import csv
 import datetime
 import json
 import math
-import os
 import pathlib
 import shutil
 import subprocess
@@ -53,6 +52,7 @@ def parse_args(argv):
     p.add_argument("--budget-list", help="passed to the sweep: explicit budgets in ms")
     p.add_argument("--publish", help="also copy summary.csv, headline.md, headline.json, plots/ and strips/ into this folder")
     p.add_argument("--compare", help="a finished run's folder: print its headline figures beside this run's")
+    p.add_argument("--resume", action="store_true", help="keep the sweeps of --out that finished (raw/<scene>/sweep.ok)")
     p.add_argument("--aggregate-only", action="store_true", help="no sweeps: recompute the tables, plots and strips from --out's "
                    "frames.csv and oracle.csv")
     a = p.parse_args(argv)
@@ -139,22 +139,15 @@ def reference_image(base_dir, image):
     return base_dir / p.parents[2] / "reference" / p.name
 
 
-def flip_of(pair):
-    import flip_evaluator as flip
-    return flip.evaluate(pair[0], pair[1], "LDR", applyMagma=False)[1]
-
-
 def score_flip(out_dir, rows):
-    """FLIP (LDR, display images) of every imaged frame against the path's reference frame,
-    one process per core (nothing is being timed meanwhile)."""
-    import multiprocessing
-    imaged = [r for r in rows if r["image"]]
-    pairs = [(str(reference_image(out_dir, r["image"])), str(out_dir / r["image"])) for r in imaged]
-    with multiprocessing.Pool(os.cpu_count() or 1) as pool:
-        errors = pool.map(flip_of, pairs, chunksize=8)
+    """FLIP (LDR, display images) of every imaged frame against the path's reference frame
+    (flip-evaluator already uses every core)."""
+    import flip_evaluator as flip
     for r in rows:
-        r["flip"] = ""
-    for r, err in zip(imaged, errors):
+        if not r["image"]:
+            r["flip"] = ""
+            continue
+        _, err, _ = flip.evaluate(str(reference_image(out_dir, r["image"])), str(out_dir / r["image"]), "LDR", applyMagma=False)
         r["flip"] = f"{err:.6g}"
 
 
@@ -598,7 +591,10 @@ def sweep_scenes(a, scenes, out_dir):
         name = scene.stem
         print(f"{name}:")
         sdir = out_dir / "raw" / name
-        rc = run_sweep(a, scene, sdir, progress)
+        done = sdir / "sweep.ok"
+        rc = 0 if a.resume and done.is_file() else run_sweep(a, scene, sdir, progress)
+        if rc == 0:
+            done.touch()
         progress.finished_scenes += 1
         if rc != 0:
             skipped.append((name, rc))
