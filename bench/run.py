@@ -328,16 +328,18 @@ class Cases:
         pts = curve(self.points, case, policy, repeat, n)
         return recovered(error_at_cost(pts, fraction * self.full_cost(case)), n, a)
 
-    def speedup(self, case, policy, repeat):
-        """Equal error: full RT's stage cost over the cost where the policy halves `none`'s
-        error gap; 1.0 (full RT) when it never does."""
+    def half_gap_cost(self, case, policy, repeat):
+        """The cost where the policy's curve first halves `none`'s error gap (nan: never)."""
         n, a = self.none_flip(case, repeat), self.all_flip(case, repeat)
-        c = cost_at_error(curve(self.points, case, policy, repeat, n), a + 0.5 * (n - a))
+        return cost_at_error(curve(self.points, case, policy, repeat, n), a + 0.5 * (n - a))
+
+    def speedup(self, case, policy, repeat):
+        """Equal error: full RT's stage cost over the half-gap cost; 1.0 (full RT) when never reached."""
+        c = self.half_gap_cost(case, policy, repeat)
         return self.full_cost(case) / c if c and not math.isnan(c) and c > 0 else 1.0
 
     def reached(self, case, policy, repeat):
-        n, a = self.none_flip(case, repeat), self.all_flip(case, repeat)
-        return not math.isnan(cost_at_error(curve(self.points, case, policy, repeat, n), a + 0.5 * (n - a)))
+        return not math.isnan(self.half_gap_cost(case, policy, repeat))
 
 
 def fmt_spread(s, digits=2, suffix=""):

@@ -135,7 +135,7 @@ class Sweep {
       writePng(dir / frameFile(f), img.width, img.height, img.ldrRgba8);
       std::vector<float> rgb = linearRgb(img);
       if (kind.reference) reference_[f] = std::move(rgb);
-      rmse[f] = std::sqrt(meanSquaredError(kind.reference ? reference_.at(f) : rgb, reference_.at(f)));
+      rmse[f] = kind.reference ? 0.0 : std::sqrt(meanSquaredError(rgb, reference_.at(f)));
     }
     collect(renderer_.finish());
     std::vector<FrameTiming> recorded;
