@@ -16,7 +16,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "passes/gpu_selector.h"
+#include "select/gpu_selector.h"
 #include "raybudget/raybudget.h"
 #include "select/policies.h"
 #include "vk/context.h"
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = uint32_t(std::stoul(argv[++i]));
   try {
     vk::Context ctx(vk::ContextOptions{false, ""});
-    passes::GpuSelector gpu(ctx, 100000);
+    select::GpuSelector gpu(ctx, 100000);
     std::printf("select_bench: median of %u, device %s\n", repeats, ctx.properties().deviceName);
     std::printf("%-12s %10s %12s %12s %10s\n", "policy", "candidates", "GPU ms", "CPU ms", "selected");
     std::mt19937 rng(3), tiedRng(5);  // two streams: the random sets stay those of earlier runs

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "bvh/ray_sets.h"
-#include "passes/gpu_selector.h"
+#include "select/gpu_selector.h"
 #include "select/policies.h"
 #include "support/random_candidates.h"
 #include "support/render_helpers.h"
@@ -21,11 +21,11 @@ using GpuSelection = test::ValidatedGpuTest;
 // Both sorts (the bitonic one of a GPU, the merge sort of a CPU device) on every set; every
 // third set drawn from a few levels (near-equal densities).
 TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
-  passes::GpuSelector bitonic(ctx, 4096, passes::SortMethod::Bitonic), merge(ctx, 4096, passes::SortMethod::Merge);
+  select::GpuSelector bitonic(ctx, 4096, select::SortMethod::Bitonic), merge(ctx, 4096, select::SortMethod::Merge);
   bvh::Rng rng(77);
   size_t compared = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    passes::GpuSelector& gpu = trial % 2 ? bitonic : merge;
+    select::GpuSelector& gpu = trial % 2 ? bitonic : merge;
     const size_t n = 1 + size_t(rng.next() * (trial % 25 == 0 ? 4000.0f : 60.0f));
     const std::vector<Candidate> c = trial % 3 == 2 ? test::leveledCandidates(rng, n) : test::randomCandidates(rng, n);
     const float budget = test::randomBudget(rng, c);
@@ -40,10 +40,10 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
   EXPECT_EQ(compared, 3000u);
 }
 
-class GpuSelectionSort : public test::ValidatedGpuTest, public ::testing::WithParamInterface<passes::SortMethod> {};
+class GpuSelectionSort : public test::ValidatedGpuTest, public ::testing::WithParamInterface<select::SortMethod> {};
 
 TEST_P(GpuSelectionSort, EqualsTheCpuReferenceAtOneHundredThousand) {
-  passes::GpuSelector gpu(ctx, 100000, GetParam());
+  select::GpuSelector gpu(ctx, 100000, GetParam());
   bvh::Rng rng(5);
   const std::vector<Candidate> c = test::randomCandidates(rng, 100000);
   for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random}) {
@@ -59,13 +59,13 @@ TEST_P(GpuSelectionSort, EqualsTheCpuReferenceAtOneHundredThousand) {
     EXPECT_EQ(gpu.select(ids, p, 100.0f).ids, select::selectObjects(p, ids, 100.0f).ids) << select::policyName(p);
 }
 
-INSTANTIATE_TEST_SUITE_P(Sorts, GpuSelectionSort, ::testing::Values(passes::SortMethod::Bitonic, passes::SortMethod::Merge),
-                         [](const ::testing::TestParamInfo<passes::SortMethod>& p) {
-                           return std::string(p.param == passes::SortMethod::Bitonic ? "bitonic" : "merge");
+INSTANTIATE_TEST_SUITE_P(Sorts, GpuSelectionSort, ::testing::Values(select::SortMethod::Bitonic, select::SortMethod::Merge),
+                         [](const ::testing::TestParamInfo<select::SortMethod>& p) {
+                           return std::string(p.param == select::SortMethod::Bitonic ? "bitonic" : "merge");
                          });
 
 TEST_F(GpuSelection, RejectsWhatTheCpuRejects) {
-  passes::GpuSelector gpu(ctx, 16);
+  select::GpuSelector gpu(ctx, 16);
   const std::vector<Candidate> ok = {{0, 1, 1, 0}};
   EXPECT_THROW(gpu.select(ok, Policy::Density, NAN), Error);
   EXPECT_THROW(gpu.select(ok, Policy::Optimal, 1.0f), Error);

@@ -400,7 +400,8 @@ FrameTiming budgetedFrame(const Scene& scene, Policy policy, float budgetMs) { r
 
 // In the frame the GPU selection runs on candidates the GPU made (appended in any order,
 // keyed by object ID through a slot table, merge passes sized on the GPU): it equals the
-// CPU reference on the same candidates, every frame of an orbit, for every budgeted policy,
+// CPU reference on the same candidates, and the candidates' predicted costs (each object's
+// work per pixel learned from the frames before) equal the cost model's CPU reference, every frame of an orbit, for every budgeted policy,
 // on a grid whose symmetric view gives many equal keys and thousands of candidates, and on
 // the default scene.
 TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
@@ -419,6 +420,7 @@ TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
         test::expectValidationClean(renderer.validationMessages());
         for (const FrameTiming& f : t) {
           EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << policyName(p) << ", " << sc->objects.size() << " objects, T " << budgetMs << ", frame " << f.frame;
+          EXPECT_TRUE(f.costsMatchCpu.value_or(false)) << policyName(p) << ", " << sc->objects.size() << " objects, T " << budgetMs << ", frame " << f.frame;
         }
         return t;
       };

@@ -16,18 +16,15 @@
 #include "rt_shadows_comp_native.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
-#include "passes/coverage_pass.h"
 #include "passes/descriptors.h"
-#include "passes/gpu_selector.h"
 #include "passes/environment.h"
 #include "passes/frame_targets.h"
 #include "passes/gbuffer.h"
 #include "passes/scene_gpu.h"
-#include "passes/select_pass.h"
 #include "passes/screen_pass.h"
 #include "passes/shadow_maps.h"
+#include "select/selection_stage.h"
 #include "shared/config.h"
-#include "shared/selection.h"
 #include "shared/types.h"
 #include "vk/check.h"
 #include "vk/context.h"
@@ -35,28 +32,12 @@
 
 namespace raybudget {
 
-namespace {
-
-select::Policy toSelectPolicy(Policy policy) {
-  switch (policy) {
-    case Policy::None: return select::Policy::None;
-    case Policy::All: return select::Policy::All;
-    case Policy::Paper: return select::Policy::Paper;
-    case Policy::Density: return select::Policy::Density;
-    case Policy::Nearest: return select::Policy::Nearest;
-    case Policy::Random: return select::Policy::Random;
-  }
-  return select::Policy::None;
-}
-
-}  // namespace
-
-const char* policyName(Policy policy) { return select::policyName(toSelectPolicy(policy)); }
+const char* policyName(Policy policy) { return select::policyName(select::toSelectPolicy(policy)); }
 
 Policy parsePolicy(const std::string& name) {
   const select::Policy p = select::parsePolicy(name);
   for (Policy q : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random})
-    if (toSelectPolicy(q) == p) return q;
+    if (select::toSelectPolicy(q) == p) return q;
   throw Error("the optimal policy runs on the CPU for benchmarks only; render with another and --optimal-bound for its bound");
 }
 
@@ -123,14 +104,6 @@ struct Renderer::Impl {
     uint64_t frame = 0;
     double tlasRebuildMs = 0.0;
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
-    vk::Buffer tileCount;      // host-visible copy of the frame's tile-list header
-    vk::Buffer selectResult;   // host-visible copy of the GPU selection's result
-    vk::Buffer candidates;     // with optimalBound or checkSelection: host-visible copy of the candidates
-    vk::Buffer selection;      // with checkSelection: host-visible copy of the frame's selection
-    bool selected = false;     // the frame ran the select pass
-    bool budgeted = false;     // ... with a budgeted policy
-    double kappa = 0.0;        // the cost model the frame was selected with
-    float traceBudgetMs = 0.0f;  // ... and the part of T it gave the trace passes
   };
 
   RenderSettings settings;
@@ -144,22 +117,9 @@ struct Renderer::Impl {
   vk::Owned<VkDescriptorPool> pool;
   vk::Owned<VkCommandPool> commandPool;
   vk::TimestampPool timestamps;
+  // Coverage, select, the tile list and the cost model: the selection half of the stage.
+  select::SelectionStage selection;
   passes::GBufferPass gbuffer;
-  passes::CoveragePass coverage;
-  passes::SelectPass selectPass;
-  // The GPU selection, built for the first budgeted policy (it needs subgroup shuffle and
-  // buffers per object, which `none` and `all` never use).
-  std::unique_ptr<passes::GpuSelector> selector;
-  // The cost model: trace milliseconds per unit of work (rays = pixels * Q, or the paper's
-  // C), learned from the trace passes' timestamps.
-  double kappa = 0.0;
-  // The time scale each cost unit last learned (0: the work units of density, nearest and
-  // random; 1: the paper's C), kept across restartSelection: it describes the device and
-  // the scene, not the selection. 0 = not learned yet.
-  std::array<double, 2> learnedKappa{0.0, 0.0};
-  // The coverage and select passes' time (EWMA of their timestamps), which the selection
-  // takes off T: T bounds the whole ray-tracing stage. Kept across restartSelection.
-  double stageOverheadMs = 0.0;
   passes::ShadowMapPass shadowMaps;
   passes::EnvironmentPass environment;
   passes::ScreenPass lighting;
@@ -184,9 +144,8 @@ struct Renderer::Impl {
         pool(passes::createPool(ctx, kFramesInFlight, uint32_t(scene.textures.size()), native())),
         commandPool(makeCommandPool()),
         timestamps(ctx, kFramesInFlight, kPassCount),
+        selection(ctx, pipelineLayout, s, rs, kFramesInFlight),
         gbuffer(ctx, pipelineLayout),
-        coverage(ctx, pipelineLayout),
-        selectPass(ctx, pipelineLayout),
         shadowMaps(ctx, pipelineLayout),
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
@@ -194,21 +153,12 @@ struct Renderer::Impl {
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
         traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
         traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
-    ensureSelector();
-    kappa = priorKappa();
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-      slot.tileCount = vk::createBuffer(ctx, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      slot.selectResult = vk::createBuffer(ctx, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      if (rs.optimalBound || rs.checkSelection)
-        slot.candidates = vk::createBuffer(ctx, std::max<size_t>(1, scene.objectSpheres.size()) * sizeof(gpu::GpuCandidate),
-                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      if (rs.checkSelection)
-        slot.selection = vk::createBuffer(ctx, std::max<size_t>(1, scene.objectSpheres.size()) * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.set = passes::allocateSet(ctx, pool, setLayout);
-      passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, samplers);
+      passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, selection.buffers(), samplers);
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -281,59 +231,11 @@ struct Renderer::Impl {
     FrameTiming t;
     t.frame = slot.frame;
     t.tlasRebuildMs = slot.tlasRebuildMs;
-    t.tracedTiles = slot.selected ? static_cast<const uint32_t*>(slot.tileCount.mapped)[0] : 0u;
-    t.raysTraced = slot.selected ? static_cast<const uint32_t*>(slot.tileCount.mapped)[3] : 0u;
-    const auto ms = timestamps.read(uint32_t(&slot - slots));
+    const uint32_t s = uint32_t(&slot - slots);
+    const auto ms = timestamps.read(s);
     for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
-    if (slot.budgeted) learnCost(slot, t);
+    selection.retire(s, settings, t);
     return t;
-  }
-
-  // The frame's selection stats, and the cost model's update: kappa moves towards measured
-  // trace time over predicted work (exponential moving average; frames with too little
-  // traced to measure are skipped). Per-object work per pixel is learned on the GPU
-  // (shaders/select/select_candidates.comp); kappa only sets the scale.
-  void learnCost(const Slot& slot, FrameTiming& t) {
-    const auto* r = static_cast<const uint32_t*>(slot.selectResult.mapped);
-    const double predicted = std::bit_cast<float>(r[1]);
-    t.budgetMs = settings.budgetMs;
-    t.traceBudgetMs = slot.traceBudgetMs;
-    t.predictedTraceMs = predicted;
-    t.selectedValue = std::bit_cast<float>(r[2]);
-    t.selectedObjects = r[3];
-    t.selectionChanges = r[4];
-    t.selectionSorted = r[7] != 0;
-    if (settings.optimalBound || settings.checkSelection) {
-      const auto* g = static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped);
-      std::vector<select::Candidate> c;
-      for (uint32_t i = 0; i < r[0]; ++i) c.push_back({g[i].id, g[i].cost, g[i].value, g[i].distance});
-      if (settings.optimalBound) {
-        t.optimalValueBound = select::optimalValueBound(c, slot.traceBudgetMs);
-        if (!c.empty())
-          t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
-        for (const select::Candidate& x : c) t.candidatesMs += x.cost;
-      }
-      if (settings.checkSelection) {
-        const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
-        std::vector<uint32_t> gpuIds;
-        for (uint32_t i = 0; i < scene.objectSpheres.size(); ++i)
-          if (flags[i]) gpuIds.push_back(i);
-        t.selectionMatchesCpu = gpuIds == select::selectObjects(selectPolicy(), c, slot.traceBudgetMs, policyOptions()).ids;
-      }
-    }
-    t.measuredTraceMs = t.traceMs();
-    if (!settings.learnTimeScale) return;
-    const double overhead = t.rtStageMs() - t.measuredTraceMs;
-    stageOverheadMs = stageOverheadMs > 0.0 ? 0.7 * stageOverheadMs + 0.3 * overhead : overhead;
-    if (predicted > 1e-3 && t.measuredTraceMs > 1e-3) {
-      // One frame moves kappa by at most 1.3x (the measurement arrives two frames late, a
-      // bigger step overshoots), and a shader compiled on first use or a busy machine
-      // must not wreck the model.
-      const double observed = slot.kappa * std::clamp(t.measuredTraceMs / predicted, 0.5, 2.0);
-      kappa = 0.7 * kappa + 0.3 * observed;
-    } else if (r[0] > 0 && r[3] == 0) {
-      kappa *= 0.9;  // candidates but none fit: nothing to measure, so let the model relax
-    }
   }
 
   void writeUniforms(Slot& slot, const Camera& camera) {
@@ -364,9 +266,6 @@ struct Renderer::Impl {
   }
 
   bool native() const { return scene.native != nullptr; }
-
-  select::Policy selectPolicy() const { return toSelectPolicy(settings.policy); }
-  select::PolicyOptions policyOptions() const { return {settings.graphPointers, settings.seed, 1, 4096}; }
 
   // The object records for the moved objects' new transforms (and their culling spheres).
   std::vector<gpu::GpuObject> refreshObjectRecords() {
@@ -440,7 +339,7 @@ struct Renderer::Impl {
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                         VK_ACCESS_2_MEMORY_READ_BIT);
     }
-    const passes::FrameContext fc{cmd, pipelineLayout, slot.set, scene, targets, viewProj};
+    const passes::FrameContext fc{cmd, pipelineLayout, slot.set, scene, targets, selection.buffers(), viewProj};
     auto timed = [&](Pass pass, auto&& body) {
       timestamps.begin(cmd, s, uint32_t(pass));
       body();
@@ -450,33 +349,12 @@ struct Renderer::Impl {
     // shadows, no trace work when nothing is traced, and the trace passes run only over the
     // tiles holding selected pixels (an empty tile list is an empty indirect dispatch).
     const uint32_t traced = tracedEffects();
-    slot.selected = traced != 0u;
+    selection.beginFrame(s);
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
-    if (settings.objectMetrics || slot.selected) timed(Pass::Coverage, [&] { coverage.record(fc); });
-    slot.budgeted = isBudgeted(settings.policy);
-    slot.kappa = kappa;
-    slot.traceBudgetMs = float(std::max(0.0, double(settings.budgetMs) - stageOverheadMs));
-    if (slot.selected) {
+    if (settings.objectMetrics || traced) timed(Pass::Coverage, [&] { selection.recordCoverage(fc); });
+    if (traced) {
       computeToCompute(cmd);
-      timed(Pass::Select, [&] {
-        if (slot.budgeted) {
-          selector->recordFrame(cmd, uint32_t(scene.objectSpheres.size()), selectPolicy(), slot.traceBudgetMs, float(kappa), policyOptions());
-          vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                            VK_ACCESS_2_TRANSFER_READ_BIT);
-          const VkBufferCopy copy{0, 0, 32};
-          vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.selectResult.buffer, 1, &copy);
-          if (settings.optimalBound || settings.checkSelection) {
-            const VkBufferCopy all{0, 0, slot.candidates.size};
-            vkCmdCopyBuffer(cmd, selector->candidateBuffer(), slot.candidates.buffer, 1, &all);
-          }
-          if (settings.checkSelection) {
-            const VkBufferCopy all{0, 0, slot.selection.size};
-            vkCmdCopyBuffer(cmd, scene.selection.buffer, slot.selection.buffer, 1, &all);
-          }
-          computeToCompute(cmd);
-        }
-        selectPass.record(fc, slot.budgeted ? passes::SelectMode::Keep : passes::SelectMode::All);
-      });
+      timed(Pass::Select, [&] { selection.recordSelect(fc, s, settings); });
     }
     // With a budgeted policy unselected objects keep the shadow maps.
     const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All;
@@ -497,12 +375,7 @@ struct Renderer::Impl {
     }
     computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });
-    if (slot.selected) {  // the tile list's header: tiles traced and rays counted
-      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                        VK_ACCESS_2_TRANSFER_READ_BIT);
-      const VkBufferCopy header{0, 0, 16};
-      vkCmdCopyBuffer(cmd, targets.tileList.buffer, slot.tileCount.buffer, 1, &header);
-    }
+    selection.recordStats(cmd, s);
     VK_CHECK(vkEndCommandBuffer(cmd));
   }
 
@@ -523,23 +396,6 @@ struct Renderer::Impl {
     return done;
   }
 
-  // Which of learnedKappa a policy's predicted costs are in.
-  static size_t costUnit(Policy policy) { return policy == Policy::Paper ? 1 : 0; }
-
-  // A prior until the first measurement: 1e-4 ms per ray (10 Mrays/s) of
-  // RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the screen,
-  // so per unit of C, 1e-4 ms times the pixel count.
-  double priorKappa() const {
-    return settings.policy == Policy::Paper ? 1e-4 * double(settings.width) * double(settings.height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
-  }
-
-  // Builds the GPU selector when the policy is budgeted and it is not built yet.
-  void ensureSelector() {
-    if (selector || !isBudgeted(settings.policy)) return;
-    selector = std::make_unique<passes::GpuSelector>(ctx, std::max<uint32_t>(1, uint32_t(scene.objectSpheres.size())));
-    selector->bindFrame(scene.objectRecords.buffer, scene.selection.buffer, scene.objectParams.buffer, scene.objectCosts.buffer);
-  }
-
   // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
   // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
   std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs) {
@@ -548,39 +404,15 @@ struct Renderer::Impl {
     next.budgetMs = budgetMs;
     validateSettings(next);
     std::vector<FrameTiming> done = finish();
-    if (isBudgeted(settings.policy)) learnedKappa[costUnit(settings.policy)] = kappa;
     settings = next;
-    ensureSelector();
-    const double learned = learnedKappa[costUnit(settings.policy)];
-    kappa = learned > 0.0 ? learned : priorKappa();
-    const std::vector<gpu::GpuObjectParams> params = passes::initialObjectParams(scene.shell);
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      constexpr size_t kPerUpdate = 65536 / sizeof(gpu::GpuObjectParams);  // vkCmdUpdateBuffer's limit
-      for (size_t first = 0; first < params.size(); first += kPerUpdate) {
-        const size_t count = std::min(kPerUpdate, params.size() - first);
-        vkCmdUpdateBuffer(cmd, scene.objectParams.buffer, first * sizeof(gpu::GpuObjectParams), count * sizeof(gpu::GpuObjectParams),
-                          &params[first]);
-      }
-      vkCmdFillBuffer(cmd, scene.objectCosts.buffer, 0, VK_WHOLE_SIZE, 0);
-      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                        VK_ACCESS_2_MEMORY_READ_BIT);
-    });
+    selection.restart(settings);
     return done;
-  }
-
-  CostModel costModel() const {
-    std::array<double, 2> k = learnedKappa;
-    if (isBudgeted(settings.policy)) k[costUnit(settings.policy)] = kappa;
-    return {k[0], k[1], stageOverheadMs};
   }
 
   void setCostModel(const CostModel& m) {
     for (double v : {m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs})
       if (!std::isfinite(v) || v < 0.0 || v > 1e6) throw Error("cost model values must be finite and within 0..1e6, got " + std::to_string(v));
-    learnedKappa = {m.msPerWorkUnit, m.msPerPaperCost};
-    stageOverheadMs = m.stageOverheadMs;
-    const double learned = learnedKappa[costUnit(settings.policy)];
-    kappa = learned > 0.0 ? learned : priorKappa();
+    selection.setCostModel(m);
   }
 
   std::vector<FrameTiming> finish() {
@@ -607,7 +439,7 @@ std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
 
 std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs) { return impl_->restartSelection(policy, budgetMs); }
 
-CostModel Renderer::costModel() const { return impl_->costModel(); }
+CostModel Renderer::costModel() const { return impl_->selection.costModel(); }
 
 void Renderer::setCostModel(const CostModel& model) { impl_->setCostModel(model); }
 
@@ -620,27 +452,7 @@ std::vector<ObjectMetrics> Renderer::objectMetrics() {
   Impl& r = *impl_;
   if (!r.settings.objectMetrics) throw Error("objectMetrics() needs RenderSettings::objectMetrics");
   if (r.frameIndex == 0) throw Error("objectMetrics() before any frame was rendered");
-  VK_CHECK(vkQueueWaitIdle(r.ctx.queue()));
-  const size_t count = r.scene.objectSpheres.size();
-  const VkDeviceSize bytes = std::max<size_t>(1, count) * sizeof(gpu::GpuObjectRecord), flagBytes = std::max<size_t>(1, count) * 4;
-  vk::Buffer host = vk::createBuffer(r.ctx, bytes + flagBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-  r.ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
-    const VkBufferCopy copy{0, 0, bytes}, flags{0, bytes, flagBytes};
-    vkCmdCopyBuffer(cmd, r.scene.objectRecords.buffer, host.buffer, 1, &copy);
-    vkCmdCopyBuffer(cmd, r.scene.selection.buffer, host.buffer, 1, &flags);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-  });
-  const auto* records = static_cast<const gpu::GpuObjectRecord*>(host.mapped);
-  const auto* selected = reinterpret_cast<const uint32_t*>(static_cast<const char*>(host.mapped) + bytes);
-  std::vector<ObjectMetrics> out(count);
-  for (size_t i = 0; i < count; ++i) {
-    const gpu::GpuObjectRecord& g = records[i];
-    out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w, g.crCandidatePixels.x, g.crCandidatePixels.y,
-              g.crCandidatePixels.z > 0.5f, selected[i] != 0u};
-  }
-  return out;
+  return r.selection.objectMetrics();
 }
 
 FrameImages Renderer::readback(bool gbufferDetail) {

@@ -1,5 +1,5 @@
 // Shared by the GPU selection shaders (shaders/select/select_*.comp): their own descriptor set
-// (engine/src/passes/gpu_selector.h) and push constants. The CPU reference is
+// (engine/src/select/gpu_selector.h) and push constants (shared/selection.h). The CPU reference is
 // engine/src/select/policies.cpp; these shaders reproduce it exactly.
 #ifndef RB_SELECT_COMMON_GLSL
 #define RB_SELECT_COMMON_GLSL
@@ -29,12 +29,7 @@ layout(set = 0, binding = 11, std430) buffer SlotBlock { uint slotOf[]; };
 // candidate's cost and value (float bits), slot and ID.
 layout(set = 0, binding = 13, std430) buffer WalkOrderBlock { uvec4 walkOrder[]; };
 
-layout(push_constant) uniform SelectPush {
-  uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
-  uvec4 stage;   // x bitonic k, y bitonic j, z which order (0 main, 1 relevance), w `paper` pointers N
-  vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work)
-  uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects
-} push;
+layout(push_constant) uniform SelectPushBlock { SelectPush push; };
 
 // Candidates: given (push) or, in frame mode, counted on the GPU by select_candidates.comp.
 uint candidateCount() { return push.walk.y != 0u ? result.x : push.sizes.x; }
@@ -58,13 +53,6 @@ uint sortSize() {
   return min(max(p, 1024u), push.sizes.y);
 }
 
-// Policies, as in select::Policy.
-#define RB_SELECT_NONE 0u
-#define RB_SELECT_ALL 1u
-#define RB_SELECT_PAPER 2u
-#define RB_SELECT_DENSITY 3u
-#define RB_SELECT_NEAREST 5u
-#define RB_SELECT_RANDOM 6u
 
 // Float bits mapped so that unsigned order is float order (ascending).
 uint orderedBits(float f) {

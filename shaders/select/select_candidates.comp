@@ -17,15 +17,16 @@ void main() {
   if (i >= push.walk.z) return;
   selected[i] = 0u;  // until the walk selects it
   GpuObjectCost oc = costs[i];
+  // engine/src/select/cost_model.cpp is the CPU reference of these lines, equal bit for bit.
   if (oc.pixels > 0u && oc.work > 0u) {
-    float observed = float(oc.work) / float(oc.pixels);
-    oc.workPerPixel = oc.workPerPixel > 0.0 ? mix(oc.workPerPixel, observed, 0.5) : observed;
+    float observed = exactQuotient(float(oc.work), float(oc.pixels));
+    oc.workPerPixel = oc.workPerPixel > 0.0 ? 0.5 * (oc.workPerPixel + observed) : observed;
   }
   costs[i] = GpuObjectCost(oc.workPerPixel, 0u, 0u, 0u);
   GpuObjectRecord r = records[i];
   if (r.crCandidatePixels.z < 0.5) return;
   float pixels = float(floatBitsToUint(r.crCandidatePixels.w));
-  float perPixel = oc.workPerPixel > 0.0 ? oc.workPerPixel : params[i].kqiS.y * RB_PRIOR_WORK_PER_RAY;
+  float perPixel = oc.workPerPixel > 0.0 ? oc.workPerPixel : params[i].kqiS.y * float(RB_PRIOR_WORK_PER_RAY);
   float work = push.sizes.z == RB_SELECT_PAPER ? r.crCandidatePixels.x : pixels * perPixel;
   float cost = push.budget.y * work;
   uint slot = atomicAdd(result.x, 1u);

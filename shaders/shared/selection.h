@@ -1,5 +1,5 @@
-// GPU records of the heuristic's per-object pass (shaders/coverage.comp and
-// shaders/object_metrics.comp), shared by C++ and GLSL. The arithmetic matches
+// GPU records of the heuristic's per-object pass (shaders/select/coverage.comp and
+// shaders/select/object_metrics.comp), shared by C++ and GLSL. The arithmetic matches
 // engine/src/select/metrics.cpp.
 #ifndef RAYBUDGET_SHARED_SELECTION_H
 #define RAYBUDGET_SHARED_SELECTION_H
@@ -64,6 +64,24 @@ struct GpuCandidate {
   float value;
   float distance;
 };
+
+// The GPU selection's push constants (engine/src/select/gpu_selector.cpp fills them,
+// shaders/include/select_common.glsl reads them).
+struct SelectPush {
+  uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
+  uvec4 stage;   // x bitonic k or merge run, y bitonic j or merge pass, z which order (0 main, 1 relevance), w `paper` pointers N
+  vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work)
+  uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects
+};
+
+// Policies on the GPU, numbered as select::Policy (engine/src/select/policies.h).
+#define RB_SELECT_NONE 0u
+#define RB_SELECT_ALL 1u
+#define RB_SELECT_PAPER 2u
+#define RB_SELECT_DENSITY 3u
+#define RB_SELECT_OPTIMAL 4u
+#define RB_SELECT_NEAREST 5u
+#define RB_SELECT_RANDOM 6u
 
 #ifdef __cplusplus
 }  // namespace raybudget::gpu

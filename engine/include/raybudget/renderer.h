@@ -98,6 +98,10 @@ struct FrameTiming {
   // With RenderSettings::checkSelection: whether the GPU selected exactly the objects the
   // CPU reference (engine/src/select/policies.h) selects from the frame's candidates.
   std::optional<bool> selectionMatchesCpu;
+  // With RenderSettings::checkSelection: whether the GPU's per-object cost model (each
+  // object's learned work per pixel, each candidate's predicted cost) equals its CPU
+  // reference (engine/src/select/cost_model.h) bit for bit.
+  std::optional<bool> costsMatchCpu;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
   double traceMs() const;    // the trace passes (shadows, effects)

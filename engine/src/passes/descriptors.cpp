@@ -97,7 +97,7 @@ VkDescriptorSet allocateSet(const vk::Context& ctx, VkDescriptorPool pool, VkDes
 }
 
 void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uniforms, const SceneGpu& scene, const FrameTargets& t,
-              const Samplers& samplers) {
+              const select::SelectionBuffers& selection, const Samplers& samplers) {
   std::vector<VkDescriptorBufferInfo> buffers = {
       {uniforms.buffer, 0, VK_WHOLE_SIZE}, {scene.objects.buffer, 0, VK_WHOLE_SIZE}, {scene.materials.buffer, 0, VK_WHOLE_SIZE},
       {scene.lights.buffer, 0, VK_WHOLE_SIZE}, {scene.vertices.buffer, 0, VK_WHOLE_SIZE}};
@@ -160,13 +160,13 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   write(kShadowMask, 1, nullptr, &mask);
   const VkDescriptorImageInfo position{samplers.nearest, t.position.view, ro};
   write(kGPosition, 1, nullptr, &position);
-  const VkDescriptorBufferInfo heuristic[] = {{scene.coverage.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.objectParams.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.objectRecords.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.selection.buffer, 0, VK_WHOLE_SIZE},
-                                              {t.tileList.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.objectCosts.buffer, 0, VK_WHOLE_SIZE},
-                                              {t.tileObjects.buffer, 0, VK_WHOLE_SIZE}};
+  const VkDescriptorBufferInfo heuristic[] = {{selection.coverage.buffer, 0, VK_WHOLE_SIZE},
+                                              {selection.objectParams.buffer, 0, VK_WHOLE_SIZE},
+                                              {selection.objectRecords.buffer, 0, VK_WHOLE_SIZE},
+                                              {selection.selection.buffer, 0, VK_WHOLE_SIZE},
+                                              {selection.tileList.buffer, 0, VK_WHOLE_SIZE},
+                                              {selection.objectCosts.buffer, 0, VK_WHOLE_SIZE},
+                                              {selection.tileObjects.buffer, 0, VK_WHOLE_SIZE}};
   for (uint32_t b = kCoverage; b <= kTileObjects; ++b) write(b, 1, &heuristic[b - kCoverage], nullptr);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }

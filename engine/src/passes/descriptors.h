@@ -5,6 +5,7 @@
 
 #include "passes/frame_targets.h"
 #include "passes/scene_gpu.h"
+#include "select/selection_buffers.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 #include "vk/resources.h"
@@ -26,6 +27,6 @@ VkDescriptorSet allocateSet(const vk::Context& ctx, VkDescriptorPool pool, VkDes
 
 // Points every binding of `set` at its resource; `uniforms` is the slot's FrameUniforms.
 void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uniforms, const SceneGpu& scene, const FrameTargets& targets,
-              const Samplers& samplers);
+              const select::SelectionBuffers& selection, const Samplers& samplers);
 
 }  // namespace raybudget::passes

@@ -5,6 +5,7 @@
 
 #include "passes/frame_targets.h"
 #include "passes/scene_gpu.h"
+#include "select/selection_buffers.h"
 
 namespace raybudget::passes {
 
@@ -14,6 +15,7 @@ struct FrameContext {
   VkDescriptorSet set;
   const SceneGpu& scene;
   const FrameTargets& targets;
+  const select::SelectionBuffers& selection;
   glm::mat4 viewProj;  // the camera's
 };
 

@@ -50,12 +50,6 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage);
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
-  const VkDeviceSize tiles = t.tileCount();
-  t.tileList = vk::createBuffer(ctx, 16 + 4 * tiles,
-                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                    VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                false);
-  t.tileObjects = vk::createBuffer(ctx, 4 * RB_TILE_OBJECT_WORDS * tiles, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
 
   // Shadow maps: at least one layer / one cube, so the descriptors always have an image.

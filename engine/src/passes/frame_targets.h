@@ -37,8 +37,6 @@ struct FrameTargets {
   std::vector<vk::Owned<VkImageView>> envMipViews;  // one cube view per mip
   vk::Image envSource;                             // equirectangular HDR image, or 1x1 black
   vk::Image shadowMask;                            // ray-traced light visibility, a layer per light
-  vk::Buffer tileList;                             // uvec4 dispatch (x = tiles), then the tiles with selected pixels
-  vk::Buffer tileObjects;                          // per tile: the objects it shows (coverage.comp)
   vk::Owned<VkImageView> shadowMaskArray;          // 2D-array view (also for one light)
   bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;

@@ -9,8 +9,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raybudget/error.h"
-#include "select/object_params.h"
-#include "shared/selection.h"
 #include "shared/config.h"
 
 namespace raybudget::passes {
@@ -122,15 +120,6 @@ gpu::GpuObject gpuObject(const SceneGpu& scene, const Object& o) {
   return g;
 }
 
-std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene) {
-  std::vector<gpu::GpuObjectParams> params;
-  for (const Object& o : scene.objects) {
-    const select::ObjectParams p = select::objectParams(scene, o);
-    params.push_back({glm::vec4(p.K, p.Q, p.I, 0.0f)});
-  }
-  return params;
-}
-
 SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings) {
   SceneGpu gpu;
   std::vector<uint32_t>& meshFirstIndex = gpu.meshFirstIndex;
@@ -196,13 +185,6 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
                            uint32_t(p.material), scene.materials[size_t(p.material)].alphaMode == AlphaMode::Mask});
   }
   gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  const std::vector<gpu::GpuObjectParams> params = initialObjectParams(scene);
-  const VkDeviceSize objectCount = std::max<size_t>(1, scene.objects.size());
-  gpu.coverage = vk::createBuffer(ctx, objectCount * sizeof(gpu::GpuCoverage), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
-  gpu.objectParams = vk::createDeviceBuffer(ctx, params, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  gpu.objectRecords = vk::createBuffer(ctx, objectCount * sizeof(gpu::GpuObjectRecord), kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-  gpu.selection = vk::createBuffer(ctx, objectCount * sizeof(uint32_t), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-  gpu.objectCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuObjectCost>(objectCount), kStorage);
 
   // The acceleration structure for the ray-traced effects (static scenes: built once, here):
   // the device's for the native tracer, else our BVH.

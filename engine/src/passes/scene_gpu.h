@@ -8,7 +8,6 @@
 #include "passes/native_accel.h"
 #include "raybudget/renderer.h"
 #include "raybudget/scene.h"
-#include "shared/selection.h"
 #include "shared/types.h"
 #include "vk/resources.h"
 
@@ -54,22 +53,12 @@ struct SceneGpu {
   std::vector<GpuTexture> textures;            // at least one (white) so the array is never empty
   std::vector<Draw> draws;
   std::vector<glm::vec4> objectSpheres;  // world bounding spheres, for culling
-  // The heuristic's per-object buffers (shaders/shared/selection.h): coverage, K/Q/I/S,
-  // and the A, P, D, V, C, R records.
-  vk::Buffer coverage;
-  vk::Buffer objectParams;
-  vk::Buffer objectRecords;
-  vk::Buffer selection;    // uint per object: 1 = traced this frame
-  vk::Buffer objectCosts;  // GpuObjectCost per object: learned work per pixel, this frame's work
   ShadowViews shadows;
   uint32_t lightCount = 0;
   bool hasTransmission = false;
 };
 
 SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings);
-
-// Each object's K, Q, I (its glTF extras or the defaults) and S = 0, as the selection starts.
-std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene);
 
 // The GPU record of an object (transforms, bounds, IDs, where its mesh lives).
 gpu::GpuObject gpuObject(const SceneGpu& scene, const Object& o);

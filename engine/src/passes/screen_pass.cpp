@@ -17,7 +17,7 @@ void ScreenPass::record(const FrameContext& fc) const {
 void ScreenPass::recordOverTiles(const FrameContext& fc) const {
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatchIndirect(fc.cmd, fc.targets.tileList.buffer, 0);
+  vkCmdDispatchIndirect(fc.cmd, fc.selection.tileList.buffer, 0);
 }
 
 }  // namespace raybudget::passes

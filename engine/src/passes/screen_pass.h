@@ -13,7 +13,7 @@ class ScreenPass {
   ScreenPass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader);
   // Dispatches over every tile; the caller places the barriers between passes.
   void record(const FrameContext& fc) const;
-  // Dispatches over the tile list (FrameTargets::tileList): its first word is the group count.
+  // Dispatches over the tile list (SelectionBuffers::tileList): its first word is the group count.
   void recordOverTiles(const FrameContext& fc) const;
 
  private:

@@ -14,7 +14,7 @@ Metrics objectMetrics(const Coverage& coverage, uint32_t width, uint32_t height,
     m.A = pixels / (float(width) * float(height));
     // The centroid of the pixel centres in [-1, 1]^2; P falls linearly from the centre to
     // the nearest screen edge (Chebyshev distance), so it is 0 on any edge.
-    // Float operations in the order shaders/object_metrics.comp does them (the 64-bit sums
+    // Float operations in the order shaders/select/object_metrics.comp does them (the 64-bit sums
     // arrive there as two 32-bit words).
     auto wide = [](uint64_t v) { return float(uint32_t(v >> 32)) * 4294967296.0f + float(uint32_t(v)); };
     const float cx = (wide(coverage.sumX) / pixels + 0.5f) / float(width) * 2.0f - 1.0f;

@@ -9,7 +9,7 @@
 #include "select/policies.h"
 #include "vk/context.h"
 
-namespace raybudget::passes {
+namespace raybudget::select {
 
 // How the candidates are ordered: a bitonic sort in shared-memory blocks, or a merge sort
 // (blocks sorted by one-subgroup workgroups, then barrier-free merge passes: faster on a CPU
@@ -26,8 +26,8 @@ class GpuSelector {
 
   // Uploads `candidates`, selects on the GPU, reads the selection back (waits). Throws
   // raybudget::Error for `optimal`, more candidates than the capacity, or bad input.
-  select::Selection select(std::span<const select::Candidate> candidates, select::Policy policy, float budget,
-                           const select::PolicyOptions& options = {});
+  Selection select(std::span<const Candidate> candidates, Policy policy, float budget,
+                           const PolicyOptions& options = {});
   // GPU milliseconds of the last select() (keys, sort, walk; timestamps).
   double lastGpuMs() const;
 
@@ -39,8 +39,8 @@ class GpuSelector {
   // resultBuffer() holds uvec4(candidates, predicted cost bits, value bits, selected) and
   // uvec4(objects whose selection changed, the candidates' total cost in 2^-20 budget
   // units (lo, hi), 1 when the selection needed the sort).
-  void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
-                   const select::PolicyOptions& options) const;
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa,
+                   const PolicyOptions& options) const;
   VkBuffer resultBuffer() const;
   // The frame's candidates (GpuCandidate, resultBuffer().x of them) for CPU-side stats.
   VkBuffer candidateBuffer() const;
@@ -50,4 +50,4 @@ class GpuSelector {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace raybudget::passes
+}  // namespace raybudget::select

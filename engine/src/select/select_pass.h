@@ -1,12 +1,12 @@
-// The select pass: which objects get ray-traced effects (shaders/select.comp), then the list
+// The select pass: which objects get ray-traced effects (shaders/select/select_unbudgeted.comp), then the list
 // of 8x8 tiles holding their pixels, whose count is the trace passes' indirect dispatch
-// (shaders/tile_list.comp). Reads the object records of the coverage pass.
+// (shaders/select/tile_list.comp). Reads the object records of the coverage pass.
 #pragma once
 #include "passes/frame_context.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 
-namespace raybudget::passes {
+namespace raybudget::select {
 
 // None / All write the selection; Keep leaves the one the GPU selector wrote.
 enum class SelectMode : uint32_t { None = 0, All = 1, Keep = 2 };
@@ -15,11 +15,11 @@ class SelectPass {
  public:
   SelectPass(const vk::Context& ctx, VkPipelineLayout layout);
   // Barriers included: afterwards the tile list is ready for indirect dispatch and reads.
-  void record(const FrameContext& fc, SelectMode mode) const;
+  void record(const passes::FrameContext& fc, SelectMode mode) const;
 
  private:
   vk::Owned<VkPipeline> select_;
   vk::Owned<VkPipeline> tiles_;
 };
 
-}  // namespace raybudget::passes
+}  // namespace raybudget::select

@@ -1,30 +1,29 @@
-#include "passes/coverage_pass.h"
+#include "select/coverage_pass.h"
 
 #include "coverage_comp.h"
 #include "object_metrics_comp.h"
-#include "passes/scene_gpu.h"
 #include "shared/config.h"
 #include "shared/types.h"
 #include "vk/pipelines.h"
 #include "vk/resources.h"
 
-namespace raybudget::passes {
+namespace raybudget::select {
 
 CoveragePass::CoveragePass(const vk::Context& ctx, VkPipelineLayout layout)
     : coverage_(vk::createComputePipeline(ctx, layout, kSpirv_coverage_comp)),
       metrics_(vk::createComputePipeline(ctx, layout, kSpirv_object_metrics_comp)) {}
 
-void CoveragePass::record(const FrameContext& fc) const {
+void CoveragePass::record(const passes::FrameContext& fc) const {
   const VkCommandBuffer cmd = fc.cmd;
-  vkCmdFillBuffer(cmd, fc.scene.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, fc.selection.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, coverage_);
-  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatch(cmd, (fc.targets.tileCount() + 63) / 64, 1, 1);  // one invocation per tile
+  passes::bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  vkCmdDispatch(cmd, (fc.selection.tiles + 63) / 64, 1, 1);  // one invocation per tile
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  const uint32_t objects = uint32_t(fc.scene.objectSpheres.size());
+  const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};
   push.objectMaterial.x = objects;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, metrics_);
@@ -32,4 +31,4 @@ void CoveragePass::record(const FrameContext& fc) const {
   vkCmdDispatch(cmd, (objects + 63) / 64, 1, 1);
 }
 
-}  // namespace raybudget::passes
+}  // namespace raybudget::select

@@ -1,4 +1,4 @@
-#include "passes/gpu_selector.h"
+#include "select/gpu_selector.h"
 
 #include <algorithm>
 #include <bit>
@@ -19,15 +19,12 @@
 #include "vk/resources.h"
 #include "vk/timestamps.h"
 
-namespace raybudget::passes {
+namespace raybudget::select {
 namespace {
 
-struct SelectPush {
-  glm::uvec4 sizes;  // candidates, padded, policy, seed
-  glm::uvec4 stage;  // bitonic k, j, order, paper pointers
-  glm::vec4 budget;
-  glm::uvec4 walk;   // paper hops, frame mode, objects
-};
+using gpu::SelectPush;
+static_assert(uint32_t(Policy::Paper) == RB_SELECT_PAPER && uint32_t(Policy::Density) == RB_SELECT_DENSITY &&
+              uint32_t(Policy::Nearest) == RB_SELECT_NEAREST && uint32_t(Policy::Random) == RB_SELECT_RANDOM);
 
 constexpr uint32_t kBlock = 1024;  // the bitonic shader's shared-memory block
 // mergeArgs holds a dispatch for every merge pass any 32-bit candidate count can need.
@@ -108,10 +105,10 @@ struct GpuSelector::Impl {
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
-  void recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa, const select::PolicyOptions& options) {
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa, const PolicyOptions& options) {
     if (objects > capacity) throw Error("GPU selection of " + std::to_string(objects) + " objects exceeds its capacity " + std::to_string(capacity));
-    if (policy == select::Policy::Optimal || policy == select::Policy::All || policy == select::Policy::None)
-      throw Error(std::string("frame selection runs the budgeted policies, not ") + select::policyName(policy));
+    if (policy == Policy::Optimal || policy == Policy::All || policy == Policy::None)
+      throw Error(std::string("frame selection runs the budgeted policies, not ") + policyName(policy));
     SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
                     glm::vec4(budget, kappa, 0, 0), glm::uvec4(options.paperHops, 1, objects, 0)};
     vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);  // the candidate count
@@ -140,9 +137,9 @@ struct GpuSelector::Impl {
 
   // What the walk reads for up to `most` candidates: the policy's order (and `paper`'s
   // relevance order), laid out as the walk's records (select_gather.comp).
-  void orderForWalk(VkCommandBuffer cmd, const SelectPush& push, select::Policy policy, uint32_t most) {
+  void orderForWalk(VkCommandBuffer cmd, const SelectPush& push, Policy policy, uint32_t most) {
     sortOrder(cmd, push, 0, most);
-    if (policy == select::Policy::Paper) sortOrder(cmd, push, 1, most);
+    if (policy == Policy::Paper) sortOrder(cmd, push, 1, most);
     dispatch(cmd, gather, push, (most + 63) / 64);
   }
 
@@ -183,10 +180,10 @@ struct GpuSelector::Impl {
     }
   }
 
-  select::Selection run(std::span<const select::Candidate> c, select::Policy policy, float budget, const select::PolicyOptions& options) {
-    if (policy == select::Policy::Optimal) throw Error("the optimal policy runs on the CPU only (benchmarks)");
+  Selection run(std::span<const Candidate> c, Policy policy, float budget, const PolicyOptions& options) {
+    if (policy == Policy::Optimal) throw Error("the optimal policy runs on the CPU only (benchmarks)");
     if (c.size() > capacity) throw Error("GPU selection of " + std::to_string(c.size()) + " candidates exceeds its capacity " + std::to_string(capacity));
-    select::validateCandidates(c, budget);  // the CPU reference's errors for the same input
+    validateCandidates(c, budget);  // the CPU reference's errors for the same input
     const uint32_t n = uint32_t(c.size()), pad = paddedSize(n);
     // Uploaded in ID order: the sort keys break ties by the candidate's slot
     // (select_common.glsl), which is then its place in ID order, as the CPU reference's ties.
@@ -209,7 +206,7 @@ struct GpuSelector::Impl {
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
       timestamps.begin(cmd, 0, 0);
-      const bool sorted = policy != select::Policy::None && policy != select::Policy::All;
+      const bool sorted = policy != Policy::None && policy != Policy::All;
       if (sorted && n > 0) orderForWalk(cmd, push, policy, n);
       dispatch(cmd, walk, push, 1);
       timestamps.end(cmd, 0, 0);
@@ -219,10 +216,10 @@ struct GpuSelector::Impl {
     });
     gpuMs = timestamps.read(0)[0].value_or(0.0);
     const auto* f = static_cast<const uint32_t*>(readback.mapped);
-    select::Selection s;
+    Selection s;
     for (uint32_t i = 0; i < n; ++i)
       if (f[i]) {
-        const select::Candidate& x = c[byId[i]];
+        const Candidate& x = c[byId[i]];
         s.ids.push_back(x.id);
         s.cost += x.cost;
         s.value += x.value;
@@ -234,19 +231,19 @@ struct GpuSelector::Impl {
 
 GpuSelector::GpuSelector(const vk::Context& ctx, uint32_t capacity, SortMethod sort) : impl_(std::make_unique<Impl>(ctx, capacity, sort)) {}
 GpuSelector::~GpuSelector() = default;
-select::Selection GpuSelector::select(std::span<const select::Candidate> candidates, select::Policy policy, float budget,
-                                      const select::PolicyOptions& options) {
+Selection GpuSelector::select(std::span<const Candidate> candidates, Policy policy, float budget,
+                                      const PolicyOptions& options) {
   return impl_->run(candidates, policy, budget, options);
 }
 double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
 void GpuSelector::bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
   impl_->bindFrame(records, selection, params, costs);
 }
-void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, select::Policy policy, float budget, float kappa,
-                              const select::PolicyOptions& options) const {
+void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa,
+                              const PolicyOptions& options) const {
   impl_->recordFrame(cmd, objects, policy, budget, kappa, options);
 }
 VkBuffer GpuSelector::resultBuffer() const { return impl_->result.buffer; }
 VkBuffer GpuSelector::candidateBuffer() const { return impl_->candidates.buffer; }
 
-}  // namespace raybudget::passes
+}  // namespace raybudget::select

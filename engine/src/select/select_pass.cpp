@@ -1,26 +1,25 @@
-#include "passes/select_pass.h"
+#include "select/select_pass.h"
 
-#include "passes/scene_gpu.h"
-#include "select_comp.h"
+#include "select_unbudgeted_comp.h"
 #include "shared/config.h"
 #include "shared/types.h"
 #include "tile_list_comp.h"
 #include "vk/pipelines.h"
 #include "vk/resources.h"
 
-namespace raybudget::passes {
+namespace raybudget::select {
 
 SelectPass::SelectPass(const vk::Context& ctx, VkPipelineLayout layout)
-    : select_(vk::createComputePipeline(ctx, layout, kSpirv_select_comp)), tiles_(vk::createComputePipeline(ctx, layout, kSpirv_tile_list_comp)) {}
+    : select_(vk::createComputePipeline(ctx, layout, kSpirv_select_unbudgeted_comp)), tiles_(vk::createComputePipeline(ctx, layout, kSpirv_tile_list_comp)) {}
 
-void SelectPass::record(const FrameContext& fc, SelectMode mode) const {
+void SelectPass::record(const passes::FrameContext& fc, SelectMode mode) const {
   const VkCommandBuffer cmd = fc.cmd;
   const uint32_t emptyDispatch[4] = {0, 1, 1, 0};  // no tiles yet: x = 0 groups
-  vkCmdUpdateBuffer(cmd, fc.targets.tileList.buffer, 0, sizeof(emptyDispatch), emptyDispatch);
-  const uint32_t objects = uint32_t(fc.scene.objectSpheres.size());
+  vkCmdUpdateBuffer(cmd, fc.selection.tileList.buffer, 0, sizeof(emptyDispatch), emptyDispatch);
+  const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};
   push.objectMaterial = glm::uvec4(objects, uint32_t(mode), 0, 0);
-  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  passes::bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   if (mode != SelectMode::Keep) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, select_);
     vkCmdPushConstants(cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
@@ -30,10 +29,10 @@ void SelectPass::record(const FrameContext& fc, SelectMode mode) const {
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tiles_);
-  vkCmdDispatch(cmd, (fc.targets.tileCount() + 63) / 64, 1, 1);
+  vkCmdDispatch(cmd, (fc.selection.tiles + 63) / 64, 1, 1);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                     VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
 }
 
-}  // namespace raybudget::passes
+}  // namespace raybudget::select

@@ -1,21 +1,21 @@
-// The heuristic's per-object pass: coverage of the object-ID buffer (shaders/coverage.comp)
-// then A, P, D, V, C, R per object (shaders/object_metrics.comp) into the object records.
+// The heuristic's per-object pass: coverage of the object-ID buffer (shaders/select/coverage.comp)
+// then A, P, D, V, C, R per object (shaders/select/object_metrics.comp) into the object records.
 #pragma once
 #include "passes/frame_context.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 
-namespace raybudget::passes {
+namespace raybudget::select {
 
 class CoveragePass {
  public:
   CoveragePass(const vk::Context& ctx, VkPipelineLayout layout);
   // Clears the coverage, counts, then computes the records; barriers included.
-  void record(const FrameContext& fc) const;
+  void record(const passes::FrameContext& fc) const;
 
  private:
   vk::Owned<VkPipeline> coverage_;
   vk::Owned<VkPipeline> metrics_;
 };
 
-}  // namespace raybudget::passes
+}  // namespace raybudget::select

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // The select pass for the unbudgeted policies: push x = object count, y = 0 none, 1 all
 // (every object with pixels on screen). The budgeted policies select in
-// shaders/select/ (engine/src/passes/gpu_selector.h), then the tile list follows.
+// shaders/select/ (engine/src/select/gpu_selector.h), then the tile list follows.
 #include "include/bindings.glsl"
 
 layout(local_size_x = 64) in;

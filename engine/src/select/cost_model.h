@@ -1,0 +1,73 @@
+// The cost model: what the selection predicts a candidate's ray tracing costs, and the time
+// scale that turns that predicted work into milliseconds.
+//
+// Per object (on the GPU, shaders/select/select_candidates.comp; these functions are its CPU
+// reference, equal bit for bit): the traversal work per traced pixel, learned from the work
+// counters of the trace passes, and each candidate's predicted work and cost. Per device and
+// scene (here, from the timestamps): milliseconds per unit of work, one scale per unit (our
+// work units; the paper's C), and the coverage and select passes' time, which the selection
+// takes off the stage budget T.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "select/policies.h"
+
+namespace raybudget::select {
+
+// An object's work per traced pixel after a frame that counted `work` over `pixels`: the
+// mean of what it knew and the observation (the observation alone when it knew nothing,
+// `previous` unchanged when the frame traced none of it).
+float learnedWorkPerPixel(float previous, uint32_t work, uint32_t pixels);
+
+// A candidate's predicted work: the paper's C for `paper`; for the other policies its pixels
+// times its work per pixel, or times Q and a prior per ray (RB_PRIOR_WORK_PER_RAY) until
+// that is learned.
+float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workPerPixel, float Q);
+
+// Predicted milliseconds: the time scale times the work.
+inline float predictedCost(float msPerUnit, float work) { return msPerUnit * work; }
+
+// Which time scale a policy's predicted work is measured in.
+enum class CostUnit : uint32_t { Work = 0, PaperCost = 1 };
+CostUnit costUnitOf(Policy policy);
+
+// The prior time scale, before any measurement: 1e-4 ms per ray (10 Mrays/s) of
+// RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the screen, so
+// per unit of C, 1e-4 ms times the pixel count.
+double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height);
+
+// What one budgeted frame measured.
+struct StageMeasurement {
+  double msPerUnitUsed = 0.0;     // the time scale the frame was selected with
+  double predictedTraceMs = 0.0;  // the selection's predicted cost
+  double measuredTraceMs = 0.0;   // the trace passes' timestamps
+  double overheadMs = 0.0;        // the coverage and select passes' timestamps
+  bool candidatesButNoneFit = false;
+};
+
+// The time scales and the stage overhead, learned by exponential moving averages.
+class TimeScale {
+ public:
+  TimeScale(uint32_t width, uint32_t height) : width_(width), height_(height) {}
+  // The learned scale, or the prior before any measurement.
+  double msPerUnit(CostUnit unit) const;
+  // 0 where nothing was learned.
+  double learned(CostUnit unit) const { return learned_[size_t(unit)]; }
+  double overheadMs() const { return overheadMs_; }
+  // Zeros mean the prior. Values are the caller's to validate.
+  void set(double msPerWorkUnit, double msPerPaperCost, double overheadMs);
+  // The scale moves towards measured over predicted, by at most 2x per observation and 30%
+  // of the way (the measurement arrives two frames late: a bigger step overshoots, and a
+  // shader compiled on first use or a busy machine must not wreck the model); frames that
+  // traced too little to measure leave it, except that candidates none of which fit relax
+  // it by 10%. The overhead moves 30% of the way to each frame's.
+  void learn(CostUnit unit, const StageMeasurement& m);
+
+ private:
+  uint32_t width_, height_;
+  std::array<double, 2> learned_{0.0, 0.0};
+  double overheadMs_ = 0.0;
+};
+
+}  // namespace raybudget::select

@@ -1,0 +1,34 @@
+// The selection's GPU state (shaders/shared/selection.h): per object its coverage, K/Q/I/S,
+// A..R record, selection flag and learned cost; per 8x8 tile the objects it shows and the
+// list of tiles the trace passes dispatch over. Bound into the frame's descriptor set
+// (shaders/include/bindings.glsl) and into the GPU selector's own.
+#pragma once
+#include <vector>
+
+#include "raybudget/scene.h"
+#include "shared/selection.h"
+#include "vk/resources.h"
+
+namespace raybudget::select {
+
+struct SelectionBuffers {
+  uint32_t objects = 0;  // the scene's objects (each buffer holds at least one record)
+  uint32_t tiles = 0;    // 8x8 tiles of the frame
+  vk::Buffer coverage;       // GpuCoverage per object
+  vk::Buffer objectParams;   // GpuObjectParams per object: K, Q, I and S
+  vk::Buffer objectRecords;  // GpuObjectRecord per object: A, P, D, V, C, R
+  vk::Buffer selection;      // uint per object: 1 = traced this frame
+  vk::Buffer objectCosts;    // GpuObjectCost per object: learned work per pixel, this frame's work
+  vk::Buffer tileObjects;    // RB_TILE_OBJECT_WORDS per tile (shaders/select/coverage.comp)
+  vk::Buffer tileList;       // uvec4 dispatch (x = tiles, w = rays traced), then the tiles to trace
+};
+
+SelectionBuffers createSelectionBuffers(const vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height);
+
+// Each object's K, Q, I (its glTF extras or the defaults) and S = 0, as the selection starts.
+std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene);
+
+// Records the reset of what the selection learned: K/Q/I/S to `params`, no learned costs.
+void recordSelectionReset(VkCommandBuffer cmd, const SelectionBuffers& buffers, const std::vector<gpu::GpuObjectParams>& params);
+
+}  // namespace raybudget::select

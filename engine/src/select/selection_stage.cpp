@@ -1,0 +1,272 @@
+#include "select/selection_stage.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+#include "select/cost_model.h"
+#include "select/coverage_pass.h"
+#include "select/gpu_selector.h"
+#include "select/select_pass.h"
+#include "vk/check.h"
+#include "vk/resources.h"
+
+namespace raybudget::select {
+
+Policy toSelectPolicy(raybudget::Policy policy) {
+  switch (policy) {
+    case raybudget::Policy::None: return Policy::None;
+    case raybudget::Policy::All: return Policy::All;
+    case raybudget::Policy::Paper: return Policy::Paper;
+    case raybudget::Policy::Density: return Policy::Density;
+    case raybudget::Policy::Nearest: return Policy::Nearest;
+    case raybudget::Policy::Random: return Policy::Random;
+  }
+  return Policy::None;
+}
+
+namespace {
+
+PolicyOptions policyOptions(const RenderSettings& s) { return {s.graphPointers, s.seed, 1, 4096}; }
+
+void readToTransfer(VkCommandBuffer cmd) {
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                    VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+void copyWhole(VkCommandBuffer cmd, VkBuffer from, const vk::Buffer& to) {
+  const VkBufferCopy all{0, 0, to.size};
+  vkCmdCopyBuffer(cmd, from, to.buffer, 1, &all);
+}
+
+}  // namespace
+
+struct SelectionStage::Impl {
+  // What one frame in flight selected with, and host-visible copies of what it produced.
+  struct Slot {
+    vk::Buffer tileHeader;    // the tile list's header: tiles, rays traced
+    vk::Buffer result;        // the GPU selection's result (gpu_selector.h)
+    vk::Buffer candidates;    // with optimalBound or checkSelection: the candidates
+    vk::Buffer selection;     // with checkSelection: the selection flags
+    // With checkSelection, for the cost model's CPU reference: per-object costs before and
+    // after the select pass, the records and K/Q/I/S it read.
+    vk::Buffer costsBefore, costsAfter, records, params;
+    bool selected = false;      // the frame ran the select pass
+    bool budgeted = false;      // ... with a budgeted policy
+    double msPerUnit = 0.0;     // the time scale the frame was selected with
+    float traceBudgetMs = 0.0f;  // ... and the part of T it gave the trace passes
+  };
+
+  const vk::Context& ctx;
+  SelectionBuffers buffers;
+  std::vector<gpu::GpuObjectParams> initialParams;
+  CoveragePass coverage;
+  SelectPass selectPass;
+  // The GPU selection, built for the first budgeted policy (it needs subgroup shuffle and
+  // float64, which `none` and `all` never use).
+  std::unique_ptr<GpuSelector> selector;
+  TimeScale timeScale;
+  std::vector<Slot> slots;
+
+  Impl(const vk::Context& c, VkPipelineLayout layout, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight)
+      : ctx(c),
+        buffers(createSelectionBuffers(c, scene, s.width, s.height)),
+        initialParams(initialObjectParams(scene)),
+        coverage(c, layout),
+        selectPass(c, layout),
+        timeScale(s.width, s.height),
+        slots(framesInFlight) {
+    ensureSelector(s);
+    const VkDeviceSize records = std::max<VkDeviceSize>(1, buffers.objects);
+    for (Slot& slot : slots) {
+      slot.tileHeader = vk::createBuffer(c, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      slot.result = vk::createBuffer(c, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      if (s.optimalBound || s.checkSelection)
+        slot.candidates = vk::createBuffer(c, records * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      if (s.checkSelection) {
+        slot.selection = vk::createBuffer(c, records * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot.costsBefore = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot.costsAfter = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot.records = vk::createBuffer(c, records * sizeof(gpu::GpuObjectRecord), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot.params = vk::createBuffer(c, records * sizeof(gpu::GpuObjectParams), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      }
+    }
+  }
+
+  void ensureSelector(const RenderSettings& s) {
+    if (selector || !isBudgeted(s.policy)) return;
+    selector = std::make_unique<GpuSelector>(ctx, std::max<uint32_t>(1, buffers.objects));
+    selector->bindFrame(buffers.objectRecords.buffer, buffers.selection.buffer, buffers.objectParams.buffer, buffers.objectCosts.buffer);
+  }
+
+  void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s) {
+    const VkCommandBuffer cmd = fc.cmd;
+    const Policy policy = toSelectPolicy(s.policy);
+    slot.selected = true;
+    slot.budgeted = isBudgeted(s.policy);
+    slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
+    slot.traceBudgetMs = float(std::max(0.0, double(s.budgetMs) - timeScale.overheadMs()));
+    if (slot.budgeted) {
+      const bool check = s.checkSelection;
+      if (check) {  // what the cost model starts from
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                          VK_ACCESS_2_TRANSFER_READ_BIT);
+        copyWhole(cmd, buffers.objectCosts.buffer, slot.costsBefore);
+        copyWhole(cmd, buffers.objectRecords.buffer, slot.records);
+        copyWhole(cmd, buffers.objectParams.buffer, slot.params);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+      }
+      selector->recordFrame(cmd, buffers.objects, policy, slot.traceBudgetMs, float(slot.msPerUnit), policyOptions(s));
+      readToTransfer(cmd);
+      const VkBufferCopy result{0, 0, 32};
+      vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.result.buffer, 1, &result);
+      if (s.optimalBound || check) copyWhole(cmd, selector->candidateBuffer(), slot.candidates);
+      if (check) {
+        copyWhole(cmd, buffers.selection.buffer, slot.selection);
+        copyWhole(cmd, buffers.objectCosts.buffer, slot.costsAfter);
+      }
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    }
+    selectPass.record(fc, slot.budgeted ? SelectMode::Keep : SelectMode::All);
+  }
+
+  // Whether the GPU's per-object cost model (select_candidates.comp, select_apply.comp)
+  // equals its CPU reference (cost_model.h) on this frame: each object's learned work per
+  // pixel, its restarted counters, and each candidate's predicted cost, bit for bit.
+  bool costsMatchCpu(const Slot& slot, Policy policy, std::span<const gpu::GpuCandidate> candidates) const {
+    const auto* before = static_cast<const gpu::GpuObjectCost*>(slot.costsBefore.mapped);
+    const auto* after = static_cast<const gpu::GpuObjectCost*>(slot.costsAfter.mapped);
+    const auto* records = static_cast<const gpu::GpuObjectRecord*>(slot.records.mapped);
+    const auto* params = static_cast<const gpu::GpuObjectParams*>(slot.params.mapped);
+    const auto* selected = static_cast<const uint32_t*>(slot.selection.mapped);
+    std::vector<float> perPixel(buffers.objects);
+    for (uint32_t i = 0; i < buffers.objects; ++i) {
+      perPixel[i] = learnedWorkPerPixel(before[i].workPerPixel, before[i].work, before[i].pixels);
+      // The counters restart; a selected object's pixels are what the trace passes will cover.
+      const uint32_t pixels = selected[i] ? std::bit_cast<uint32_t>(records[i].crCandidatePixels.w) : 0u;
+      if (std::bit_cast<uint32_t>(perPixel[i]) != std::bit_cast<uint32_t>(after[i].workPerPixel) || after[i].work != 0 || after[i].pixels != pixels)
+        return false;
+    }
+    size_t expected = 0;
+    for (uint32_t i = 0; i < buffers.objects; ++i) expected += records[i].crCandidatePixels.z > 0.5f ? 1 : 0;
+    if (expected != candidates.size()) return false;
+    for (const gpu::GpuCandidate& c : candidates) {
+      if (c.id >= buffers.objects || records[c.id].crCandidatePixels.z < 0.5f) return false;
+      const gpu::GpuObjectRecord& r = records[c.id];
+      const float work = predictedWork(policy, r.crCandidatePixels.x, std::bit_cast<uint32_t>(r.crCandidatePixels.w), perPixel[c.id], params[c.id].kqiS.y);
+      if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost)) return false;
+    }
+    return true;
+  }
+
+  void retire(Slot& slot, const RenderSettings& s, FrameTiming& t) {
+    const auto* header = static_cast<const uint32_t*>(slot.tileHeader.mapped);
+    t.tracedTiles = slot.selected ? header[0] : 0u;
+    t.raysTraced = slot.selected ? header[3] : 0u;
+    if (!slot.selected || !slot.budgeted) return;
+    const Policy policy = toSelectPolicy(s.policy);
+    const auto* r = static_cast<const uint32_t*>(slot.result.mapped);
+    t.budgetMs = s.budgetMs;
+    t.traceBudgetMs = slot.traceBudgetMs;
+    t.predictedTraceMs = std::bit_cast<float>(r[1]);
+    t.selectedValue = std::bit_cast<float>(r[2]);
+    t.selectedObjects = r[3];
+    t.selectionChanges = r[4];
+    t.selectionSorted = r[7] != 0;
+    if (s.optimalBound || s.checkSelection) {
+      const std::span<const gpu::GpuCandidate> g(static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped), r[0]);
+      std::vector<Candidate> c;
+      for (const gpu::GpuCandidate& x : g) c.push_back({x.id, x.cost, x.value, x.distance});
+      if (s.optimalBound) {
+        t.optimalValueBound = optimalValueBound(c, slot.traceBudgetMs);
+        if (!c.empty())
+          t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
+        for (const Candidate& x : c) t.candidatesMs += x.cost;
+      }
+      if (s.checkSelection) {
+        const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
+        std::vector<uint32_t> gpuIds;
+        for (uint32_t i = 0; i < buffers.objects; ++i)
+          if (flags[i]) gpuIds.push_back(i);
+        t.selectionMatchesCpu = gpuIds == selectObjects(policy, c, slot.traceBudgetMs, policyOptions(s)).ids;
+        t.costsMatchCpu = costsMatchCpu(slot, policy, g);
+      }
+    }
+    t.measuredTraceMs = t.traceMs();
+    if (!s.learnTimeScale) return;
+    timeScale.learn(costUnitOf(policy), {slot.msPerUnit, t.predictedTraceMs, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
+                                         r[0] > 0 && r[3] == 0});
+  }
+
+  void restart(const RenderSettings& s) {
+    ensureSelector(s);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { recordSelectionReset(cmd, buffers, initialParams); });
+  }
+
+  std::vector<ObjectMetrics> objectMetrics() const {
+    VK_CHECK(vkQueueWaitIdle(ctx.queue()));
+    const VkDeviceSize count = buffers.objects, bytes = std::max<VkDeviceSize>(1, count) * sizeof(gpu::GpuObjectRecord);
+    const VkDeviceSize flagBytes = std::max<VkDeviceSize>(1, count) * 4;
+    vk::Buffer host = vk::createBuffer(ctx, bytes + flagBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
+      const VkBufferCopy copy{0, 0, bytes}, flags{0, bytes, flagBytes};
+      vkCmdCopyBuffer(cmd, buffers.objectRecords.buffer, host.buffer, 1, &copy);
+      vkCmdCopyBuffer(cmd, buffers.selection.buffer, host.buffer, 1, &flags);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    });
+    const auto* records = static_cast<const gpu::GpuObjectRecord*>(host.mapped);
+    const auto* selected = reinterpret_cast<const uint32_t*>(static_cast<const char*>(host.mapped) + bytes);
+    std::vector<ObjectMetrics> out(count);
+    for (size_t i = 0; i < count; ++i) {
+      const gpu::GpuObjectRecord& g = records[i];
+      out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w, g.crCandidatePixels.x, g.crCandidatePixels.y,
+                g.crCandidatePixels.z > 0.5f, selected[i] != 0u};
+    }
+    return out;
+  }
+};
+
+SelectionStage::SelectionStage(const vk::Context& ctx, VkPipelineLayout layout, const Scene& scene, const RenderSettings& settings,
+                               uint32_t framesInFlight)
+    : impl_(std::make_unique<Impl>(ctx, layout, scene, settings, framesInFlight)) {}
+SelectionStage::~SelectionStage() = default;
+
+const SelectionBuffers& SelectionStage::buffers() const { return impl_->buffers; }
+
+void SelectionStage::beginFrame(uint32_t slot) {
+  impl_->slots[slot].selected = false;
+  impl_->slots[slot].budgeted = false;
+}
+
+void SelectionStage::recordCoverage(const passes::FrameContext& fc) const { impl_->coverage.record(fc); }
+
+void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings) {
+  impl_->recordSelect(fc, impl_->slots[slot], settings);
+}
+
+void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {
+  if (!impl_->slots[slot].selected) return;
+  readToTransfer(cmd);
+  const VkBufferCopy header{0, 0, 16};
+  vkCmdCopyBuffer(cmd, impl_->buffers.tileList.buffer, impl_->slots[slot].tileHeader.buffer, 1, &header);
+}
+
+void SelectionStage::retire(uint32_t slot, const RenderSettings& settings, FrameTiming& t) { impl_->retire(impl_->slots[slot], settings, t); }
+
+void SelectionStage::restart(const RenderSettings& settings) { impl_->restart(settings); }
+
+CostModel SelectionStage::costModel() const {
+  const TimeScale& k = impl_->timeScale;
+  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.overheadMs()};
+}
+
+void SelectionStage::setCostModel(const CostModel& m) { impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs); }
+
+std::vector<ObjectMetrics> SelectionStage::objectMetrics() const { return impl_->objectMetrics(); }
+
+}  // namespace raybudget::select

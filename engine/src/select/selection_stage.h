@@ -1,0 +1,57 @@
+// The selection half of the ray-tracing stage, on the GPU: coverage (per-object A..R, the
+// tiles' objects), the policy's choice within the budget (or none / all), the tile list the
+// trace passes dispatch over, and the cost model that predicts what they will cost. The
+// renderer records it into each frame and hands it each frame's timestamps back.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "passes/frame_context.h"
+#include "raybudget/renderer.h"
+#include "select/policies.h"
+#include "select/selection_buffers.h"
+#include "vk/context.h"
+
+namespace raybudget::select {
+
+// The public policy's CPU reference (raybudget::Policy has no `optimal`).
+select::Policy toSelectPolicy(raybudget::Policy policy);
+
+class SelectionStage {
+ public:
+  SelectionStage(const vk::Context& ctx, VkPipelineLayout layout, const Scene& scene, const RenderSettings& settings, uint32_t framesInFlight);
+  ~SelectionStage();
+  SelectionStage(const SelectionStage&) = delete;
+  SelectionStage& operator=(const SelectionStage&) = delete;
+
+  const SelectionBuffers& buffers() const;
+
+  // Starts frame slot `slot`: nothing selected until recordSelect.
+  void beginFrame(uint32_t slot);
+  // The coverage pass; barriers included.
+  void recordCoverage(const passes::FrameContext& fc) const;
+  // The select pass for `slot`: with a budgeted policy the GPU selection within T less the
+  // learned overhead (and the copies its stats need), else none / all; then the tile list,
+  // ready for the trace passes' indirect dispatch.
+  void recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings);
+  // After the trace passes: the copy of the tile list's header (tiles and rays traced).
+  void recordStats(VkCommandBuffer cmd, uint32_t slot) const;
+  // After the slot's fence: the frame's selection stats into `t` (its pass times read), and
+  // the cost model learns from them.
+  void retire(uint32_t slot, const RenderSettings& settings, FrameTiming& t);
+
+  // Forgets S and each object's learned work per pixel (the time scale stays); builds the
+  // GPU selector if `settings` needs it first.
+  void restart(const RenderSettings& settings);
+  CostModel costModel() const;
+  void setCostModel(const CostModel& model);  // values validated by the caller
+
+  // The last frame's per-object records and selection (waits for the queue).
+  std::vector<ObjectMetrics> objectMetrics() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace raybudget::select
