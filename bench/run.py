@@ -51,7 +51,7 @@ def parse_args(argv):
     p.add_argument("--prior-time-scale", action="store_true", help="passed to the sweep: never learn the time scale")
     p.add_argument("--budget-list", help="passed to the sweep: explicit budgets in ms")
     p.add_argument("--publish", help="also copy summary.csv, headline.md, headline.json, plots/ and strips/ into this folder")
-    p.add_argument("--compare", help="a finished run's folder: print its headline figures beside this run's")
+    p.add_argument("--compare", help="a finished run's folder: its headline figures beside this run's and the per-case differences (compare.md)")
     p.add_argument("--resume", action="store_true", help="keep the sweeps of --out that finished (raw/<scene>/sweep.ok)")
     p.add_argument("--aggregate-only", action="store_true", help="no sweeps: recompute the tables, plots and strips from --out's "
                    "frames.csv and oracle.csv")
@@ -473,6 +473,29 @@ def compare(a_fig, b_fig):
     return "\n".join(lines) + "\n"
 
 
+def case_spread(a_points, b_points, policies):
+    """Per case (scene and path), the two runs' figures compared: per policy, the median and
+    the largest difference over the cases both ran, of error recovered at 25% and 50% and
+    of the equal-error speed-up (each run's median over its repeats)."""
+    a_cases, b_cases = Cases(a_points), Cases(b_points)
+    common = [c for c in a_cases.list if c in b_cases.list]
+
+    def figure(cases, c, p, what):
+        if what == "speedup":
+            return median([cases.speedup(c, p, r) for r in cases.repeats])
+        return median([cases.recovered_at(c, p, r, what) for r in cases.repeats])
+    lines = [f"Per-case differences between the runs over the {len(common)} cases both ran (median / largest):\n",
+             "| policy | recovered at 25% | recovered at 50% | speed-up at half gap |", "|---|---|---|---|"]
+    for p in policies:
+        cells = []
+        for what in (0.25, 0.5, "speedup"):
+            d = [abs(figure(a_cases, c, p, what) - figure(b_cases, c, p, what)) for c in common]
+            d = [x for x in d if not math.isnan(x)]
+            cells.append(f"{median(d):.3f} / {max(d):.3f}" if d else "n/a")
+        lines.append(f"| {p} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 # --- Plots and strips ------------------------------------------------------------------------
 
 def label(ax, xlabel, ylabel, title):
@@ -665,8 +688,13 @@ def main(argv):
             shutil.copytree(out_dir / folder, pub / folder, dirs_exist_ok=True)
     print(preamble + text)
     if a.compare:
-        with open(pathlib.Path(a.compare) / "headline.json") as f:
-            print("Against " + a.compare + ":\n\n" + compare(figures, json.load(f)["figures"]))
+        other = pathlib.Path(a.compare)
+        with open(other / "headline.json") as f:
+            text = "Against " + a.compare + ":\n\n" + compare(figures, json.load(f)["figures"])
+        text += "\n" + case_spread(points, repeat_points(read_rows(other / "frames.csv")), policies)
+        with open(out_dir / "compare.md", "w") as f:
+            f.write(text)
+        print(text)
     print(f"run.py: wrote {out_dir}/frames.csv, summary.csv, oracle.csv, headline.md, headline.json, plots/, strips/ in {minutes:.1f} min")
     return 0
 
