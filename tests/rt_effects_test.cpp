@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <limits>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -704,7 +705,54 @@ TEST(RtBudget, ASavedCostModelMakesAConfigurationIndependentOfWhatRanBefore) {
   }
   EXPECT_THROW(renderer.setCostModel({-1.0, 0.0, 0.0}), Error);
   EXPECT_THROW(renderer.setCostModel({0.0, std::nan(""), 0.0}), Error);
+  EXPECT_THROW(renderer.setCostModel({0.0, 0.0, 0.0, std::numeric_limits<double>::infinity()}), Error);
   test::expectValidationClean(renderer.validationMessages());
+}
+
+// The cost model is affine: the stage's fixed cost (coverage, select, the trace passes' own)
+// comes off T before any work is bought, a budget at or below it traces nothing and says
+// so, and frames that trace nothing time the trace passes' fixed cost.
+TEST(RtBudget, ABudgetBelowTheStagesFixedCostTracesNothingAndSaysSo) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s = budgetedSettings(Policy::Density, 0.7f, 160, 96);
+  s.learnTimeScale = false;  // the fixed cost stays what is set
+  const Camera camera = defaultCamera(scene, 160.0f / 96.0f);
+  Renderer renderer(scene, s);
+  auto still = [&](Renderer& r) {  // four frames from the default view
+    std::vector<FrameTiming> t;
+    for (int f = 0; f < 4; ++f)
+      for (const FrameTiming& x : r.render(camera)) t.push_back(x);
+    for (const FrameTiming& x : r.finish()) t.push_back(x);
+    return t;
+  };
+  renderer.setCostModel({0.0, 0.0, 0.5, 0.3});
+  std::vector<FrameTiming> below = still(renderer);
+  renderer.restartSelection(Policy::Density, 1e6f);
+  renderer.setCostModel({0.0, 0.0, 0.5, 0.3});
+  std::vector<FrameTiming> above = still(renderer);
+  ASSERT_EQ(below.size(), 4u);
+  ASSERT_EQ(above.size(), 4u);
+  for (size_t f = 0; f < 4; ++f) {
+    EXPECT_TRUE(below[f].budgetBelowFixedCost);
+    EXPECT_EQ(below[f].traceBudgetMs, 0.0);
+    EXPECT_EQ(below[f].selectedObjects, 0u);
+    EXPECT_EQ(below[f].raysTraced, 0u);
+    EXPECT_FALSE(above[f].budgetBelowFixedCost);
+    EXPECT_NEAR(above[f].traceBudgetMs, 1e6 - 0.8, 0.1);
+    EXPECT_GT(above[f].selectedObjects, 0u);
+    EXPECT_GT(above[f].predictedTraceMs, 0.3) << "the prediction includes the trace passes' fixed cost";
+  }
+  // With timing feedback, frames that trace nothing learn the trace passes' fixed cost.
+  RenderSettings learning = s;
+  learning.learnTimeScale = true;
+  learning.budgetMs = 1e-4f;
+  Renderer fresh(scene, learning);
+  (void)renderOrbit(fresh, camera, 8);
+  const CostModel m = fresh.costModel();
+  EXPECT_GT(m.traceFixedMs, 0.0) << "empty trace dispatches still take time";
+  EXPECT_GT(m.stageOverheadMs, 0.0);
+  test::expectValidationClean(renderer.validationMessages());
+  test::expectValidationClean(fresh.validationMessages());
 }
 
 }  // namespace

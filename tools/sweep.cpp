@@ -278,7 +278,7 @@ int runSweep(const SweepCommand& c) {
   csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
          "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
-  calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,stage_overhead_ms,budgets_ms\n";
+  calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,stage_overhead_ms,trace_fixed_ms,budgets_ms\n";
   const bool paper = std::find(c.policies.begin(), c.policies.end(), Policy::Paper) != c.policies.end();
   const bool work = std::any_of(c.policies.begin(), c.policies.end(), [](Policy p) { return p != Policy::Paper; });
   const uint32_t budgets = c.budgetList.empty() ? c.budgets : uint32_t(c.budgetList.size());
@@ -305,7 +305,9 @@ int runSweep(const SweepCommand& c) {
       full.push_back(meanStageMs(sweep.run(pathName, path, {Policy::All}, {})));
       fullMs = float(median(full));
       fixedMs = float(meanStageMs(sweep.run(pathName, path, {Policy::Density, 0, 1e-4f}, {})));
-      CostModel learned;
+      // Those frames traced nothing: they timed the stage's fixed cost, which the model keeps.
+      const CostModel fixedRun = renderer.costModel();
+      CostModel learned{0.0, 0.0, fixedRun.stageOverheadMs, fixedRun.traceFixedMs};
       for (const Policy p : {Policy::Paper, Policy::Density}) {
         if ((p == Policy::Paper && !paper) || (p == Policy::Density && !work)) continue;
         sweep.startFrom(learned);
@@ -321,7 +323,7 @@ int runSweep(const SweepCommand& c) {
       fullMs = float(median(full));
     }
     const CostModel model = renderer.costModel();
-    calibration << pathName << ',' << fullMs << ',' << fixedMs << ',' << model.msPerWorkUnit << ',' << model.msPerPaperCost << ',' << model.stageOverheadMs << ',';
+    calibration << pathName << ',' << fullMs << ',' << fixedMs << ',' << model.msPerWorkUnit << ',' << model.msPerPaperCost << ',' << model.stageOverheadMs << ',' << model.traceFixedMs << ',';
     for (size_t b = 0; b < points.size(); ++b) calibration << (b ? ";" : "") << points[b];
     calibration << '\n';
     std::printf("%s: full-RT stage %.3f ms, fixed stage cost %.4f ms, budgets %.4f..%.3f ms\n", pathName.c_str(), fullMs, fixedMs, points.front(), points.back());

@@ -410,7 +410,7 @@ struct Renderer::Impl {
   }
 
   void setCostModel(const CostModel& m) {
-    for (double v : {m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs})
+    for (double v : {m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs, m.traceFixedMs})
       if (!std::isfinite(v) || v < 0.0 || v > 1e6) throw Error("cost model values must be finite and within 0..1e6, got " + std::to_string(v));
     selection.setCostModel(m);
   }

@@ -78,12 +78,13 @@ struct FrameTiming {
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   uint32_t tracedTiles = 0;    // 8x8 tiles the trace passes ran over (0: none selected or nothing traced)
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
-  // Budgeted policies: the stage budget T, the part of it the selection got for the trace
-  // passes (T less the learned coverage + select time), the cost model's prediction for the
-  // selection and the measured trace time (the trace passes' sum), objects selected and
-  // their summed R.
+  // Budgeted policies: the stage budget T, the part of it the selection got for the
+  // candidates' work (T less the stage's learned fixed cost: coverage, select, the trace
+  // passes' own), the cost model's prediction for the trace passes (their fixed cost plus
+  // the selection's work) and their measured time, objects selected and their summed R.
   double budgetMs = 0.0;
   double traceBudgetMs = 0.0;
+  bool budgetBelowFixedCost = false;  // T at or below the stage's fixed cost: nothing traced
   double predictedTraceMs = 0.0;
   double measuredTraceMs = 0.0;
   uint32_t selectedObjects = 0;
@@ -108,13 +109,16 @@ struct FrameTiming {
   double rtStageMs() const;  // the ray-tracing stage T bounds: coverage + select + trace
 };
 
-// What the cost model has learned: trace milliseconds per unit of predicted work (our work
-// units for density, nearest and random; the paper's C for paper), and the coverage and
-// select passes' time, which the selection subtracts from T. 0 = not learned (the prior).
+// What the cost model has learned: the stage's time is affine in the selection's work,
+// coverage + select + trace fixed cost + ms per unit x work. Trace milliseconds per unit of
+// predicted work (our work units for density, nearest and random; the paper's C for paper),
+// the coverage and select passes' time and the trace passes' fixed cost (dispatch, tile
+// setup), which the selection subtracts from T. 0 = not learned (the prior; no fixed cost).
 struct CostModel {
   double msPerWorkUnit = 0.0;
   double msPerPaperCost = 0.0;
   double stageOverheadMs = 0.0;
+  double traceFixedMs = 0.0;
   bool operator==(const CostModel&) const = default;
 };
 

@@ -30,20 +30,27 @@ double TimeScale::msPerUnit(CostUnit unit) const {
   return k > 0.0 ? k : priorMsPerUnit(unit, width_, height_);
 }
 
-void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double overheadMs) {
+void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double overheadMs, double traceFixedMs) {
   learned_ = {msPerWorkUnit, msPerPaperCost};
   overheadMs_ = overheadMs;
+  traceFixedMs_ = traceFixedMs;
 }
 
+// Each step moves 30% of the way (the timestamps arrive two frames late: a bigger step
+// overshoots). The scale moves to (trace - fixed) / work, clamped to 0.5-2x of the scale the
+// frame was selected with, so that a shader compiled on first use or a busy machine cannot
+// wreck the model.
 void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   overheadMs_ = overheadMs_ > 0.0 ? 0.7 * overheadMs_ + 0.3 * m.overheadMs : m.overheadMs;
-  const double current = msPerUnit(unit);
-  if (m.predictedTraceMs > 1e-3 && m.measuredTraceMs > 1e-3) {
-    const double observed = m.msPerUnitUsed * std::clamp(m.measuredTraceMs / m.predictedTraceMs, 0.5, 2.0);
-    learned_[size_t(unit)] = 0.7 * current + 0.3 * observed;
-  } else if (m.candidatesButNoneFit) {
-    learned_[size_t(unit)] = current * 0.9;  // nothing to measure, so let the model relax
+  const size_t u = size_t(unit);
+  const double current = msPerUnit(unit), used = m.msPerUnitUsed;
+  if (m.work * used <= 1e-3) {  // nothing traced: the trace passes' time is their fixed cost
+    traceFixedMs_ = traceFixedMs_ > 0.0 ? 0.7 * traceFixedMs_ + 0.3 * m.traceMs : m.traceMs;
+    if (m.candidatesButNoneFit) learned_[u] = 0.9 * current;  // nothing to measure: let the model relax
+    return;
   }
+  const double scale = (m.traceMs - traceFixedMs_) / m.work;
+  learned_[u] = 0.7 * current + 0.3 * std::clamp(scale, 0.5 * used, 2.0 * used);
 }
 
 }  // namespace raybudget::select

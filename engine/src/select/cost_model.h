@@ -4,9 +4,10 @@
 // Per object (on the GPU, shaders/select/select_candidates.comp; these functions are its CPU
 // reference, equal bit for bit): the traversal work per traced pixel, learned from the work
 // counters of the trace passes, and each candidate's predicted work and cost. Per device and
-// scene (here, from the timestamps): milliseconds per unit of work, one scale per unit (our
-// work units; the paper's C), and the coverage and select passes' time, which the selection
-// takes off the stage budget T.
+// scene (here, from the timestamps): the stage's time as an affine function of the work,
+// t = t0 + scale · work, t0 the coverage and select passes plus the trace passes' own fixed
+// cost, which the selection takes off the stage budget T, and one scale per cost unit (our
+// work units; the paper's C).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -39,14 +40,21 @@ double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height);
 
 // What one budgeted frame measured.
 struct StageMeasurement {
-  double msPerUnitUsed = 0.0;     // the time scale the frame was selected with
-  double predictedTraceMs = 0.0;  // the selection's predicted cost
-  double measuredTraceMs = 0.0;   // the trace passes' timestamps
-  double overheadMs = 0.0;        // the coverage and select passes' timestamps
+  double msPerUnitUsed = 0.0;  // the time scale the frame was selected with
+  double work = 0.0;           // the selection's predicted work (units of the policy's cost unit)
+  double traceMs = 0.0;        // the trace passes' timestamps
+  double overheadMs = 0.0;     // the coverage and select passes' timestamps
   bool candidatesButNoneFit = false;
 };
 
-// The time scales and the stage overhead, learned by exponential moving averages.
+// The stage's time, affine in the selection's work: t = overhead + fixed + scale · work.
+// overhead is the coverage and select passes (their timestamps, every frame), fixed the trace
+// passes' own cost (dispatch, tile list: their timestamps in frames that traced nothing), the
+// scale ms per unit of work, one per cost unit, from the frames that traced something.
+// A least-squares line through recent frames' (work, trace time) was tried for the fixed
+// cost and dropped: a budget-driven selection gives points of nearly the same work, and with
+// 15% noise the fit put a true 0.5 ms anywhere in 0.2-0.9 ms, then stuck at 2.2 ms after the
+// scene's cost per unit changed.
 class TimeScale {
  public:
   TimeScale(uint32_t width, uint32_t height) : width_(width), height_(height) {}
@@ -55,19 +63,17 @@ class TimeScale {
   // 0 where nothing was learned.
   double learned(CostUnit unit) const { return learned_[size_t(unit)]; }
   double overheadMs() const { return overheadMs_; }
-  // Zeros mean the prior. Values are the caller's to validate.
-  void set(double msPerWorkUnit, double msPerPaperCost, double overheadMs);
-  // The scale moves towards measured over predicted, by at most 2x per observation and 30%
-  // of the way (the measurement arrives two frames late: a bigger step overshoots, and a
-  // shader compiled on first use or a busy machine must not wreck the model); frames that
-  // traced too little to measure leave it, except that candidates none of which fit relax
-  // it by 10%. The overhead moves 30% of the way to each frame's.
+  double traceFixedMs() const { return traceFixedMs_; }
+  // The stage's fixed cost t0: overhead + the trace passes' fixed cost.
+  double fixedMs() const { return overheadMs_ + traceFixedMs_; }
+  // A saved state (zeros: the prior, no fixed cost). Values are the caller's to validate.
+  void set(double msPerWorkUnit, double msPerPaperCost, double overheadMs, double traceFixedMs);
   void learn(CostUnit unit, const StageMeasurement& m);
 
  private:
   uint32_t width_, height_;
   std::array<double, 2> learned_{0.0, 0.0};
-  double overheadMs_ = 0.0;
+  double overheadMs_ = 0.0, traceFixedMs_ = 0.0;
 };
 
 }  // namespace raybudget::select

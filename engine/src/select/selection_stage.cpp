@@ -54,7 +54,9 @@ struct SelectionStage::Impl {
     bool selected = false;      // the frame ran the select pass
     bool budgeted = false;      // ... with a budgeted policy
     double msPerUnit = 0.0;     // the time scale the frame was selected with
-    float traceBudgetMs = 0.0f;  // ... and the part of T it gave the trace passes
+    double traceFixedMs = 0.0;  // ... the trace passes' fixed cost it assumed
+    float traceBudgetMs = 0.0f;  // ... and the part of T it left for the work
+    bool belowFixedCost = false;  // T at or below the stage's fixed cost: nothing traced
   };
 
   const vk::Context& ctx;
@@ -105,7 +107,9 @@ struct SelectionStage::Impl {
     slot.selected = true;
     slot.budgeted = isBudgeted(s.policy);
     slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
-    slot.traceBudgetMs = float(std::max(0.0, double(s.budgetMs) - timeScale.overheadMs()));
+    slot.traceFixedMs = timeScale.traceFixedMs();
+    slot.belowFixedCost = double(s.budgetMs) <= timeScale.fixedMs();
+    slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float(double(s.budgetMs) - timeScale.fixedMs());
     if (slot.budgeted) {
       const bool check = s.checkSelection;
       if (check) {  // what the cost model starts from
@@ -171,7 +175,9 @@ struct SelectionStage::Impl {
     const auto* r = static_cast<const uint32_t*>(slot.result.mapped);
     t.budgetMs = s.budgetMs;
     t.traceBudgetMs = slot.traceBudgetMs;
-    t.predictedTraceMs = std::bit_cast<float>(r[1]);
+    const double predictedWorkMs = std::bit_cast<float>(r[1]);
+    t.predictedTraceMs = slot.traceFixedMs + predictedWorkMs;
+    t.budgetBelowFixedCost = slot.belowFixedCost;
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
     t.selectionChanges = r[4];
@@ -197,8 +203,8 @@ struct SelectionStage::Impl {
     }
     t.measuredTraceMs = t.traceMs();
     if (!s.learnTimeScale) return;
-    timeScale.learn(costUnitOf(policy), {slot.msPerUnit, t.predictedTraceMs, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
-                                         r[0] > 0 && r[3] == 0});
+    timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWorkMs / slot.msPerUnit, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
+                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost});
   }
 
   void restart(const RenderSettings& s) {
@@ -262,10 +268,12 @@ void SelectionStage::restart(const RenderSettings& settings) { impl_->restart(se
 
 CostModel SelectionStage::costModel() const {
   const TimeScale& k = impl_->timeScale;
-  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.overheadMs()};
+  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.overheadMs(), k.traceFixedMs()};
 }
 
-void SelectionStage::setCostModel(const CostModel& m) { impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs); }
+void SelectionStage::setCostModel(const CostModel& m) {
+  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs, m.traceFixedMs);
+}
 
 std::vector<ObjectMetrics> SelectionStage::objectMetrics() const { return impl_->objectMetrics(); }
 
