@@ -6,8 +6,8 @@
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
 
-// Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to
-// RB_RT_MAX_ROUGHNESS) trace a closest-hit reflection ray, shaded with direct light (and
+// Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to the
+// frame's cut-off, RayTracingSettings::maxRoughness) trace a closest-hit reflection ray, shaded with direct light (and
 // its own shadow rays), emissive and the environment, for up to frame.rayTracing.y
 // bounces along mirrors. Transmissive surfaces trace through: thin walls (no volume)
 // straight on; volumes refract in (Snell, glTF IOR), travel to the exit with Beer-Lambert
@@ -15,6 +15,8 @@
 // refract out. Fresnel splits reflection and transmission. Replaces the environment
 // fallback's result in indirectImage for the pixels it traces.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+
+float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
 
 vec3 prefiltered(vec3 dir, float roughness) { return textureLod(envMap, dir, roughness * float(RB_ENV_MIPS - 1)).rgb; }
 
@@ -54,7 +56,7 @@ vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
       origin = offsetRay(h.position, -h.geometricNormal);
       continue;
     }
-    if (bounces + 1u < depth && h.roughness <= RB_RT_MAX_ROUGHNESS) {
+    if (bounces + 1u < depth && h.roughness <= maxTracedRoughness()) {
       ++bounces;
       throughput *= weight;
       origin = offsetRay(h.position, h.geometricNormal);
@@ -113,7 +115,7 @@ void main() {
   if (!readSurface(pixel, s) || s.unlit || !pixelSelected(s.objectId)) return;
   uint effects = frame.rayTracing.x;
   float transmission = s.transmission * (1.0 - s.metallic);
-  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= RB_RT_MAX_ROUGHNESS;
+  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness();
   bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0;
   if (!reflects && !refracts) return;  // the environment fallback stands
   vec3 p, ng;

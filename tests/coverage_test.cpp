@@ -52,7 +52,7 @@ size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t
   for (const Object& o : scene.objects) {
     const std::string name = scene.path.filename().string() + " object " + std::to_string(o.id) + " '" + o.name + "'";
     const float distance = glm::length(0.5f * (o.boundsMin + o.boundsMax) - camera.position);
-    const select::ObjectParams params = select::objectParams(scene, o);
+    const select::ObjectParams params = select::objectParams(scene, o, s.rayTracing.maxRoughness);
     const select::Metrics cpu = select::objectMetrics(cov[o.id], w, h, distance, camera.znear, params, false);
     const ObjectMetrics& g = gpu[o.id];
     EXPECT_EQ(g.pixels, cov[o.id].pixels) << name;

@@ -755,5 +755,37 @@ TEST(RtBudget, ABudgetBelowTheStagesFixedCostTracesNothingAndSaysSo) {
   test::expectValidationClean(fresh.validationMessages());
 }
 
+// The reflections' roughness cut-off is a setting: a higher one traces reflection rays on
+// more surfaces (every pixel's at 1), a lower one on fewer; out of 0..1 it is refused.
+TEST(RtEffects, TheRoughnessCutOffDecidesWhichSurfacesTraceReflections) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  auto rays = [&](float cutOff) {
+    RenderSettings s;
+    s.width = 160;
+    s.height = 96;
+    s.validation = true;
+    s.policy = Policy::All;
+    s.rayTracing.shadows = false;
+    s.rayTracing.refractions = false;
+    s.rayTracing.maxRoughness = cutOff;
+    const FrameTiming t = oneFrame(scene, s);
+    return t.raysTraced;
+  };
+  const uint32_t none = rays(0.0f), mirrors = rays(0.35f), every = rays(1.0f);
+  EXPECT_LE(none, mirrors);
+  EXPECT_LT(mirrors, every) << "the court has surfaces rougher than 0.35";
+  EXPECT_GT(mirrors, 0u) << "the court's mirrors and chrome are smoother than 0.35";
+  for (float bad : {-0.1f, 1.5f, std::nanf("")}) {
+    RenderSettings s;
+    s.rayTracing.maxRoughness = bad;
+    try {
+      Renderer r(scene, s);
+      ADD_FAILURE() << "cut-off " << bad << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("maxRoughness"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace raybudget

@@ -33,12 +33,15 @@ render options:
                         none (all raster fallbacks, the default), all (the full-RT
                         reference), or within --budget-ms: paper (the paper's selection
                         graph), density (relevance per predicted cost), nearest, random
-  --budget-ms T         the trace passes' time budget in milliseconds (default 4)
+  --budget-ms T         the ray-tracing stage's time budget in milliseconds: coverage,
+                        select and the trace passes (default 4)
   --seed S              the random policy's seed (default 1)
   --graph-pointers N    the paper's higher-relevance pointers per node, 0..64 (default 4)
   --optimal-bound       write each frame's 0/1-knapsack bound on the selectable value
                         (optimal_value_bound in stats.csv; CPU work, for benchmarks)
   --depth D             reflection/refraction bounces, 1..4 (default 1)
+  --max-roughness R     reflections are traced on surfaces up to this roughness, 0..1;
+                        rougher ones keep the prefiltered environment (default 0.35)
   --tracer compute|native
                         compute: our BVH in compute shaders (default); native: the device's
                         VK_KHR_ray_query with Vulkan acceleration structures
@@ -55,6 +58,20 @@ uint32_t parseUint(const std::string& option, const std::string& value, uint32_t
   const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
   if (ec != std::errc() || end != value.data() + value.size() || v < lo || v > hi)
     throw Error(option + " needs a whole number in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + value + "'");
+  return v;
+}
+
+// A finite number within lo..hi (inclusive); the error names the option.
+float parseWithin(const std::string& option, const std::string& value, float lo, float hi) {
+  size_t used = 0;
+  float v = 0.0f;
+  try {
+    v = std::stof(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != value.size() || !std::isfinite(v) || v < lo || v > hi)
+    throw Error(option + " needs a number within " + std::to_string(lo).substr(0, 3) + ".." + std::to_string(hi).substr(0, 3) + ", got '" + value + "'");
   return v;
 }
 
@@ -114,6 +131,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       else if (t == "never") c.settings.rayTracing.spatialSplits = SpatialSplits::Never;
       else throw Error("--bvh-splits must be auto, always or never, got '" + t + "'");
     } else if (a == "--depth") c.settings.rayTracing.depth = parseUint(a, value(), 1, 4);
+    else if (a == "--max-roughness") c.settings.rayTracing.maxRoughness = parseWithin(a, value(), 0.0f, 1.0f);
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;

@@ -88,6 +88,8 @@ void validateSettings(const RenderSettings& s) {
   if (isBudgeted(s.policy) && (!std::isfinite(s.budgetMs) || s.budgetMs <= 0.0f || s.budgetMs > 1e6f))
     throw Error("the trace budget must be a positive number of milliseconds (at most 1e6), got " + std::to_string(s.budgetMs));
   if (s.graphPointers > 64) throw Error("the paper's graph takes at most 64 relevance pointers per node");
+  if (!std::isfinite(s.rayTracing.maxRoughness) || s.rayTracing.maxRoughness < 0.0f || s.rayTracing.maxRoughness > 1.0f)
+    throw Error("the ray-tracing roughness cut-off (maxRoughness) must be within 0..1, got " + std::to_string(s.rayTracing.maxRoughness));
   if (s.rayTracing.depth < 1 || s.rayTracing.depth > RB_RT_MAX_DEPTH)
     throw Error("ray-tracing depth must be within 1.." + std::to_string(RB_RT_MAX_DEPTH));
 }
@@ -249,7 +251,7 @@ struct Renderer::Impl {
     u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
     u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
     u.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
-    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, 0u, 0u);
+    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness), 0u);
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 

@@ -26,9 +26,6 @@
 #define RB_RT_SHADOWS 1u
 #define RB_RT_REFLECTIONS 2u
 #define RB_RT_REFRACTIONS 4u
-// Surfaces rougher than this keep the prefiltered environment for their reflections: a
-// single mirror ray would be noise on them.
-#define RB_RT_MAX_ROUGHNESS 0.35
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 

@@ -30,9 +30,12 @@ const char* tracerName(Tracer tracer);
 
 struct RayTracingSettings {
   bool shadows = true;       // any-hit rays per light instead of shadow maps
-  bool reflections = true;   // mirror rays on surfaces with roughness <= 0.35
+  bool reflections = true;   // mirror rays on surfaces with roughness <= maxRoughness
   bool refractions = true;   // rays through transmissive surfaces
   uint32_t depth = 1;        // reflection / refraction bounces, 1..4
+  // Rougher surfaces keep the prefiltered environment for their reflections: a single
+  // mirror ray would be noise on them (0..1).
+  float maxRoughness = 0.35f;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };

@@ -10,6 +10,7 @@ namespace raybudget::select {
 inline constexpr float kDefaultK = 1.0f;
 inline constexpr float kDefaultI = 0.5f;
 
-ObjectParams objectParams(const Scene& scene, const Object& object);
+// `maxRoughness`: reflections are traced up to this roughness (RayTracingSettings).
+ObjectParams objectParams(const Scene& scene, const Object& object, float maxRoughness);
 
 }  // namespace raybudget::select

@@ -8,17 +8,17 @@
 
 namespace raybudget::select {
 
-std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene) {
+std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene, float maxRoughness) {
   std::vector<gpu::GpuObjectParams> params;
   for (const Object& o : scene.objects) {
-    const ObjectParams p = objectParams(scene, o);
+    const ObjectParams p = objectParams(scene, o, maxRoughness);
     params.push_back({glm::vec4(p.K, p.Q, p.I, 0.0f)});
   }
   if (params.empty()) params.push_back({});  // a buffer is never empty
   return params;
 }
 
-SelectionBuffers createSelectionBuffers(const vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height) {
+SelectionBuffers createSelectionBuffers(const vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height, float maxRoughness) {
   constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   constexpr VkBufferUsageFlags kCopy = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   SelectionBuffers b;
@@ -26,7 +26,7 @@ SelectionBuffers createSelectionBuffers(const vk::Context& ctx, const Scene& sce
   b.tiles = ((width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((height + RB_TILE_SIZE - 1) / RB_TILE_SIZE);
   const VkDeviceSize records = std::max<VkDeviceSize>(1, b.objects);
   b.coverage = vk::createBuffer(ctx, records * sizeof(gpu::GpuCoverage), kStorage | kCopy, false);
-  b.objectParams = vk::createDeviceBuffer(ctx, initialObjectParams(scene), kStorage | kCopy);
+  b.objectParams = vk::createDeviceBuffer(ctx, initialObjectParams(scene, maxRoughness), kStorage | kCopy);
   b.objectRecords = vk::createBuffer(ctx, records * sizeof(gpu::GpuObjectRecord), kStorage | kCopy, false);
   b.selection = vk::createBuffer(ctx, records * sizeof(uint32_t), kStorage | kCopy, false);
   b.objectCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuObjectCost>(records), kStorage | kCopy);

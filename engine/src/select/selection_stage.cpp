@@ -72,8 +72,8 @@ struct SelectionStage::Impl {
 
   Impl(const vk::Context& c, VkPipelineLayout layout, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight)
       : ctx(c),
-        buffers(createSelectionBuffers(c, scene, s.width, s.height)),
-        initialParams(initialObjectParams(scene)),
+        buffers(createSelectionBuffers(c, scene, s.width, s.height, s.rayTracing.maxRoughness)),
+        initialParams(initialObjectParams(scene, s.rayTracing.maxRoughness)),
         coverage(c, layout),
         selectPass(c, layout),
         timeScale(s.width, s.height),
