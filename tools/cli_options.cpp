@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 
 #include "raybudget/error.h"
 
@@ -61,30 +62,31 @@ uint32_t parseUint(const std::string& option, const std::string& value, uint32_t
   return v;
 }
 
-// A finite number within lo..hi (inclusive); the error names the option.
-float parseWithin(const std::string& option, const std::string& value, float lo, float hi) {
+// The whole of `value` as a finite float, or nothing.
+std::optional<float> parseFinite(const std::string& value) {
   size_t used = 0;
   float v = 0.0f;
   try {
     v = std::stof(value, &used);
   } catch (const std::exception&) {
-    used = 0;
+    return std::nullopt;
   }
-  if (used != value.size() || !std::isfinite(v) || v < lo || v > hi)
-    throw Error(option + " needs a number within " + std::to_string(lo).substr(0, 3) + ".." + std::to_string(hi).substr(0, 3) + ", got '" + value + "'");
+  if (used != value.size() || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 
+// A number within lo..hi (inclusive); the error names the option.
+float parseWithin(const std::string& option, const std::string& value, float lo, float hi) {
+  const std::optional<float> v = parseFinite(value);
+  if (!v || *v < lo || *v > hi)
+    throw Error(option + " needs a number within " + std::to_string(lo).substr(0, 3) + ".." + std::to_string(hi).substr(0, 3) + ", got '" + value + "'");
+  return *v;
+}
+
 float parsePositive(const std::string& option, const std::string& value) {
-  size_t used = 0;
-  float v = 0.0f;
-  try {
-    v = std::stof(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != value.size() || !std::isfinite(v) || v <= 0.0f) throw Error(option + " needs a positive number, got '" + value + "'");
-  return v;
+  const std::optional<float> v = parseFinite(value);
+  if (!v || *v <= 0.0f) throw Error(option + " needs a positive number, got '" + value + "'");
+  return *v;
 }
 
 Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount) {
