@@ -1,9 +1,11 @@
 // The heuristic's per-object pass on the GPU against its CPU reference: coverage counted
-// from the same object-ID image, and A, P, D, V, C, R from engine/src/select/metrics.h.
+// from the same object-ID image, the classifier's reflection and refraction pixels from the
+// same G-buffer materials, and A, P, D, V, C, R from engine/src/select/metrics.h.
 #include <cmath>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
 #include "select/metrics.h"
@@ -23,9 +25,23 @@ void expectNear(float gpu, float cpu, float rel, float abs, const std::string& w
 // the CPU's by about 8e-7 however small P is. V, C and R inherit that through A·P/D.
 constexpr float kCentroidSlack = 1e-6f;
 
+// The classifier's CPU reference, from the G-buffer's materials as the trace shader reads
+// them: 1 a reflection pixel, 2 a refraction pixel (both possible), 0 unlit or neither.
+uint32_t pixelClasses(const FrameImages& img, size_t pixel, float maxRoughness) {
+  const float roughness = glm::unpackHalf1x16(img.roughTransIor[4 * pixel]), transmission = glm::unpackHalf1x16(img.roughTransIor[4 * pixel + 1]);
+  const float unlit = glm::unpackHalf1x16(img.roughTransIor[4 * pixel + 3]), metallic = float(img.baseMetal[4 * pixel + 3]) / 255.0f;
+  if (unlit > 0.5f) return 0;
+  return (roughness <= maxRoughness ? 1u : 0u) | (transmission * (1.0f - metallic) > 0.0f ? 2u : 0u);
+}
+
+// Pixels the classifier marked over a scene (the checks below need some of each).
+struct Classified {
+  uint32_t reflection = 0, refraction = 0;
+};
+
 // Returns how many 8x8 tiles show more than three objects (the coverage pass sums three
 // per tile in registers and adds the pixels of any further one on its own).
-size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t h) {
+size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t h, Classified* classified = nullptr) {
   RenderSettings s;
   s.width = w;
   s.height = h;
@@ -34,19 +50,24 @@ size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t
   Renderer renderer(scene, s);
   renderer.render(camera);
   renderer.finish();
-  const FrameImages img = renderer.readback();
+  const FrameImages img = renderer.readback(true);
   const std::vector<ObjectMetrics> gpu = renderer.objectMetrics();
   test::expectValidationClean(renderer.validationMessages());
   EXPECT_EQ(gpu.size(), scene.objects.size());
   if (gpu.size() != scene.objects.size()) return 0;
   std::vector<select::Coverage> cov(scene.objects.size());
+  std::vector<Classified> classes(scene.objects.size());
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) {
-      const uint32_t id = img.objectIds[size_t(y) * w + x];
+      const size_t pixel = size_t(y) * w + x;
+      const uint32_t id = img.objectIds[pixel];
       if (id == 0xFFFFFFFFu) continue;
       ++cov[id].pixels;
       cov[id].sumX += x;
       cov[id].sumY += y;
+      const uint32_t c = pixelClasses(img, pixel, s.rayTracing.maxRoughness);
+      classes[id].reflection += c & 1u;
+      classes[id].refraction += c >> 1;
     }
   size_t visible = 0;
   for (const Object& o : scene.objects) {
@@ -56,6 +77,12 @@ size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t
     const select::Metrics cpu = select::objectMetrics(cov[o.id], w, h, distance, camera.znear, params, false);
     const ObjectMetrics& g = gpu[o.id];
     EXPECT_EQ(g.pixels, cov[o.id].pixels) << name;
+    EXPECT_EQ(g.reflectionPixels, classes[o.id].reflection) << name;
+    EXPECT_EQ(g.refractionPixels, classes[o.id].refraction) << name;
+    if (classified) {
+      classified->reflection += g.reflectionPixels;
+      classified->refraction += g.refractionPixels;
+    }
     visible += g.pixels > 0;
     const float slackV = cpu.A / cpu.D * kCentroidSlack;
     expectNear(g.A, cpu.A, 1e-6f, 0.0f, name + " A");
@@ -74,7 +101,10 @@ size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t
 
 TEST(CoverageGpu, MatchesTheCpuReferenceOnTheDefaultScene) {
   const Scene scene = loadScene(test::defaultScenePath());
-  checkScene(scene, defaultCamera(scene, 1.5f), 240, 160);
+  Classified classified;
+  checkScene(scene, defaultCamera(scene, 1.5f), 240, 160, &classified);
+  EXPECT_GT(classified.reflection, 0u) << "the court's mirrors and chrome need reflection rays";
+  EXPECT_GT(classified.refraction, 0u) << "the court's glass needs refraction rays";
   // Close up and at an angle: objects cut by the screen edge, some behind the camera; an odd
   // size, so that edge tiles are partial with objects in them.
   Camera close = defaultCamera(scene, 1.5f);

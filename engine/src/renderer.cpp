@@ -353,7 +353,8 @@ struct Renderer::Impl {
     const uint32_t traced = tracedEffects();
     selection.beginFrame(s);
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
-    if (settings.objectMetrics || traced) timed(Pass::Coverage, [&] { selection.recordCoverage(fc); });
+    // The classifier's counts have no consumer in the selection yet: only objectMetrics reads them.
+    if (settings.objectMetrics || traced) timed(Pass::Coverage, [&] { selection.recordCoverage(fc, settings.objectMetrics); });
     if (traced) {
       computeToCompute(cmd);
       timed(Pass::Select, [&] { selection.recordSelect(fc, s, settings); });
@@ -477,6 +478,8 @@ FrameImages Renderer::readback(bool gbufferDetail) {
     sources.push_back({&t.position, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 16, 1});
     sources.push_back({&t.shadowMask, VK_IMAGE_LAYOUT_GENERAL, pixels * 4 * maskLayers, maskLayers});
     sources.push_back({&t.normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 8, 1});
+    sources.push_back({&t.roughTransIor, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 8, 1});
+    sources.push_back({&t.baseMetal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 4, 1});
   }
   std::vector<vk::Buffer> buffers;
   for (const Source& src : sources) buffers.push_back(vk::createBuffer(r.ctx, src.bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
@@ -509,6 +512,8 @@ FrameImages Renderer::readback(bool gbufferDetail) {
     take(out.positions, 3);
     take(out.shadowMask, 4);
     take(out.normals, 5);
+    take(out.roughTransIor, 6);
+    take(out.baseMetal, 7);
   }
   return out;
 }

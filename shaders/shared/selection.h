@@ -10,10 +10,11 @@ namespace raybudget::gpu {
 #endif
 
 // 32 bytes: an object's pixels in the object-ID buffer and the 64-bit sums of their integer
-// coordinates, as lo/hi 32-bit words (portable: no 64-bit atomics needed).
+// coordinates, as lo/hi 32-bit words (portable: no 64-bit atomics needed), and the pixels
+// the classifier marked for reflection and refraction rays.
 struct GpuCoverage {
   uvec4 pixelsSumX;  // x pixels, y sum x lo, z sum x hi, w sum y lo
-  uvec4 sumYHi;      // x sum y hi, yzw unused
+  uvec4 sumYHi;      // x sum y hi, y reflection pixels, z refraction pixels, w unused
 };
 
 // 16 bytes: the object's authored or derived K, Q, I, and w = 1 when it was selected last

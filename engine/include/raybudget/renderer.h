@@ -129,6 +129,10 @@ struct CostModel {
 // is the CPU reference).
 struct ObjectMetrics {
   uint32_t pixels = 0;
+  // Of those, the pixels the classifier marked as needing reflection rays (roughness at or
+  // below RayTracingSettings::maxRoughness) and refraction rays (transmissive); unlit none.
+  // Counted in frames rendered with RenderSettings::objectMetrics only.
+  uint32_t reflectionPixels = 0, refractionPixels = 0;
   float A = 0.0f, P = 0.0f, D = 0.0f, V = 0.0f, C = 0.0f, R = 0.0f;
   bool candidate = false;
   bool selected = false;  // ray-traced effects this frame (the select pass's choice)
@@ -140,11 +144,13 @@ struct FrameImages {
   std::vector<uint8_t> ldrRgba8;    // tonemapped sRGB
   std::vector<uint16_t> hdrRgba16;  // linear HDR, IEEE half floats
   std::vector<uint32_t> objectIds;  // G-buffer object IDs (RB_NO_OBJECT = 0xFFFFFFFF for none)
-  // With readback(true): G-buffer world positions (xyz; w packs the geometric normal) and
-  // the ray-traced shadow mask (light-major: mask[light * pixels + pixel]).
+  // With readback(true): G-buffer world positions (xyz; w packs the geometric normal), the
+  // ray-traced shadow mask (light-major: mask[light * pixels + pixel]) and the materials.
   std::vector<float> positions;
   std::vector<uint16_t> normals;  // shading normals, RGBA half floats
   std::vector<float> shadowMask;
+  std::vector<uint16_t> roughTransIor;  // roughness, transmission, IOR, unlit (RGBA half floats)
+  std::vector<uint8_t> baseMetal;       // base colour and metallic (RGBA8 unorm)
 };
 
 // The ray tracer's acceleration structure, built once when the Renderer is made.

@@ -9,16 +9,29 @@
 
 namespace raybudget::select {
 
+namespace {
+
+// The coverage shader with its classifier specialized in or out (coverage.comp's kClassify).
+vk::Owned<VkPipeline> coveragePipeline(const vk::Context& ctx, VkPipelineLayout layout, bool classify) {
+  const VkBool32 value = classify ? VK_TRUE : VK_FALSE;
+  const VkSpecializationMapEntry entry{0, 0, sizeof(value)};
+  const VkSpecializationInfo info{1, &entry, sizeof(value), &value};
+  return vk::createComputePipeline(ctx, layout, kSpirv_coverage_comp, &info);
+}
+
+}  // namespace
+
 CoveragePass::CoveragePass(const vk::Context& ctx, VkPipelineLayout layout)
-    : coverage_(vk::createComputePipeline(ctx, layout, kSpirv_coverage_comp)),
+    : coverage_(coveragePipeline(ctx, layout, false)),
+      classifying_(coveragePipeline(ctx, layout, true)),
       metrics_(vk::createComputePipeline(ctx, layout, kSpirv_object_metrics_comp)) {}
 
-void CoveragePass::record(const passes::FrameContext& fc) const {
+void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
   const VkCommandBuffer cmd = fc.cmd;
   vkCmdFillBuffer(cmd, fc.selection.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, coverage_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify ? classifying_ : coverage_);
   passes::bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   vkCmdDispatch(cmd, (fc.selection.tiles + 63) / 64, 1, 1);  // one invocation per tile
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -10,11 +10,13 @@ namespace raybudget::select {
 class CoveragePass {
  public:
   CoveragePass(const vk::Context& ctx, VkPipelineLayout layout);
-  // Clears the coverage, counts, then computes the records; barriers included.
-  void record(const passes::FrameContext& fc) const;
+  // Clears the coverage, counts (and with `classify` the classifier's reflection and
+  // refraction pixels, else 0), then computes the records; barriers included.
+  void record(const passes::FrameContext& fc, bool classify) const;
 
  private:
   vk::Owned<VkPipeline> coverage_;
+  vk::Owned<VkPipeline> classifying_;  // with the classifier
   vk::Owned<VkPipeline> metrics_;
 };
 

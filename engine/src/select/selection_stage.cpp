@@ -215,23 +215,25 @@ struct SelectionStage::Impl {
   std::vector<ObjectMetrics> objectMetrics() const {
     VK_CHECK(vkQueueWaitIdle(ctx.queue()));
     const VkDeviceSize count = buffers.objects, bytes = std::max<VkDeviceSize>(1, count) * sizeof(gpu::GpuObjectRecord);
-    const VkDeviceSize flagBytes = std::max<VkDeviceSize>(1, count) * 4;
-    vk::Buffer host = vk::createBuffer(ctx, bytes + flagBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const VkDeviceSize flagBytes = std::max<VkDeviceSize>(1, count) * 4, coverageBytes = std::max<VkDeviceSize>(1, count) * sizeof(gpu::GpuCoverage);
+    vk::Buffer host = vk::createBuffer(ctx, bytes + flagBytes + coverageBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                         VK_ACCESS_2_TRANSFER_READ_BIT);
-      const VkBufferCopy copy{0, 0, bytes}, flags{0, bytes, flagBytes};
+      const VkBufferCopy copy{0, 0, bytes}, flags{0, bytes, flagBytes}, coverageCopy{0, bytes + flagBytes, coverageBytes};
       vkCmdCopyBuffer(cmd, buffers.objectRecords.buffer, host.buffer, 1, &copy);
       vkCmdCopyBuffer(cmd, buffers.selection.buffer, host.buffer, 1, &flags);
+      vkCmdCopyBuffer(cmd, buffers.coverage.buffer, host.buffer, 1, &coverageCopy);
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
     const auto* records = static_cast<const gpu::GpuObjectRecord*>(host.mapped);
     const auto* selected = reinterpret_cast<const uint32_t*>(static_cast<const char*>(host.mapped) + bytes);
+    const auto* cov = reinterpret_cast<const gpu::GpuCoverage*>(static_cast<const char*>(host.mapped) + bytes + flagBytes);
     std::vector<ObjectMetrics> out(count);
     for (size_t i = 0; i < count; ++i) {
       const gpu::GpuObjectRecord& g = records[i];
-      out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w, g.crCandidatePixels.x, g.crCandidatePixels.y,
-                g.crCandidatePixels.z > 0.5f, selected[i] != 0u};
+      out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), cov[i].sumYHi.y, cov[i].sumYHi.z, g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w,
+                g.crCandidatePixels.x, g.crCandidatePixels.y, g.crCandidatePixels.z > 0.5f, selected[i] != 0u};
     }
     return out;
   }
@@ -249,7 +251,7 @@ void SelectionStage::beginFrame(uint32_t slot) {
   impl_->slots[slot].budgeted = false;
 }
 
-void SelectionStage::recordCoverage(const passes::FrameContext& fc) const { impl_->coverage.record(fc); }
+void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classify) const { impl_->coverage.record(fc, classify); }
 
 void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings) {
   impl_->recordSelect(fc, impl_->slots[slot], settings);

@@ -28,8 +28,8 @@ class SelectionStage {
 
   // Starts frame slot `slot`: nothing selected until recordSelect.
   void beginFrame(uint32_t slot);
-  // The coverage pass; barriers included.
-  void recordCoverage(const passes::FrameContext& fc) const;
+  // The coverage pass (with `classify`, the classifier's pixel counts too); barriers included.
+  void recordCoverage(const passes::FrameContext& fc, bool classify) const;
   // The select pass for `slot`: with a budgeted policy the GPU selection within T less the
   // learned overhead (and the copies its stats need), else none / all; then the tile list,
   // ready for the trace passes' indirect dispatch.
