@@ -35,7 +35,7 @@ TEST(CostModel, TimeScaleStartsAtThePriorAndMovesPartWayTowardsWhatWasMeasured) 
   EXPECT_EQ(k.learned(CostUnit::Work), 0.0);
   EXPECT_EQ(k.fixedMs(), 0.0);
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::PaperCost), 1e-4 * 640 * 360);
-  // Predicted 2 ms of work, measured 3: 30% of the way to 1.5x (one frame: no line to fit).
+  // Predicted 2 ms of work, measured 3 (no fixed cost known): 30% of the way to 1.5x.
   k.learn(CostUnit::Work, {prior, 2.0 / prior, 3.0, 0.4, false});
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), prior * (0.7 + 0.3 * 1.5));
   EXPECT_DOUBLE_EQ(k.overheadMs(), 0.4);

@@ -35,7 +35,8 @@ class GpuSelector {
   // selection out (uint per object, written here), K/Q/I with S updated for the next frame.
   void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs);
   // Records, into the frame's command buffer, the selection among the objects' candidates
-  // with costs kappa * work (the paper's C for `paper`, pixels * Q otherwise). Afterwards
+  // with costs kappa * work (cost_model.h: the paper's C for `paper`, else pixels times the
+  // learned work per pixel). Afterwards
   // resultBuffer() holds uvec4(candidates, predicted cost bits, value bits, selected) and
   // uvec4(objects whose selection changed, the candidates' total cost in 2^-20 budget
   // units (lo, hi), 1 when the selection needed the sort).
