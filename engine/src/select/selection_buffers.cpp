@@ -18,15 +18,16 @@ std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene, float 
   return params;
 }
 
-SelectionBuffers createSelectionBuffers(const vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height, float maxRoughness) {
+SelectionBuffers createSelectionBuffers(const vk::Context& ctx, uint32_t objects, const std::vector<gpu::GpuObjectParams>& params,
+                                        uint32_t width, uint32_t height) {
   constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   constexpr VkBufferUsageFlags kCopy = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   SelectionBuffers b;
-  b.objects = uint32_t(scene.objects.size());
+  b.objects = objects;
   b.tiles = ((width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((height + RB_TILE_SIZE - 1) / RB_TILE_SIZE);
   const VkDeviceSize records = std::max<VkDeviceSize>(1, b.objects);
   b.coverage = vk::createBuffer(ctx, records * sizeof(gpu::GpuCoverage), kStorage | kCopy, false);
-  b.objectParams = vk::createDeviceBuffer(ctx, initialObjectParams(scene, maxRoughness), kStorage | kCopy);
+  b.objectParams = vk::createDeviceBuffer(ctx, params, kStorage | kCopy);
   b.objectRecords = vk::createBuffer(ctx, records * sizeof(gpu::GpuObjectRecord), kStorage | kCopy, false);
   b.selection = vk::createBuffer(ctx, records * sizeof(uint32_t), kStorage | kCopy, false);
   b.objectCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuObjectCost>(records), kStorage | kCopy);

@@ -23,11 +23,13 @@ struct SelectionBuffers {
   vk::Buffer tileList;       // uvec4 dispatch (x = tiles, w = rays traced), then the tiles to trace
 };
 
+// Each object's K, Q, I (its glTF extras or the defaults) and S = 0, as the selection starts;
 // `maxRoughness`: the reflections' roughness cut-off, which the derived Q counts.
-SelectionBuffers createSelectionBuffers(const vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height, float maxRoughness);
-
-// Each object's K, Q, I (its glTF extras or the defaults) and S = 0, as the selection starts.
 std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene, float maxRoughness);
+
+// Buffers for `objects` objects whose K/Q/I/S start as `params` (initialObjectParams).
+SelectionBuffers createSelectionBuffers(const vk::Context& ctx, uint32_t objects, const std::vector<gpu::GpuObjectParams>& params,
+                                        uint32_t width, uint32_t height);
 
 // Records the reset of what the selection learned: K/Q/I/S to `params`, no learned costs.
 void recordSelectionReset(VkCommandBuffer cmd, const SelectionBuffers& buffers, const std::vector<gpu::GpuObjectParams>& params);

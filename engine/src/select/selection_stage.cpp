@@ -60,8 +60,8 @@ struct SelectionStage::Impl {
   };
 
   const vk::Context& ctx;
+  std::vector<gpu::GpuObjectParams> initialParams;  // K/Q/I as the selection starts (and restarts)
   SelectionBuffers buffers;
-  std::vector<gpu::GpuObjectParams> initialParams;
   CoveragePass coverage;
   SelectPass selectPass;
   // The GPU selection, built for the first budgeted policy (it needs subgroup shuffle and
@@ -72,8 +72,8 @@ struct SelectionStage::Impl {
 
   Impl(const vk::Context& c, VkPipelineLayout layout, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight)
       : ctx(c),
-        buffers(createSelectionBuffers(c, scene, s.width, s.height, s.rayTracing.maxRoughness)),
         initialParams(initialObjectParams(scene, s.rayTracing.maxRoughness)),
+        buffers(createSelectionBuffers(c, uint32_t(scene.objects.size()), initialParams, s.width, s.height)),
         coverage(c, layout),
         selectPass(c, layout),
         timeScale(s.width, s.height),
@@ -113,8 +113,7 @@ struct SelectionStage::Impl {
     if (slot.budgeted) {
       const bool check = s.checkSelection;
       if (check) {  // what the cost model starts from
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                          VK_ACCESS_2_TRANSFER_READ_BIT);
+        readToTransfer(cmd);
         copyWhole(cmd, buffers.objectCosts.buffer, slot.costsBefore);
         copyWhole(cmd, buffers.objectRecords.buffer, slot.records);
         copyWhole(cmd, buffers.objectParams.buffer, slot.params);
