@@ -26,11 +26,11 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BENCH_SCENES = ROOT.parent / "shared" / "scenes" / "bench"
 GENERATED = [ROOT / "data" / "default" / "court.gltf", ROOT / "data" / "plaza" / "plaza.gltf"]
-POLICIES = ["paper", "density", "nearest", "random"]
+POLICIES = ["paper", "density", "nearest", "random", "benefit"]
 FRACTIONS = [0.10, 0.25, 0.50]  # of `all`'s stage cost
 ADHERENCE_SLACK = 1.05          # the promise: rt_stage_ms <= T + 5%
-COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "none": "black",
-          "all": "tab:red", "oracle": "tab:gray"}
+COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "benefit": "tab:brown",
+          "none": "black", "all": "tab:red", "classified": "tab:olive", "oracle": "tab:gray"}
 
 
 def parse_args(argv):
@@ -377,6 +377,20 @@ def headline(points, summary, oracle, calibration, policies):
             figures["recovered"].setdefault(p, {})[f"{f:.2f}"] = list(s)
             cells.append(fmt_spread(s, 3) + (f", {s[0] / o:.0%} of oracle" if o and not math.isnan(o) and o > 0 else ""))
         lines.append(f"| {f:.0%} | {o:.3f} | " + " | ".join(cells) + " |")
+    # 1b. The classifier alone: every item traced, shadow rays only where the map is uncertain.
+    if any(p["policy"] == "classified" for p in points):
+        lines.append("\n### `classified`: every item traced, shadow rays only where the shadow map is uncertain "
+                     "(median over cases; range over repeats)\n")
+        lines.append("| stage cost / full RT's | error recovered |")
+        lines.append("|---|---|")
+        cost, rec = [], []
+        for r in cases.repeats:
+            per_case = [(q["rt_stage_ms"] / cases.full_cost(c), recovered(q["flip"], cases.none_flip(c, r), cases.all_flip(c, r)))
+                        for c in cases.list for q in cases.of(c, "classified") if q["repeat"] == r]
+            cost.append(median([x for x, _ in per_case]))
+            rec.append(median([y for _, y in per_case]))
+        figures["classified"] = {"cost": list(spread(cost)), "recovered": list(spread(rec))}
+        lines.append(f"| {fmt_spread(spread(cost), 3)} | {fmt_spread(spread(rec), 3)} |")
     # 2. Equal error.
     lines.append("\n### Speed-up over full RT at half of the fallback's error (median over cases, not reached = 1.0x; "
                  "range over repeats)\n")
@@ -533,7 +547,7 @@ def plots(out_dir, summary, oracle, policies):
                     xerr = [[s["rt_stage_ms"] - s["rt_stage_ms_min"] for s in pts], [s["rt_stage_ms_max"] - s["rt_stage_ms"] for s in pts]]
                     yerr = [[s["flip"] - s["flip_min"] for s in pts], [s["flip_max"] - s["flip"] for s in pts]]
                     ax.errorbar(x, y, xerr=xerr, yerr=yerr, fmt="o-", color=COLORS.get(p), label=p, ms=4, capsize=2)
-            for p in ("none", "all"):
+            for p in ("none", "all", "classified"):
                 s = next((s for s in rows if s["policy"] == p), None)
                 if s:
                     ax.plot([max(s["rt_stage_ms"], 1e-2)], [s["flip"]], "s", color=COLORS[p], label=p, ms=7)

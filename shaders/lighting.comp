@@ -1,14 +1,21 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "include/bindings.glsl"
 #include "include/brdf.glsl"
+#include "include/display.glsl"
 #include "include/gbuffer.glsl"
+#include "include/item_stats.glsl"
 #include "include/shadows.glsl"
 
 // Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
 // ray-traced shadow mask where traced, else the shadow maps), emissive, and diffuse ambient
 // from the environment. Background pixels get
-// the sky. Writes directImage.
+// the sky. Writes directImage. With RB_RT_MEASURE_ITEMS, where shadows were traced it also
+// lights the pixel with the shadow maps and adds the display-space difference (with the
+// environment fallback's indirect term, written before) to the object's shadow item.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 // glTF KHR_lights_punctual range falloff: smooth window to zero at `range`.
@@ -36,18 +43,18 @@ void main() {
   vec3 N = s.normal;
   vec3 color = s.emissive;
   // Ray-traced visibility replaces the shadow maps where the shadow pass traced: pixels of
-  // selected objects.
-  bool rtShadows = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && pixelSelected(s.objectId);
+  // objects whose shadow item is selected.
+  bool rtShadows = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && itemSelected(s.objectId, RB_ITEM_SHADOWS);
+  bool measure = rtShadows && measuringItems();
+  vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
     uint type = uint(light.directionType.w);
     vec3 L;
     float attenuation = 1.0;
-    float visibility;
     if (type == RB_LIGHT_DIRECTIONAL) {
       L = -light.directionType.xyz;
       if (dot(N, L) <= 0.0) continue;
-      visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : shadowFromMap(light, s.position, N);
     } else {
       vec3 toLight = light.positionRange.xyz - s.position;
       float d = length(toLight);
@@ -59,16 +66,21 @@ void main() {
         float t = clamp((cd - light.spotShadow.y) / max(light.spotShadow.x - light.spotShadow.y, 1e-4), 0.0, 1.0);
         attenuation *= t * t;
         if (attenuation <= 0.0) continue;
-        visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : shadowFromMap(light, s.position, N);
-      } else {
-        visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : shadowFromCube(light, s.position, N);
       }
     }
-    color += shadePbr(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.ior) * light.colorIntensity.rgb * attenuation *
-             visibility;
+    float mapped = rtShadows && !measure ? 1.0 : shadowFromLight(light, s.position, N);
+    float visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : mapped;
+    vec3 unshadowed = shadePbr(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.ior) * light.colorIntensity.rgb * attenuation;
+    color += unshadowed * visibility;
+    fallbackColor += unshadowed * mapped;
   }
   // Diffuse ambient: the roughest prefiltered level approximates irradiance / pi.
-  vec3 ambient = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb;
-  color += ambient * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission);
+  vec3 ambient = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission);
+  color += ambient;
   imageStore(directImage, pixel, vec4(color, 1.0));
+  if (measuringItems()) {
+    vec3 indirect = imageLoad(indirectImage, pixel).rgb;
+    float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
+    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), vec3(error, 0.0, 0.0));
+  }
 }

@@ -5,6 +5,9 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
+#include "include/display.glsl"
+#include "include/env_fallback.glsl"
+#include "include/item_stats.glsl"
 
 // Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to the
 // frame's cut-off, RayTracingSettings::maxRoughness) trace a closest-hit reflection ray, shaded with direct light (and
@@ -12,13 +15,14 @@
 // bounces along mirrors. Transmissive surfaces trace through: thin walls (no volume)
 // straight on; volumes refract in (Snell, glTF IOR), travel to the exit with Beer-Lambert
 // attenuation (KHR_materials_volume), reflect internally on total internal reflection and
-// refract out. Fresnel splits reflection and transmission. Replaces the environment
-// fallback's result in indirectImage for the pixels it traces.
+// refract out. Fresnel splits reflection and transmission. Each path is traced where its
+// item (the object's reflections, its refractions) is selected, the other keeps the
+// environment fallback (include/env_fallback.glsl); replaces the fallback's result in
+// indirectImage for the pixels it traces. With RB_RT_MEASURE_ITEMS each traced path adds its
+// work and the display-space difference it made against the fallback to its item.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
-
-vec3 prefiltered(vec3 dir, float roughness) { return textureLod(envMap, dir, roughness * float(RB_ENV_MIPS - 1)).rgb; }
 
 // Closest hit along the ray, alpha masks respected.
 bool traceClosest(vec3 origin, vec3 dir, out RayQuery q, inout uint work) {
@@ -115,8 +119,8 @@ void main() {
   if (!readSurface(pixel, s) || s.unlit || !pixelSelected(s.objectId)) return;
   uint effects = frame.rayTracing.x;
   float transmission = s.transmission * (1.0 - s.metallic);
-  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness();
-  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0;
+  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() && itemSelected(s.objectId, RB_ITEM_REFLECTIONS);
+  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0 && itemSelected(s.objectId, RB_ITEM_REFRACTIONS);
   if (!reflects && !refracts) return;  // the environment fallback stands
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
@@ -127,28 +131,33 @@ void main() {
   vec3 f0 = mix(vec3(f0FromIor(s.ior)), s.baseColor, s.metallic);
   vec3 specularWeight = envBrdfApprox(f0, s.roughness, NoV);
   uint depth = clamp(frame.rayTracing.y, 1u, uint(RB_RT_MAX_DEPTH));
-  uint work = 0u;
   vec3 R = reflect(-V, N);
   if (dot(R, ng) < 0.0) R = reflect(R, ng);  // a normal map tilted the mirror ray below the surface
   vec3 transmitWeight = s.baseColor * transmission * (vec3(1.0) - specularWeight);
+  // The fallback's paths, as the env_fallback pass computed them.
+  vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
+  vec3 fallback[2] = vec3[2](envReflection(s, rasterV), envTransmission(s, rasterV));
   // Path 0 reflects, path 1 transmits; one traceRadiance call site keeps the shader (and
   // its compile time on lavapipe) half the size.
-  vec3 color = vec3(0.0);
+  vec3 color[2] = fallback;
+  uint work[2] = uint[2](0u, 0u);
   for (int path = 0; path < 2; ++path) {
-    bool traced = path == 0 ? reflects : refracts;
-    if (path == 1 && transmission <= 0.0) break;
-    if (!traced) {
-      color += path == 0 ? prefiltered(R, s.roughness) * specularWeight : prefiltered(-V, s.roughness) * transmitWeight;
-      continue;
-    }
+    if (!(path == 0 ? reflects : refracts)) continue;
     vec3 origin = offsetRay(p, ng), dir = R, weight = specularWeight;
+    color[path] = vec3(0.0);
     if (path == 1) {
       vec3 absorbed;
-      if (!transmittedRay(p, ng, V, N, s.ior, s.materialId, origin, dir, absorbed, work)) continue;
+      if (!transmittedRay(p, ng, V, N, s.ior, s.materialId, origin, dir, absorbed, work[path])) continue;
       weight = transmitWeight * absorbed;
     }
-    color += traceRadiance(origin, dir, depth, work) * weight;
+    color[path] = traceRadiance(origin, dir, depth, work[path]) * weight;
   }
-  imageStore(indirectImage, pixel, vec4(color, 1.0));
-  addObjectWork(s.objectId, work);
+  imageStore(indirectImage, pixel, vec4(color[0] + color[1], 1.0));
+  addObjectWork(s.objectId, work[0] + work[1]);
+  if (measuringItems()) {
+    vec3 direct = imageLoad(directImage, pixel).rgb, untraced = direct + fallback[0] + fallback[1];
+    float reflectionError = reflects ? displayError(direct + color[0] + fallback[1], untraced) : 0.0;
+    float refractionError = refracts ? displayError(direct + fallback[0] + color[1], untraced) : 0.0;
+    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), vec3(0.0, reflectionError, refractionError));
+  }
 }

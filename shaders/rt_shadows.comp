@@ -5,27 +5,38 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
+#include "include/item_stats.glsl"
+#include "include/shadows.glsl"
 
 // Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
-// the geometric normal), alpha masks respected. Writes each light's visibility into its
-// layer of the shadow mask, which the lighting pass uses instead of the shadow maps.
+// the geometric normal), alpha masks respected, for the pixels of objects whose shadow item
+// is selected. With RB_RT_CLASSIFY_SHADOWS a light whose shadow map is certain at the pixel
+// (include/shadows.glsl's classifier) keeps the map's visibility and traces no ray. Writes
+// each light's visibility into its layer of the shadow mask, which the lighting pass uses
+// instead of the shadow maps.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {
   ivec2 pixel = tilePixel();
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit || !pixelSelected(s.objectId)) return;  // the lighting pass reads no mask there
+  if (!readSurface(pixel, s) || s.unlit || !itemSelected(s.objectId, RB_ITEM_SHADOWS)) return;  // the lighting pass reads no mask there
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
   vec3 origin = offsetRay(p, ng);
+  bool classify = (frame.rayTracing.w & RB_RT_CLASSIFY_SHADOWS) != 0u;
   uint work = 0u;
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
     float dist, scale;
     float visible = 0.0;
-    if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) visible = traceVisibility(origin, L, dist, work);
+    if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) {
+      float mapped;
+      if (classify && shadowMapCertain(lights[i], s.position, s.normal, frame.exposure.y, mapped)) visible = mapped;
+      else visible = traceVisibility(origin, L, dist, work);
+    }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }
   addObjectWork(s.objectId, work);
+  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), vec3(0.0));
 }

@@ -51,9 +51,9 @@ def main(raybudget, out):
     by_policy = {}
     for r in rows:
         by_policy.setdefault(r["policy"], []).append(r)
-    if sorted(by_policy) != ["all", "density", "none", "random"]:
+    if sorted(by_policy) != ["all", "classified", "density", "none", "random"]:
         fail(f"policies in frames.csv: {sorted(by_policy)}")
-    if len(by_policy["all"]) != 2 * 3 or len(by_policy["none"]) != 2 * 3 or len(by_policy["density"]) != 2 * 2 * 3:
+    if any(len(by_policy[p]) != 2 * 3 for p in ("all", "none", "classified")) or len(by_policy["density"]) != 2 * 2 * 3:
         fail("expected 3 frames per configuration, 2 budgets, 2 repeats: " + str({k: len(v) for k, v in by_policy.items()}))
     for r in rows:
         if not r["image"] or not (out / r["image"]).is_file():
@@ -72,6 +72,9 @@ def main(raybudget, out):
     for r in by_policy["none"]:
         if float(r["rt_stage_ms"]) != 0.0 or not r["shadow_maps_ms"]:
             fail(f"`none` runs no ray-tracing stage and keeps the shadow maps: {r}")
+    classified_rays, all_rays = (sum(int(r["rays"]) for r in by_policy[p]) for p in ("classified", "all"))
+    if not 0 < classified_rays < all_rays or not all(r["shadow_maps_ms"] for r in by_policy["classified"]):
+        fail(f"`classified` keeps the shadow maps and traces shadow rays only where they are uncertain: {classified_rays} rays, all {all_rays}")
     none_flip = sum(float(r["flip"]) for r in by_policy["none"]) / 6
     none_rmse = sum(float(r["rmse"]) for r in by_policy["none"]) / 6
     if not (none_flip > 0.0 and none_rmse > 0.0):
@@ -81,8 +84,8 @@ def main(raybudget, out):
             fail(f"density row without a budget or above the optimal bound: {r}")
     with open(out / "summary.csv") as f:
         summary = list(csv.DictReader(f))
-    if len(summary) != 2 + 2 * 2:
-        fail(f"summary.csv has {len(summary)} rows, expected 6 (all, none, 2 policies x 2 budgets)")
+    if len(summary) != 3 + 2 * 2:
+        fail(f"summary.csv has {len(summary)} rows, expected 7 (all, none, classified, 2 policies x 2 budgets)")
     if any(int(r["repeats"]) != 2 for r in summary):
         fail("every summary row should come from both repeats")
     with open(out / "oracle.csv") as f:
@@ -105,7 +108,7 @@ def sweep_selections(raybudget, scene, out, *args):
     if run.returncode != 0:
         fail(f"{' '.join(cmd)} exited {run.returncode}: {run.stdout[-2000:]} {run.stderr[-2000:]}")
     with open(out / "frames.csv") as f:
-        rows = [r for r in csv.DictReader(f) if r["policy"] not in ("all", "none")]
+        rows = [r for r in csv.DictReader(f) if r["policy"] not in ("all", "none", "classified")]
     return {(r["policy"], r["budget_ms"], r["repeat"], r["frame"]): [r[k] for k in SELECTION] for r in rows}, rows
 
 

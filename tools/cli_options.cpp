@@ -34,6 +34,10 @@ render options:
                         none (all raster fallbacks, the default), all (the full-RT
                         reference), or within --budget-ms: paper (the paper's selection
                         graph), density (relevance per predicted cost), nearest, random
+                        (per object), or benefit (per item: an object's shadows,
+                        reflections, refractions, by the display error its tracing removes
+                        per predicted cost); classified traces every item, shadows only
+                        where the shadow map is uncertain
   --budget-ms T         the ray-tracing stage's time budget in milliseconds: coverage,
                         select and the trace passes (default 4)
   --seed S              the random policy's seed (default 1)
@@ -43,6 +47,12 @@ render options:
   --depth D             reflection/refraction bounces, 1..4 (default 1)
   --max-roughness R     reflections are traced on surfaces up to this roughness, 0..1;
                         rougher ones keep the prefiltered environment (default 0.35)
+  --shadow-uncertainty X
+                        benefit and classified: shadow rays only where the shadow map is
+                        uncertain, its PCF result between lit and shadowed or its depth tests
+                        X texels around disagreeing, 0..64 (default 2; 0: PCF alone)
+  --no-shadow-classifier
+                        benefit and classified: every pixel of a traced shadow item traces
   --tracer compute|native
                         compute: our BVH in compute shaders (default); native: the device's
                         VK_KHR_ray_query with Vulkan acceleration structures
@@ -134,6 +144,8 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       else throw Error("--bvh-splits must be auto, always or never, got '" + t + "'");
     } else if (a == "--depth") c.settings.rayTracing.depth = parseUint(a, value(), 1, 4);
     else if (a == "--max-roughness") c.settings.rayTracing.maxRoughness = parseWithin(a, value(), 0.0f, 1.0f);
+    else if (a == "--shadow-uncertainty") c.settings.rayTracing.shadowUncertaintyTexels = parseWithin(a, value(), 0.0f, 64.0f);
+    else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;

@@ -28,7 +28,9 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --repeats N           runs of every configuration, each imaged (default 3)
   --order-seed S        shuffles each repeat's configurations (default 1; 0: all, none, budgets ascending)
   --prior-time-scale    never learn the cost model's time scale: selections independent of timing
-  --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random)
+  --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random,benefit)
+  --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
+                        which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
   --device NAME, --validation
 )";
@@ -240,11 +242,13 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       c.budgetList.clear();
       for (const std::string& b : splitList(value())) c.budgetList.push_back(parsePositive(a, b));
       if (c.budgetList.empty()) throw Error("--budget-list needs at least one budget");
+    } else if (a == "--no-classified") {
+      c.classified = false;
     } else if (a == "--policies") {
       c.policies.clear();
       for (const std::string& p : splitList(value())) {
         const Policy policy = parsePolicy(p);
-        if (!isBudgeted(policy)) throw Error("--policies takes budgeted policies (paper, density, nearest, random), got '" + p + "'");
+        if (!isBudgeted(policy)) throw Error("--policies takes budgeted policies (paper, density, nearest, random, benefit), got '" + p + "'");
         c.policies.push_back(policy);
       }
       if (c.policies.empty()) throw Error("--policies needs at least one policy");
@@ -283,7 +287,7 @@ int runSweep(const SweepCommand& c) {
   const bool work = std::any_of(c.policies.begin(), c.policies.end(), [](Policy p) { return p != Policy::Paper; });
   const uint32_t budgets = c.budgetList.empty() ? c.budgets : uint32_t(c.budgetList.size());
   const uint32_t calibrationRuns = c.budgetList.empty() ? 2 + 1 + 2 * (uint32_t(paper) + uint32_t(work)) : 1;
-  const uint64_t perPath = uint64_t(c.frames + c.warmup) * (calibrationRuns + uint64_t(c.repeats) * (2 + c.policies.size() * budgets));
+  const uint64_t perPath = uint64_t(c.frames + c.warmup) * (calibrationRuns + uint64_t(c.repeats) * (2 + uint64_t(c.classified) + c.policies.size() * budgets));
   Sweep sweep(c, scene, renderer, csv, perPath * c.paths.size());
   std::cout << "sweep " << c.scene << ": " << scene.objects.size() << " objects, device " << renderer.deviceName() << '\n';
   const Camera start = pathStartCamera(scene, renderer.aspect());
@@ -330,6 +334,7 @@ int runSweep(const SweepCommand& c) {
     // The repeats: every configuration once per repeat, `all` and `none` among them, in an
     // order shuffled per repeat (or the canonical one with --order-seed 0).
     std::vector<Config> configs{{Policy::All}, {Policy::None}};
+    if (c.classified) configs.push_back({Policy::Classified});
     for (uint32_t b = 0; b < points.size(); ++b)
       for (const Policy p : c.policies) configs.push_back({p, b, points[b]});
     for (uint32_t r = 0; r < c.repeats; ++r) {

@@ -27,7 +27,8 @@ struct SweepCommand {
   uint32_t orderSeed = 1;  // shuffles each repeat's configurations; 0: all, none, then budgets ascending
   std::vector<float> budgetList;  // explicit budgets in ms instead of the calibrated sweep
   bool priorTimeScale = false;    // never learn the time scale: selections independent of timing (tests)
-  std::vector<Policy> policies{Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random};
+  std::vector<Policy> policies{Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random, Policy::Benefit};
+  bool classified = true;  // run `classified` beside all and none
   std::vector<std::string> paths{"orbit", "flythrough"};
   std::string device;
   bool validation = false;

@@ -32,16 +32,19 @@
 
 namespace raybudget {
 
-const char* policyName(Policy policy) { return select::policyName(select::toSelectPolicy(policy)); }
+const char* policyName(Policy policy) {
+  return policy == Policy::Classified ? "classified" : select::policyName(select::toSelectPolicy(policy));
+}
 
 Policy parsePolicy(const std::string& name) {
+  if (name == "classified") return Policy::Classified;
   const select::Policy p = select::parsePolicy(name);
-  for (Policy q : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random})
+  for (Policy q : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random, Policy::Benefit})
     if (select::toSelectPolicy(q) == p) return q;
   throw Error("the optimal policy runs on the CPU for benchmarks only; render with another and --optimal-bound for its bound");
 }
 
-bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All; }
+bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All && policy != Policy::Classified; }
 const char* tracerName(Tracer tracer) { return tracer == Tracer::Native ? "native" : "compute"; }
 
 const char* passName(Pass pass) {
@@ -53,8 +56,8 @@ const char* passName(Pass pass) {
     case Pass::Environment: return "environment";
     case Pass::TraceShadows: return "trace_shadows";
     case Pass::TraceEffects: return "trace_effects";
-    case Pass::Lighting: return "lighting";
     case Pass::EnvFallback: return "env_fallback";
+    case Pass::Lighting: return "lighting";
     case Pass::Compose: return "compose";
     case Pass::Count: break;
   }
@@ -90,6 +93,10 @@ void validateSettings(const RenderSettings& s) {
   if (s.graphPointers > 64) throw Error("the paper's graph takes at most 64 relevance pointers per node");
   if (!std::isfinite(s.rayTracing.maxRoughness) || s.rayTracing.maxRoughness < 0.0f || s.rayTracing.maxRoughness > 1.0f)
     throw Error("the ray-tracing roughness cut-off (maxRoughness) must be within 0..1, got " + std::to_string(s.rayTracing.maxRoughness));
+  if (!std::isfinite(s.rayTracing.shadowUncertaintyTexels) || s.rayTracing.shadowUncertaintyTexels < 0.0f ||
+      s.rayTracing.shadowUncertaintyTexels > 64.0f)
+    throw Error("the shadow-map uncertainty reach (shadowUncertaintyTexels) must be within 0..64 texels, got " +
+                std::to_string(s.rayTracing.shadowUncertaintyTexels));
   if (s.rayTracing.depth < 1 || s.rayTracing.depth > RB_RT_MAX_DEPTH)
     throw Error("ray-tracing depth must be within 1.." + std::to_string(RB_RT_MAX_DEPTH));
 }
@@ -250,8 +257,8 @@ struct Renderer::Impl {
     u.cameraPositionNear = glm::vec4(camera.position, camera.znear);
     u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
     u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
-    u.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
-    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness), 0u);
+    u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, 0.0f, 0.0f);
+    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness), itemFlags());
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 
@@ -260,6 +267,14 @@ struct Renderer::Impl {
     if (settings.policy == Policy::None) return 0u;
     const RayTracingSettings& rt = settings.rayTracing;
     return (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
+  }
+
+  // RB_RT_CLASSIFY_SHADOWS / RB_RT_MEASURE_ITEMS for the item-aware policies: the shadow pass
+  // traces only where the shadow map is uncertain, and the trace and lighting passes count each
+  // item's work and the display error its tracing removed.
+  uint32_t itemFlags() const {
+    if (settings.policy != Policy::Benefit && settings.policy != Policy::Classified) return 0u;
+    return (settings.rayTracing.classifyShadows ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS;
   }
 
   void computeToCompute(VkCommandBuffer cmd) {
@@ -353,8 +368,9 @@ struct Renderer::Impl {
     const uint32_t traced = tracedEffects();
     selection.beginFrame(s);
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
-    // The classifier's counts have no consumer in the selection yet: only objectMetrics reads them.
-    if (settings.objectMetrics || traced) timed(Pass::Coverage, [&] { selection.recordCoverage(fc, settings.objectMetrics); });
+    // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
+    const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
+    if (settings.objectMetrics || traced) timed(Pass::Coverage, [&] { selection.recordCoverage(fc, classify); });
     if (traced) {
       computeToCompute(cmd);
       timed(Pass::Select, [&] { selection.recordSelect(fc, s, settings); });
@@ -370,8 +386,11 @@ struct Renderer::Impl {
       timed(Pass::TraceShadows, [&] { traceShadows.recordOverTiles(fc); });
       computeToCompute(cmd);
     }
-    timed(Pass::Lighting, [&] { lighting.record(fc); });
+    // The environment fallback first: the lighting pass reads it to measure the display error
+    // of the traced shadows (RB_RT_MEASURE_ITEMS).
     timed(Pass::EnvFallback, [&] { envFallback.record(fc); });
+    computeToCompute(cmd);
+    timed(Pass::Lighting, [&] { lighting.record(fc); });
     if (traced & (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS)) {
       computeToCompute(cmd);
       timed(Pass::TraceEffects, [&] { traceEffects.recordOverTiles(fc); });

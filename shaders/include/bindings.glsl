@@ -63,6 +63,8 @@ layout(set = 0, binding = 34, std430) buffer TileListBlock {
 layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost objectCosts[]; };
 // Per tile, RB_TILE_OBJECT_WORDS words: the objects it shows (shared/config.h).
 layout(set = 0, binding = 36, std430) buffer TileObjectBlock { uint tileObjects[]; };
+// Per item (object * RB_ITEMS_PER_OBJECT + effect): what `benefit` learns (shared/selection.h).
+layout(set = 0, binding = 37, std430) buffer ItemCostBlock { GpuItemCost itemCosts[]; };
 
 // The 8x8 tile of a pass with one invocation per tile (coverage, tile list): its pixels
 // [first, last); false past the last tile.
@@ -74,7 +76,10 @@ bool screenTile(uint t, out uvec2 first, out uvec2 last) {
   return t < tilesX * tilesY;
 }
 
-// Whether the pixel's object was selected for ray tracing this frame.
+// Whether the pixel's object has any item selected for ray tracing this frame.
 bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && selected[objectId] != 0u; }
+// Whether its item `effect` (RB_ITEM_*) is selected.
+bool itemSelected(uint objectId, uint effect) { return objectId != RB_NO_OBJECT && (selected[objectId] & (1u << effect)) != 0u; }
+bool measuringItems() { return (frame.rayTracing.w & RB_RT_MEASURE_ITEMS) != 0u; }
 
 #endif

@@ -28,6 +28,10 @@ layout(set = 0, binding = 11, std430) buffer SlotBlock { uint slotOf[]; };
 // The greedy policies' order as the walk reads it (select_gather.comp): per position the
 // candidate's cost and value (float bits), slot and ID.
 layout(set = 0, binding = 13, std430) buffer WalkOrderBlock { uvec4 walkOrder[]; };
+// Frame mode, `benefit`: the coverage pass's per-object counts (the classifier's pixels per
+// effect) and what each item learned (shared/selection.h).
+layout(set = 0, binding = 14, std430) readonly buffer CoverageBlock { GpuCoverage coverage[]; };
+layout(set = 0, binding = 15, std430) buffer ItemBlock { GpuItemCost items[]; };
 
 layout(push_constant) uniform SelectPushBlock { SelectPush push; };
 
@@ -78,11 +82,29 @@ uint candidateAt(uint word) { return push.walk.y != 0u ? slotOf[word] : word; }
 // midpoint between floats, and 2.5 double ULP is under 2^-51.
 float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 
+// `benefit`: the pixels item `effect` of object i covers this frame (0: nothing to trace):
+// shadows every pixel of the object (the shadow pass classifies per light), reflections and
+// refractions the classifier's counts; none for an effect the frame does not trace or a
+// scene without lights. cost_model.cpp's itemPixels is the CPU reference.
+uint itemPixels(uint i, uint effect) {
+  if ((push.items.x & (1u << effect)) == 0u) return 0u;
+  if (effect == RB_ITEM_SHADOWS) return push.items.y > 0u ? floatBitsToUint(records[i].crCandidatePixels.w) : 0u;
+  return effect == RB_ITEM_REFLECTIONS ? coverage[i].sumYHi.y : coverage[i].sumYHi.z;
+}
+
+// The frame's selection: marks candidate `id` selected (an object: all its items; an item of
+// `benefit`: its bit, lanes may mark items of one object at once), or clears its object.
+void markSelected(uint id) {
+  if (push.sizes.z == RB_SELECT_BENEFIT) atomicOr(selected[id / RB_ITEMS_PER_OBJECT], 1u << (id % RB_ITEMS_PER_OBJECT));
+  else selected[id] = RB_ITEMS_ALL;
+}
+void clearSelected(uint id) { selected[push.sizes.z == RB_SELECT_BENEFIT ? id / RB_ITEMS_PER_OBJECT : id] = 0u; }
+
 uvec2 candidateKey(uint i, uint which) {
   if (i >= candidateCount()) return uvec2(0xFFFFFFFFu);
   GpuCandidate c = candidates[i];
   uint place = push.walk.y != 0u ? c.id : i, policy = push.sizes.z;
-  if (policy == RB_SELECT_DENSITY) {
+  if (policy == RB_SELECT_DENSITY || policy == RB_SELECT_BENEFIT) {
     float density = c.cost > 0.0 ? exactQuotient(c.value, c.cost) : uintBitsToFloat(0x7F800000u);
     return uvec2(~orderedBits(density), place);
   }

@@ -7,8 +7,9 @@
 
 const vec2 kPcfOffsets[4] = vec2[4](vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(-0.5, 0.5), vec2(0.5, 0.5));
 
-// Directional and spot lights: one layer of the 2D array each.
-float shadowFromMap(GpuLight light, vec3 position, vec3 normal) {
+// Directional and spot lights: one layer of the 2D array each. `spread` scales the taps'
+// distance from the point (1: the PCF kernel, half a texel).
+float shadowFromMap(GpuLight light, vec3 position, vec3 normal, float spread) {
   float layer = light.spotShadow.z;
   if (layer < 0.0) return 1.0;
   bool spot = uint(light.directionType.w) == RB_LIGHT_SPOT;
@@ -20,14 +21,15 @@ float shadowFromMap(GpuLight light, vec3 position, vec3 normal) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || p.z > 1.0) return 1.0;
   vec2 texel = 1.0 / vec2(textureSize(shadowMaps, 0).xy);
   float sum = 0.0;
-  for (int i = 0; i < 4; ++i) sum += texture(shadowMaps, vec4(uv + kPcfOffsets[i] * texel, layer, p.z));
+  for (int i = 0; i < 4; ++i) sum += texture(shadowMaps, vec4(uv + kPcfOffsets[i] * texel * spread, layer, p.z));
   return sum * 0.25;
 }
+float shadowFromMap(GpuLight light, vec3 position, vec3 normal) { return shadowFromMap(light, position, normal, 1.0); }
 
 // Point lights: one cube (6 layers) of the cube array each. The reference depth is what the
 // face's 90-degree perspective projection wrote for this point: it depends only on the
 // largest axis of the light-to-point vector.
-float shadowFromCube(GpuLight light, vec3 position, vec3 normal) {
+float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spreadScale) {
   float cube = light.spotShadow.z;
   if (cube < 0.0) return 1.0;
   float distanceToLight = length(position - light.positionRange.xyz);
@@ -39,10 +41,30 @@ float shadowFromCube(GpuLight light, vec3 position, vec3 normal) {
   vec3 dir = v / max(length(v), 1e-12);
   vec3 up = abs(dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0);
   vec3 t = normalize(cross(up, dir)), b = cross(dir, t);
-  float spread = light.shadowParams.x;  // one texel, in direction units
+  float spread = light.shadowParams.x * spreadScale;  // one texel, in direction units
   float sum = 0.0;
   for (int i = 0; i < 4; ++i) sum += texture(pointShadows, vec4(dir + (t * kPcfOffsets[i].x + b * kPcfOffsets[i].y) * spread, cube), ref);
   return sum * 0.25;
+}
+float shadowFromCube(GpuLight light, vec3 position, vec3 normal) { return shadowFromCube(light, position, normal, 1.0); }
+
+// The fallback's visibility of `light` at the point (the lighting pass's lookup).
+float shadowFromLight(GpuLight light, vec3 position, vec3 normal) {
+  return uint(light.directionType.w) == RB_LIGHT_POINT ? shadowFromCube(light, position, normal) : shadowFromMap(light, position, normal);
+}
+
+// The shadow classifier: whether the shadow map decides the point for certain, with its
+// visibility. Uncertain: the PCF result strictly between lit and shadowed (a shadow edge
+// within about a texel), or four depth tests `reach` texels away (diagonally) disagree with
+// it (an edge within the reach: where a map's resolution, bias or missing contact shadows
+// err), or the light has no map. reach 0 checks the PCF result alone.
+bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, float reach, out float visibility) {
+  visibility = shadowFromLight(light, position, normal);
+  if (light.spotShadow.z < 0.0 || (visibility > 0.0 && visibility < 1.0)) return false;
+  if (reach <= 0.0) return true;
+  bool point = uint(light.directionType.w) == RB_LIGHT_POINT;
+  float wide = point ? shadowFromCube(light, position, normal, 2.0 * reach) : shadowFromMap(light, position, normal, 2.0 * reach);
+  return wide == visibility;
 }
 
 #endif

@@ -5,41 +5,98 @@
 // objects keep the prior), and the counter restarts. Then every candidate object (visible,
 // something to trace, R > 0) becomes a selection candidate with its predicted cost, kappa
 // times its work: the paper's C for `paper`; for the other policies its pixels times its
-// work per pixel (Q times a prior per ray until measured).
+// work per pixel (Q times a prior per ray until measured). `benefit` makes each item of a
+// candidate object with pixels to trace a candidate instead, and each item first learns its
+// work per pixel and its benefit (below).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "include/select_common.glsl"
 
 layout(local_size_x = 64) in;
 
+// Appends a candidate and adds its cost to the candidates' total for allCandidatesFit
+// (select_common.glsl): in units of 2^-20 budget rounded up, one candidate at most 2^21
+// (anything above one budget fails anyway), summed per subgroup, then into 64 bits (lo, hi)
+// with an explicit carry. Every lane calls it (those with nothing to add with add = false).
+void append(bool add, uint id, float cost, float value, float distance) {
+  uint units = 0u;
+  if (add) {
+    uint slot = atomicAdd(result.x, 1u);
+    candidates[slot] = GpuCandidate(id, cost, value, distance);
+    slotOf[id] = slot;
+    float u = ceil(cost / push.budget.x * 1048576.0);
+    units = u <= 2097152.0 ? uint(u) : 2097152u;  // NaN compares false: the cap
+  }
+  uint sum = subgroupAdd(units);
+  if (subgroupElect()) {
+    uint old = atomicAdd(result2.y, sum);
+    if (old + sum < old) atomicAdd(result2.z, 1u);
+  }
+}
+
+// engine/src/select/cost_model.cpp is the CPU reference of these lines, equal bit for bit.
+float priorBenefit(uint effect) {
+  return effect == RB_ITEM_SHADOWS ? RB_PRIOR_BENEFIT_SHADOWS : (effect == RB_ITEM_REFLECTIONS ? RB_PRIOR_BENEFIT_REFLECTIONS : RB_PRIOR_BENEFIT_REFRACTIONS);
+}
+
+// Item `effect` of object i: learns from last frame's counters, restarts them, and returns
+// its candidate's cost and value (false: not a candidate).
+bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out float value) {
+  uint id = i * RB_ITEMS_PER_OBJECT + effect;
+  GpuItemCost c = items[id];
+  if (c.pixels > 0u) {  // traced last frame
+    if (c.work > 0u) {
+      float observed = exactQuotient(float(c.work), float(c.pixels));
+      c.workPerPixel = c.workPerPixel > 0.0 ? 0.5 * (c.workPerPixel + observed) : observed;
+    }
+    float removed = exactQuotient(float(c.error), float(c.pixels) * RB_ERROR_UNITS);
+    c.benefit = c.measured != 0u ? 0.5 * (c.benefit + removed) : removed;
+    c.measured = 1u;
+  } else {
+    // Untraced: drift towards the prior (by a power-of-two share: an exact product, so a
+    // fused multiply-add rounds alike), or the prior itself before any measurement.
+    float prior = priorBenefit(effect);
+    c.benefit = c.measured != 0u ? c.benefit + (prior - c.benefit) * RB_BENEFIT_DRIFT : prior;
+  }
+  items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u);
+  uint pixels = itemPixels(i, effect);
+  if (r.crCandidatePixels.z < 0.5 || pixels == 0u) return false;
+  // Rays per pixel before anything was measured: a shadow ray per light; a reflection or
+  // refraction path and the shadow rays of its hit (a refraction enters and leaves).
+  float rays = float(push.items.y) + (effect == RB_ITEM_SHADOWS ? 0.0 : float(effect));
+  float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : rays * float(RB_PRIOR_WORK_PER_RAY);
+  cost = push.budget.y * (float(pixels) * perPixel);
+  // R' = (S·I + E)·K with the hysteresis relative to E (docs/SELECTION.md): E·(1 + S·I)·K,
+  // E = A·P·b.
+  float A = exactQuotient(float(pixels), float(push.items.z));
+  float E = A * r.apdv.y * c.benefit;
+  vec4 kqiS = params[i].kqiS;
+  value = E * (1.0 + float(c.selectedLast) * kqiS.z) * kqiS.x;
+  return true;
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.walk.z) return;
   selected[i] = 0u;  // until the walk selects it
   GpuObjectCost oc = costs[i];
-  // engine/src/select/cost_model.cpp is the CPU reference of these lines, equal bit for bit.
   if (oc.pixels > 0u && oc.work > 0u) {
     float observed = exactQuotient(float(oc.work), float(oc.pixels));
     oc.workPerPixel = oc.workPerPixel > 0.0 ? 0.5 * (oc.workPerPixel + observed) : observed;
   }
   costs[i] = GpuObjectCost(oc.workPerPixel, 0u, 0u, 0u);
   GpuObjectRecord r = records[i];
-  if (r.crCandidatePixels.z < 0.5) return;
+  if (push.sizes.z == RB_SELECT_BENEFIT) {
+    for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
+      float cost = 0.0, value = 0.0;
+      bool add = itemCandidate(i, effect, r, cost, value);
+      append(add, i * RB_ITEMS_PER_OBJECT + effect, cost, value, r.apdv.z);
+    }
+    return;
+  }
   float pixels = float(floatBitsToUint(r.crCandidatePixels.w));
   float perPixel = oc.workPerPixel > 0.0 ? oc.workPerPixel : params[i].kqiS.y * float(RB_PRIOR_WORK_PER_RAY);
   float work = push.sizes.z == RB_SELECT_PAPER ? r.crCandidatePixels.x : pixels * perPixel;
-  float cost = push.budget.y * work;
-  uint slot = atomicAdd(result.x, 1u);
-  candidates[slot] = GpuCandidate(i, cost, r.crCandidatePixels.y, r.apdv.z);
-  slotOf[i] = slot;
-  // The candidates' total cost for allCandidatesFit (select_common.glsl): in units of
-  // 2^-20 budget rounded up, one lane at most 2^21 (anything above one budget fails anyway),
-  // summed per subgroup, then into 64 bits (lo, hi) with an explicit carry.
-  float u = ceil(cost / push.budget.x * 1048576.0);
-  uint units = u <= 2097152.0 ? uint(u) : 2097152u;  // NaN compares false: the cap
-  uint sum = subgroupAdd(units);
-  if (subgroupElect()) {
-    uint old = atomicAdd(result2.y, sum);
-    if (old + sum < old) atomicAdd(result2.z, 1u);
-  }
+  bool add = r.crCandidatePixels.z >= 0.5;
+  append(add, i, push.budget.y * work, r.crCandidatePixels.y, r.apdv.z);
 }

@@ -12,5 +12,5 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.objectMaterial.x) return;
   bool all = push.objectMaterial.y == 1u;
-  selected[i] = all && floatBitsToUint(objectRecords[i].crCandidatePixels.w) > 0u ? 1u : 0u;
+  selected[i] = all && floatBitsToUint(objectRecords[i].crCandidatePixels.w) > 0u ? RB_ITEMS_ALL : 0u;
 }

@@ -27,7 +27,7 @@ struct Picked {
 
 void mark(uint ci, uint id, bool on) {
   if (push.walk.y == 0u) selectedFlags[ci] = on ? 1u : 0u;
-  else if (on) selected[id] = 1u;
+  else if (on) markSelected(id);
 }
 void mark(uint ci, bool on) { mark(ci, candidates[ci].id, on); }
 
@@ -36,7 +36,7 @@ void mark(uint ci, bool on) { mark(ci, candidates[ci].id, on); }
 void clearAll(uint n) {
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
     if (push.walk.y == 0u) selectedFlags[ci] = 0u;
-    else selected[candidates[ci].id] = 0u;
+    else clearSelected(candidates[ci].id);
   }
   subgroupMemoryBarrierBuffer();
   subgroupBarrier();
@@ -64,7 +64,7 @@ bool betterSingle(GpuCandidate c, uint ci, Single b) {
 // that fits; the subgroup then picks the best of those.
 Picked selectGreedy(uint n, float budget) {
   Picked p = Picked(0.0, 0.0, 0u);
-  bool density = push.sizes.z == RB_SELECT_DENSITY;
+  bool density = push.sizes.z == RB_SELECT_DENSITY || push.sizes.z == RB_SELECT_BENEFIT;
   float remaining = budget;
   uint lane = gl_SubgroupInvocationID;
   Single best = Single(0u, 0.0, 0u, 0u);

@@ -26,6 +26,11 @@
 #define RB_RT_SHADOWS 1u
 #define RB_RT_REFLECTIONS 2u
 #define RB_RT_REFRACTIONS 4u
+// FrameUniforms.rayTracing.w bits: the shadow pass traces only where the shadow map is
+// uncertain; the trace and lighting passes count per item its work and the display error
+// its tracing removed (GpuItemCost).
+#define RB_RT_CLASSIFY_SHADOWS 1u
+#define RB_RT_MEASURE_ITEMS 2u
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 

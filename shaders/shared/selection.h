@@ -42,6 +42,43 @@ struct GpuObjectCost {
 // Prior traversal work (BVH nodes + triangles) per ray, before an object was measured.
 #define RB_PRIOR_WORK_PER_RAY 32.0
 
+// Items: each object offers one per effect, item = object * RB_ITEMS_PER_OBJECT + effect. The
+// frame's selection holds per object the bits of its selected items (1 << effect, the
+// RB_RT_* bits of shared/config.h): the per-object policies select all three or none.
+#define RB_ITEMS_PER_OBJECT 3u
+#define RB_ITEM_SHADOWS 0u
+#define RB_ITEM_REFLECTIONS 1u
+#define RB_ITEM_REFRACTIONS 2u
+#define RB_ITEMS_ALL 7u
+
+// The trace passes' error sums (GpuItemCost::error): per traced pixel, the mean absolute
+// difference of the display-space (tonemapped, sRGB-encoded) channels between the traced
+// result and the fallback, in units of 1/RB_ERROR_UNITS (a 2^32 sum holds 4M pixels at 1).
+#define RB_ERROR_UNITS 1024.0
+// An item's benefit per covered pixel before it was measured, and where an untraced item's
+// estimate drifts to (by RB_BENEFIT_DRIFT of the gap per frame, a power of two so that the
+// step is exact and the CPU reference equals it): optimistic, so that an unmeasured or
+// long-untraced item gets traced and measured again (docs/SELECTION.md).
+#define RB_PRIOR_BENEFIT_SHADOWS 0.05
+#define RB_PRIOR_BENEFIT_REFLECTIONS 0.15
+#define RB_PRIOR_BENEFIT_REFRACTIONS 0.15
+#define RB_BENEFIT_DRIFT 0.0625
+
+// 32 bytes: what the `benefit` policy knows of an item: its learned work per traced pixel
+// (0: not learned), the work and error the trace passes counted for it this frame over
+// `pixels` (the pixels it was traced on), its learned benefit b (display error removed per
+// covered pixel), 1 once measured, and S (1: selected last frame).
+struct GpuItemCost {
+  float workPerPixel;
+  uint work;
+  uint pixels;
+  uint error;
+  float benefit;
+  uint measured;
+  uint selectedLast;
+  uint unused;
+};
+
 // Frame mode: the candidates' total cost in units of 2^-20 budget (rounded up each) at or
 // below which every candidate fits for certain and no order is needed: 31/32 of the budget
 // (select_common.glsl's allCandidatesFit says why).
@@ -73,6 +110,7 @@ struct SelectPush {
   uvec4 stage;   // x bitonic k or merge run, y bitonic j or merge pass, z which order (0 main, 1 relevance), w `paper` pointers N
   vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work)
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects
+  uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w unused
 };
 
 // Policies on the GPU, numbered as select::Policy (engine/src/select/policies.h).
@@ -83,6 +121,7 @@ struct SelectPush {
 #define RB_SELECT_OPTIMAL 4u
 #define RB_SELECT_NEAREST 5u
 #define RB_SELECT_RANDOM 6u
+#define RB_SELECT_BENEFIT 7u  // items, by density of R' (docs/SELECTION.md)
 
 #ifdef __cplusplus
 }  // namespace raybudget::gpu

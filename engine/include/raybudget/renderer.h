@@ -15,9 +15,12 @@
 namespace raybudget {
 
 // Which objects get ray-traced effects: none, all (the full-RT reference), or, within
-// RenderSettings::budgetMs, the paper's selection graph, ours (density), or the nearest /
-// random baselines (docs/SELECTION.md).
-enum class Policy { None, All, Paper, Density, Nearest, Random };
+// RenderSettings::budgetMs, the paper's selection graph, density, or the nearest / random
+// baselines (per object), or `benefit`: per item (an object's shadows, reflections,
+// refractions) by the display error its tracing removes (docs/SELECTION.md). `classified`
+// traces every item, shadows only where the shadow map is uncertain: what the classifier
+// alone costs in error and saves in time.
+enum class Policy { None, All, Paper, Density, Nearest, Random, Benefit, Classified };
 const char* policyName(Policy policy);
 // Throws raybudget::Error naming the policies.
 Policy parsePolicy(const std::string& name);
@@ -36,6 +39,12 @@ struct RayTracingSettings {
   // Rougher surfaces keep the prefiltered environment for their reflections: a single
   // mirror ray would be noise on them (0..1).
   float maxRoughness = 0.35f;
+  // `benefit` and `classified`: a pixel traces a light's shadow ray only where the shadow
+  // map is uncertain: its PCF result strictly between lit and shadowed, or its depth tests
+  // shadowUncertaintyTexels around the point disagree (0: the PCF result alone; 0..64).
+  // Off: every pixel of a selected shadow item traces.
+  bool classifyShadows = true;
+  float shadowUncertaintyTexels = 2.0f;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };
@@ -72,7 +81,7 @@ struct RenderSettings {
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.
-enum class Pass : uint32_t { GBuffer, Coverage, Select, ShadowMaps, Environment, TraceShadows, Lighting, EnvFallback, TraceEffects, Compose, Count };
+enum class Pass : uint32_t { GBuffer, Coverage, Select, ShadowMaps, Environment, TraceShadows, EnvFallback, Lighting, TraceEffects, Compose, Count };
 inline constexpr size_t kPassCount = size_t(Pass::Count);
 const char* passName(Pass pass);
 
@@ -136,6 +145,15 @@ struct ObjectMetrics {
   float A = 0.0f, P = 0.0f, D = 0.0f, V = 0.0f, C = 0.0f, R = 0.0f;
   bool candidate = false;
   bool selected = false;  // ray-traced effects this frame (the select pass's choice)
+  // Items (shadows, reflections, refractions: the RB_RT_* bits): those traced this frame;
+  // with `benefit` or `classified`, the display error the trace passes measured per item
+  // (summed over its traced pixels, each the mean absolute difference of the tonemapped
+  // sRGB channels against the fallback) and its traversal work, counted since the last
+  // select pass; and with `benefit` each item's learned benefit per covered pixel.
+  uint32_t selectedItems = 0;
+  std::array<float, 3> itemError{};
+  std::array<uint32_t, 3> itemWork{};
+  std::array<float, 3> itemBenefit{};
 };
 
 struct FrameImages {

@@ -43,7 +43,8 @@ enum Binding : uint32_t {
   kTileList = 34,
   kObjectCosts = 35,
   kTileObjects = 36,
-  kBindingCount = 37,
+  kItemCosts = 37,
+  kBindingCount = 38,
 };
 
 }  // namespace raybudget::passes

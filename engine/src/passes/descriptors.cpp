@@ -25,7 +25,7 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
   if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
   if (binding == kBvhNodes || binding == kBvhTriangles) return {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1};
   if (binding == kBvhInstances || binding == kIndices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
-  if (binding >= kCoverage && binding <= kTileObjects) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+  if (binding >= kCoverage && binding <= kItemCosts) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1};
 }
 
@@ -166,8 +166,9 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
                                               {selection.selection.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.tileList.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectCosts.buffer, 0, VK_WHOLE_SIZE},
-                                              {selection.tileObjects.buffer, 0, VK_WHOLE_SIZE}};
-  for (uint32_t b = kCoverage; b <= kTileObjects; ++b) write(b, 1, &heuristic[b - kCoverage], nullptr);
+                                              {selection.tileObjects.buffer, 0, VK_WHOLE_SIZE},
+                                              {selection.itemCosts.buffer, 0, VK_WHOLE_SIZE}};
+  for (uint32_t b = kCoverage; b <= kItemCosts; ++b) write(b, 1, &heuristic[b - kCoverage], nullptr);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 

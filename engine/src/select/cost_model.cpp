@@ -19,6 +19,44 @@ float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workP
   return float(pixels) * perPixel;
 }
 
+namespace {
+// a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
+float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
+}  // namespace
+
+float priorBenefit(uint32_t effect) {
+  return float(effect == RB_ITEM_SHADOWS ? RB_PRIOR_BENEFIT_SHADOWS
+                                         : (effect == RB_ITEM_REFLECTIONS ? RB_PRIOR_BENEFIT_REFLECTIONS : RB_PRIOR_BENEFIT_REFRACTIONS));
+}
+
+ItemLearned learnItem(uint32_t effect, const ItemLearned& before, uint32_t work, uint32_t error, uint32_t pixels) {
+  ItemLearned after = before;
+  if (pixels > 0) {
+    after.workPerPixel = learnedWorkPerPixel(before.workPerPixel, work, pixels);
+    const float removed = exactQuotient(float(error), float(pixels) * float(RB_ERROR_UNITS));
+    after.benefit = before.measured ? 0.5f * (before.benefit + removed) : removed;
+    after.measured = true;
+  } else {
+    const float prior = priorBenefit(effect);
+    // The drift's product is exact (a power-of-two share), so a fused multiply-add rounds alike.
+    after.benefit = before.measured ? before.benefit + (prior - before.benefit) * float(RB_BENEFIT_DRIFT) : prior;
+  }
+  return after;
+}
+
+float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, uint32_t lights) {
+  const float rays = float(lights) + (effect == RB_ITEM_SHADOWS ? 0.0f : float(effect));
+  const float perPixel = workPerPixel > 0.0f ? workPerPixel : rays * float(RB_PRIOR_WORK_PER_RAY);
+  return float(pixels) * perPixel;
+}
+
+float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, bool selectedLast, float K, float I) {
+  const float A = exactQuotient(float(pixels), float(screenPixels));
+  const float E = A * P * benefit;
+  const float hysteresis = 1.0f + (selectedLast ? 1.0f : 0.0f) * I;
+  return E * hysteresis * K;
+}
+
 CostUnit costUnitOf(Policy policy) { return policy == Policy::Paper ? CostUnit::PaperCost : CostUnit::Work; }
 
 double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height) {

@@ -26,6 +26,28 @@ float learnedWorkPerPixel(float previous, uint32_t work, uint32_t pixels);
 // that is learned.
 float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workPerPixel, float Q);
 
+// Items (`benefit`): an object's shadows, reflections, refractions (RB_ITEM_*), each with its
+// own pixels, learned work per pixel and learned benefit b, the display error its tracing
+// removed per covered pixel (shaders/select/select_candidates.comp; these are its CPU
+// reference, equal bit for bit).
+struct ItemLearned {
+  float workPerPixel = 0.0f;
+  float benefit = 0.0f;
+  bool measured = false;
+};
+// The prior benefit per covered pixel of an effect's item (RB_PRIOR_BENEFIT_*).
+float priorBenefit(uint32_t effect);
+// What an item knows after a frame that counted `work` and `error` (in 1/RB_ERROR_UNITS) over
+// the `pixels` it was traced on (0: not traced; its benefit drifts to the prior).
+ItemLearned learnItem(uint32_t effect, const ItemLearned& before, uint32_t work, uint32_t error, uint32_t pixels);
+// An item candidate's predicted work: its pixels times its work per pixel, or before that
+// is learned, the rays per pixel (a shadow ray per light; a reflection or refraction path and
+// its hit's shadow rays) times a prior per ray.
+float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, uint32_t lights);
+// R' = (S·I + E)·K with the hysteresis relative to E: E·(1 + S·I)·K, E = A·P·b, A the item's
+// pixels over the screen's.
+float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, bool selectedLast, float K, float I);
+
 // Predicted milliseconds: the time scale times the work.
 inline float predictedCost(float msPerUnit, float work) { return msPerUnit * work; }
 

@@ -24,7 +24,7 @@ namespace {
 
 using gpu::SelectPush;
 static_assert(uint32_t(Policy::Paper) == RB_SELECT_PAPER && uint32_t(Policy::Density) == RB_SELECT_DENSITY &&
-              uint32_t(Policy::Nearest) == RB_SELECT_NEAREST && uint32_t(Policy::Random) == RB_SELECT_RANDOM);
+              uint32_t(Policy::Nearest) == RB_SELECT_NEAREST && uint32_t(Policy::Random) == RB_SELECT_RANDOM && uint32_t(Policy::Benefit) == RB_SELECT_BENEFIT);
 
 constexpr uint32_t kBlock = 1024;  // the bitonic shader's shared-memory block
 // mergeArgs holds a dispatch for every merge pass any 32-bit candidate count can need.
@@ -84,10 +84,11 @@ struct GpuSelector::Impl {
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-    placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9 until bindFrame
-    const std::vector<VkDescriptorType> types(14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9, 14, 15 until bindFrame
+    const std::vector<VkDescriptorType> types(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
-    bindFrame(placeholder.buffer, placeholder.buffer, placeholder.buffer, placeholder.buffer);
+    const VkBuffer p = placeholder.buffer;
+    bindFrame({p, p, p, p, p, p});
     candidatesFromObjects = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_candidates_comp);
     apply = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_apply_comp);
     keys = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_keys_comp);
@@ -98,26 +99,30 @@ struct GpuSelector::Impl {
     blockSort = vk::createComputePipeline(c, set.pipelineLayout, kSpirv_select_block_sort_comp);
   }
 
-  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
-    const VkBuffer buffers[14] = {candidates.buffer, order.buffer, relevance.buffer, scratch.buffer, flags.buffer,     result.buffer,
-                                  records,           selection,    params,           costs,          spare.buffer,     slots.buffer,
-                                  mergeArgs.buffer,  walkOrder.buffer};
+  void bindFrame(const FrameBuffers& f) {
+    const VkBuffer buffers[16] = {candidates.buffer, order.buffer,   relevance.buffer, scratch.buffer, flags.buffer,     result.buffer,
+                                  f.records,         f.selection,    f.params,         f.costs,        spare.buffer,     slots.buffer,
+                                  mergeArgs.buffer,  walkOrder.buffer, f.coverage,     f.items};
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
-  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa, const PolicyOptions& options) {
-    if (objects > capacity) throw Error("GPU selection of " + std::to_string(objects) + " objects exceeds its capacity " + std::to_string(capacity));
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa, const PolicyOptions& options,
+                   const ItemFrame& items) {
+    // `benefit` selects among items: up to RB_ITEMS_PER_OBJECT candidates per object.
+    const uint64_t most = uint64_t(objects) * (policy == Policy::Benefit ? RB_ITEMS_PER_OBJECT : 1u);
+    if (most > capacity) throw Error("GPU selection of " + std::to_string(most) + " candidates exceeds its capacity " + std::to_string(capacity));
     if (policy == Policy::Optimal || policy == Policy::All || policy == Policy::None)
       throw Error(std::string("frame selection runs the budgeted policies, not ") + policyName(policy));
     SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
-                    glm::vec4(budget, kappa, 0, 0), glm::uvec4(options.paperHops, 1, objects, 0)};
+                    glm::vec4(budget, kappa, 0, 0), glm::uvec4(options.paperHops, 1, objects, 0),
+                    glm::uvec4(items.effects, items.lights, items.pixels, 0)};
     vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);  // the candidate count
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
     dispatch(cmd, candidatesFromObjects, push, (objects + 63) / 64);
-    orderForWalk(cmd, push, policy, objects);
+    orderForWalk(cmd, push, policy, uint32_t(most));
     dispatch(cmd, walk, push, 1);
     dispatch(cmd, apply, push, (objects + 63) / 64);
   }
@@ -195,7 +200,7 @@ struct GpuSelector::Impl {
     vk::Buffer staging = vk::createBuffer(ctx, std::max<size_t>(1, data.size()) * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!data.empty()) std::memcpy(staging.mapped, data.data(), data.size() * sizeof(gpu::GpuCandidate));
     SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0),
-                    glm::uvec4(options.paperHops, 0, 0, 0)};
+                    glm::uvec4(options.paperHops, 0, 0, 0), glm::uvec4(0)};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
       if (n > 0) {
@@ -236,12 +241,10 @@ Selection GpuSelector::select(std::span<const Candidate> candidates, Policy poli
   return impl_->run(candidates, policy, budget, options);
 }
 double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
-void GpuSelector::bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs) {
-  impl_->bindFrame(records, selection, params, costs);
-}
-void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa,
-                              const PolicyOptions& options) const {
-  impl_->recordFrame(cmd, objects, policy, budget, kappa, options);
+void GpuSelector::bindFrame(const FrameBuffers& buffers) { impl_->bindFrame(buffers); }
+void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa, const PolicyOptions& options,
+                              const ItemFrame& items) const {
+  impl_->recordFrame(cmd, objects, policy, budget, kappa, options, items);
 }
 VkBuffer GpuSelector::resultBuffer() const { return impl_->result.buffer; }
 VkBuffer GpuSelector::candidateBuffer() const { return impl_->candidates.buffer; }

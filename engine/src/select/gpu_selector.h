@@ -17,6 +17,12 @@ namespace raybudget::select {
 // a CPU device. Both give the same order.
 enum class SortMethod { Auto, Bitonic, Merge };
 
+// What `benefit` needs of the frame: the effects traced (RB_RT_* bits), the scene's light
+// count, the pixels on screen.
+struct ItemFrame {
+  uint32_t effects = 0, lights = 0, pixels = 0;
+};
+
 class GpuSelector {
  public:
   GpuSelector(const vk::Context& ctx, uint32_t capacity, SortMethod sort = SortMethod::Auto);
@@ -32,16 +38,22 @@ class GpuSelector {
   double lastGpuMs() const;
 
   // Frame mode. The renderer's per-object buffers (shared/selection.h): records in, the
-  // selection out (uint per object, written here), K/Q/I with S updated for the next frame.
-  void bindFrame(VkBuffer records, VkBuffer selection, VkBuffer params, VkBuffer costs);
+  // selection out (uint per object, written here), K/Q/I with S updated for the next frame,
+  // the learned costs per object; for `benefit` the coverage counts and the items' state.
+  struct FrameBuffers {
+    VkBuffer records, selection, params, costs, coverage, items;
+  };
+  void bindFrame(const FrameBuffers& buffers);
   // Records, into the frame's command buffer, the selection among the objects' candidates
   // with costs kappa * work (cost_model.h: the paper's C for `paper`, else pixels times the
   // learned work per pixel). Afterwards
   // resultBuffer() holds uvec4(candidates, predicted cost bits, value bits, selected) and
   // uvec4(objects whose selection changed, the candidates' total cost in 2^-20 budget
   // units (lo, hi), 1 when the selection needed the sort).
+  // With `benefit` the candidates are items (object * RB_ITEMS_PER_OBJECT + effect); the
+  // capacity must hold RB_ITEMS_PER_OBJECT per object.
   void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa,
-                   const PolicyOptions& options) const;
+                   const PolicyOptions& options, const ItemFrame& items = {}) const;
   VkBuffer resultBuffer() const;
   // The frame's candidates (GpuCandidate, resultBuffer().x of them) for CPU-side stats.
   VkBuffer candidateBuffer() const;

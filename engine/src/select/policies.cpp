@@ -117,14 +117,15 @@ const char* policyName(Policy policy) {
     case Policy::Optimal: return "optimal";
     case Policy::Nearest: return "nearest";
     case Policy::Random: return "random";
+    case Policy::Benefit: return "benefit";
   }
   return "?";
 }
 
 Policy parsePolicy(const std::string& name) {
-  for (Policy p : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Optimal, Policy::Nearest, Policy::Random})
+  for (Policy p : {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Optimal, Policy::Nearest, Policy::Random, Policy::Benefit})
     if (name == policyName(p)) return p;
-  throw Error("unknown policy '" + name + "' (none, all, paper, density, optimal, nearest, random)");
+  throw Error("unknown policy '" + name + "' (none, all, paper, density, optimal, nearest, random, benefit)");
 }
 
 Selection selectObjects(Policy policy, std::span<const Candidate> c, float budget, const PolicyOptions& options) {
@@ -134,7 +135,8 @@ Selection selectObjects(Policy policy, std::span<const Candidate> c, float budge
     case Policy::None: break;
     case Policy::All: chosen = indices(c.size()); break;
     case Policy::Paper: chosen = walkPaperGraph(buildPaperGraph(c, options.graphPointers), c, budget, options.paperHops); break;
-    case Policy::Density: chosen = density(c, budget); break;
+    case Policy::Density:
+    case Policy::Benefit: chosen = density(c, budget); break;
     case Policy::Optimal: chosen = knapsack(c, budget, options.optimalSteps, true).first; break;
     case Policy::Nearest: {
       std::vector<uint32_t> order = indices(c.size());

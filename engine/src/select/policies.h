@@ -10,7 +10,9 @@
 
 namespace raybudget::select {
 
-enum class Policy { None, All, Paper, Density, Optimal, Nearest, Random };
+// `benefit` selects items (an object's shadows, reflections, refractions) by the density of
+// their value R' (cost_model.h) with density's greedy fill-in: on candidates it is density.
+enum class Policy { None, All, Paper, Density, Optimal, Nearest, Random, Benefit };
 const char* policyName(Policy policy);
 // Throws raybudget::Error naming the valid policies.
 Policy parsePolicy(const std::string& name);

@@ -31,6 +31,7 @@ SelectionBuffers createSelectionBuffers(const vk::Context& ctx, uint32_t objects
   b.objectRecords = vk::createBuffer(ctx, records * sizeof(gpu::GpuObjectRecord), kStorage | kCopy, false);
   b.selection = vk::createBuffer(ctx, records * sizeof(uint32_t), kStorage | kCopy, false);
   b.objectCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuObjectCost>(records), kStorage | kCopy);
+  b.itemCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuItemCost>(records * RB_ITEMS_PER_OBJECT), kStorage | kCopy);
   b.tileObjects = vk::createBuffer(ctx, 4ull * RB_TILE_OBJECT_WORDS * b.tiles, kStorage, false);
   b.tileList = vk::createBuffer(ctx, 16 + 4ull * b.tiles, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | kCopy, false);
   return b;
@@ -44,6 +45,7 @@ void recordSelectionReset(VkCommandBuffer cmd, const SelectionBuffers& buffers, 
                       &params[first]);
   }
   vkCmdFillBuffer(cmd, buffers.objectCosts.buffer, 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, buffers.itemCosts.buffer, 0, VK_WHOLE_SIZE, 0);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                     VK_ACCESS_2_MEMORY_READ_BIT);
 }

@@ -21,6 +21,8 @@ Policy toSelectPolicy(raybudget::Policy policy) {
     case raybudget::Policy::Density: return Policy::Density;
     case raybudget::Policy::Nearest: return Policy::Nearest;
     case raybudget::Policy::Random: return Policy::Random;
+    case raybudget::Policy::Benefit: return Policy::Benefit;
+    case raybudget::Policy::Classified: return Policy::All;  // every item (the shadow pass classifies)
   }
   return Policy::None;
 }
@@ -28,6 +30,21 @@ Policy toSelectPolicy(raybudget::Policy policy) {
 namespace {
 
 PolicyOptions policyOptions(const RenderSettings& s) { return {s.graphPointers, s.seed, 1, 4096}; }
+
+ItemFrame itemFrame(const RenderSettings& s, uint32_t lights) {
+  const RayTracingSettings& rt = s.rayTracing;
+  const uint32_t effects = (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
+  return {effects, lights, s.width * s.height};
+}
+
+// The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each).
+std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items) {
+  std::vector<uint32_t> ids;
+  for (uint32_t i = 0; i < objects; ++i)
+    for (uint32_t e = 0; e < (items ? RB_ITEMS_PER_OBJECT : 1u); ++e)
+      if (items ? (flags[i] >> e) & 1u : flags[i] != 0u) ids.push_back(items ? i * RB_ITEMS_PER_OBJECT + e : i);
+  return ids;
+}
 
 void readToTransfer(VkCommandBuffer cmd) {
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
@@ -49,18 +66,21 @@ struct SelectionStage::Impl {
     vk::Buffer candidates;    // with optimalBound or checkSelection: the candidates
     vk::Buffer selection;     // with checkSelection: the selection flags
     // With checkSelection, for the cost model's CPU reference: per-object costs before and
-    // after the select pass, the records and K/Q/I/S it read.
-    vk::Buffer costsBefore, costsAfter, records, params;
+    // after the select pass, the records and K/Q/I/S it read; for `benefit` the items' state
+    // before and after and the coverage counts.
+    vk::Buffer costsBefore, costsAfter, records, params, itemsBefore, itemsAfter, coverage;
     bool selected = false;      // the frame ran the select pass
     bool budgeted = false;      // ... with a budgeted policy
     double msPerUnit = 0.0;     // the time scale the frame was selected with
     double traceFixedMs = 0.0;  // ... the trace passes' fixed cost it assumed
+    ItemFrame items;  // ... and what `benefit` knew of the frame
     float traceBudgetMs = 0.0f;  // ... and the part of T it left for the work
     bool belowFixedCost = false;  // T at or below the stage's fixed cost: nothing traced
   };
 
   const vk::Context& ctx;
   std::vector<gpu::GpuObjectParams> initialParams;  // K/Q/I as the selection starts (and restarts)
+  uint32_t lights = 0;
   SelectionBuffers buffers;
   CoveragePass coverage;
   SelectPass selectPass;
@@ -73,6 +93,7 @@ struct SelectionStage::Impl {
   Impl(const vk::Context& c, VkPipelineLayout layout, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight)
       : ctx(c),
         initialParams(initialObjectParams(scene, s.rayTracing.maxRoughness)),
+        lights(uint32_t(scene.lights.size())),
         buffers(createSelectionBuffers(c, uint32_t(scene.objects.size()), initialParams, s.width, s.height)),
         coverage(c, layout),
         selectPass(c, layout),
@@ -84,21 +105,27 @@ struct SelectionStage::Impl {
       slot.tileHeader = vk::createBuffer(c, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.result = vk::createBuffer(c, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       if (s.optimalBound || s.checkSelection)
-        slot.candidates = vk::createBuffer(c, records * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot.candidates = vk::createBuffer(c, records * RB_ITEMS_PER_OBJECT * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       if (s.checkSelection) {
         slot.selection = vk::createBuffer(c, records * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.costsBefore = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.costsAfter = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.records = vk::createBuffer(c, records * sizeof(gpu::GpuObjectRecord), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.params = vk::createBuffer(c, records * sizeof(gpu::GpuObjectParams), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        const VkDeviceSize items = records * RB_ITEMS_PER_OBJECT * sizeof(gpu::GpuItemCost);
+        slot.itemsBefore = vk::createBuffer(c, items, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot.itemsAfter = vk::createBuffer(c, items, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot.coverage = vk::createBuffer(c, records * sizeof(gpu::GpuCoverage), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       }
     }
   }
 
   void ensureSelector(const RenderSettings& s) {
     if (selector || !isBudgeted(s.policy)) return;
-    selector = std::make_unique<GpuSelector>(ctx, std::max<uint32_t>(1, buffers.objects));
-    selector->bindFrame(buffers.objectRecords.buffer, buffers.selection.buffer, buffers.objectParams.buffer, buffers.objectCosts.buffer);
+    // Room for `benefit`'s items, whichever budgeted policy comes first (restartSelection).
+    selector = std::make_unique<GpuSelector>(ctx, std::max<uint32_t>(1, buffers.objects) * RB_ITEMS_PER_OBJECT);
+    selector->bindFrame({buffers.objectRecords.buffer, buffers.selection.buffer, buffers.objectParams.buffer, buffers.objectCosts.buffer,
+                         buffers.coverage.buffer, buffers.itemCosts.buffer});
   }
 
   void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s) {
@@ -107,6 +134,7 @@ struct SelectionStage::Impl {
     slot.selected = true;
     slot.budgeted = isBudgeted(s.policy);
     slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
+    slot.items = itemFrame(s, lights);
     slot.traceFixedMs = timeScale.traceFixedMs();
     slot.belowFixedCost = double(s.budgetMs) <= timeScale.fixedMs();
     slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float(double(s.budgetMs) - timeScale.fixedMs());
@@ -117,10 +145,12 @@ struct SelectionStage::Impl {
         copyWhole(cmd, buffers.objectCosts.buffer, slot.costsBefore);
         copyWhole(cmd, buffers.objectRecords.buffer, slot.records);
         copyWhole(cmd, buffers.objectParams.buffer, slot.params);
+        copyWhole(cmd, buffers.itemCosts.buffer, slot.itemsBefore);
+        copyWhole(cmd, buffers.coverage.buffer, slot.coverage);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       }
-      selector->recordFrame(cmd, buffers.objects, policy, slot.traceBudgetMs, float(slot.msPerUnit), policyOptions(s));
+      selector->recordFrame(cmd, buffers.objects, policy, slot.traceBudgetMs, float(slot.msPerUnit), policyOptions(s), itemFrame(s, lights));
       readToTransfer(cmd);
       const VkBufferCopy result{0, 0, 32};
       vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.result.buffer, 1, &result);
@@ -128,6 +158,7 @@ struct SelectionStage::Impl {
       if (check) {
         copyWhole(cmd, buffers.selection.buffer, slot.selection);
         copyWhole(cmd, buffers.objectCosts.buffer, slot.costsAfter);
+        copyWhole(cmd, buffers.itemCosts.buffer, slot.itemsAfter);
       }
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -153,6 +184,7 @@ struct SelectionStage::Impl {
       if (std::bit_cast<uint32_t>(perPixel[i]) != std::bit_cast<uint32_t>(after[i].workPerPixel) || after[i].work != 0 || after[i].pixels != pixels)
         return false;
     }
+    if (policy == Policy::Benefit) return itemsMatchCpu(slot, candidates);
     size_t expected = 0;
     for (uint32_t i = 0; i < buffers.objects; ++i) expected += records[i].crCandidatePixels.z > 0.5f ? 1 : 0;
     if (expected != candidates.size()) return false;
@@ -161,6 +193,53 @@ struct SelectionStage::Impl {
       const gpu::GpuObjectRecord& r = records[c.id];
       const float work = predictedWork(policy, r.crCandidatePixels.x, std::bit_cast<uint32_t>(r.crCandidatePixels.w), perPixel[c.id], params[c.id].kqiS.y);
       if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost)) return false;
+    }
+    return true;
+  }
+
+  // `benefit`: whether each item's learned state (cost_model.h's learnItem), restarted
+  // counters, S and traced pixels, and each item candidate's cost and value equal the CPU
+  // reference bit for bit.
+  bool itemsMatchCpu(const Slot& slot, std::span<const gpu::GpuCandidate> candidates) const {
+    const auto* before = static_cast<const gpu::GpuItemCost*>(slot.itemsBefore.mapped);
+    const auto* after = static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped);
+    const auto* records = static_cast<const gpu::GpuObjectRecord*>(slot.records.mapped);
+    const auto* params = static_cast<const gpu::GpuObjectParams*>(slot.params.mapped);
+    const auto* coverage = static_cast<const gpu::GpuCoverage*>(slot.coverage.mapped);
+    const auto* selected = static_cast<const uint32_t*>(slot.selection.mapped);
+    const ItemFrame frame = slot.items;
+    auto pixelsOf = [&](uint32_t i, uint32_t e) -> uint32_t {
+      if (!(frame.effects & (1u << e))) return 0;
+      if (e == RB_ITEM_SHADOWS) return frame.lights > 0 ? std::bit_cast<uint32_t>(records[i].crCandidatePixels.w) : 0u;
+      return e == RB_ITEM_REFLECTIONS ? coverage[i].sumYHi.y : coverage[i].sumYHi.z;
+    };
+    const uint32_t items = buffers.objects * RB_ITEMS_PER_OBJECT;
+    std::vector<ItemLearned> learned(items);
+    std::vector<int64_t> expectedSlot(items, -1);
+    size_t expected = 0;
+    for (uint32_t id = 0; id < items; ++id) {
+      const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
+      const gpu::GpuItemCost& b = before[id];
+      learned[id] = learnItem(e, {b.workPerPixel, b.benefit, b.measured != 0}, b.work, b.error, b.pixels);
+      const gpu::GpuItemCost& a = after[id];
+      const bool on = (selected[i] >> e) & 1u;
+      if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
+          std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
+          a.work != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) || a.pixels != (on ? pixelsOf(i, e) : 0u))
+        return false;
+      if (records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0) ++expected;
+    }
+    if (expected != candidates.size()) return false;
+    for (const gpu::GpuCandidate& c : candidates) {
+      if (c.id >= items) return false;
+      const uint32_t i = c.id / RB_ITEMS_PER_OBJECT, e = c.id % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
+      if (records[i].crCandidatePixels.z < 0.5f || pixels == 0) return false;
+      const float work = predictedItemWork(e, pixels, learned[c.id].workPerPixel, frame.lights);
+      const glm::vec4 kqiS = params[i].kqiS;
+      const float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[c.id].benefit, before[c.id].selectedLast != 0, kqiS.x, kqiS.z);
+      if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost) ||
+          std::bit_cast<uint32_t>(value) != std::bit_cast<uint32_t>(c.value))
+        return false;
     }
     return true;
   }
@@ -193,9 +272,7 @@ struct SelectionStage::Impl {
       }
       if (s.checkSelection) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
-        std::vector<uint32_t> gpuIds;
-        for (uint32_t i = 0; i < buffers.objects; ++i)
-          if (flags[i]) gpuIds.push_back(i);
+        const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit);
         t.selectionMatchesCpu = gpuIds == selectObjects(policy, c, slot.traceBudgetMs, policyOptions(s)).ids;
         t.costsMatchCpu = costsMatchCpu(slot, policy, g);
       }
@@ -215,7 +292,8 @@ struct SelectionStage::Impl {
     VK_CHECK(vkQueueWaitIdle(ctx.queue()));
     const VkDeviceSize count = buffers.objects, bytes = std::max<VkDeviceSize>(1, count) * sizeof(gpu::GpuObjectRecord);
     const VkDeviceSize flagBytes = std::max<VkDeviceSize>(1, count) * 4, coverageBytes = std::max<VkDeviceSize>(1, count) * sizeof(gpu::GpuCoverage);
-    vk::Buffer host = vk::createBuffer(ctx, bytes + flagBytes + coverageBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const VkDeviceSize itemBytes = std::max<VkDeviceSize>(1, count) * RB_ITEMS_PER_OBJECT * sizeof(gpu::GpuItemCost);
+    vk::Buffer host = vk::createBuffer(ctx, bytes + flagBytes + coverageBytes + itemBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                         VK_ACCESS_2_TRANSFER_READ_BIT);
@@ -223,16 +301,26 @@ struct SelectionStage::Impl {
       vkCmdCopyBuffer(cmd, buffers.objectRecords.buffer, host.buffer, 1, &copy);
       vkCmdCopyBuffer(cmd, buffers.selection.buffer, host.buffer, 1, &flags);
       vkCmdCopyBuffer(cmd, buffers.coverage.buffer, host.buffer, 1, &coverageCopy);
+      const VkBufferCopy itemCopy{0, bytes + flagBytes + coverageBytes, itemBytes};
+      vkCmdCopyBuffer(cmd, buffers.itemCosts.buffer, host.buffer, 1, &itemCopy);
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
     const auto* records = static_cast<const gpu::GpuObjectRecord*>(host.mapped);
     const auto* selected = reinterpret_cast<const uint32_t*>(static_cast<const char*>(host.mapped) + bytes);
     const auto* cov = reinterpret_cast<const gpu::GpuCoverage*>(static_cast<const char*>(host.mapped) + bytes + flagBytes);
+    const auto* items = reinterpret_cast<const gpu::GpuItemCost*>(static_cast<const char*>(host.mapped) + bytes + flagBytes + coverageBytes);
     std::vector<ObjectMetrics> out(count);
     for (size_t i = 0; i < count; ++i) {
       const gpu::GpuObjectRecord& g = records[i];
       out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), cov[i].sumYHi.y, cov[i].sumYHi.z, g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w,
                 g.crCandidatePixels.x, g.crCandidatePixels.y, g.crCandidatePixels.z > 0.5f, selected[i] != 0u};
+      out[i].selectedItems = selected[i];
+      for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
+        const gpu::GpuItemCost& item = items[i * RB_ITEMS_PER_OBJECT + e];
+        out[i].itemError[e] = float(double(item.error) / RB_ERROR_UNITS);
+        out[i].itemWork[e] = item.work;
+        out[i].itemBenefit[e] = item.benefit;
+      }
     }
     return out;
   }

@@ -1,0 +1,38 @@
+// The raster fallback for reflections and refractions, per path: the prefiltered environment
+// in the reflected direction (split-sum specular) and through the surface (Snell, with
+// KHR_materials_volume attenuation over the thickness). The env_fallback pass writes their
+// sum; the trace pass keeps the path it does not trace as this exactly, and measures the
+// path it traces against it.
+#ifndef RB_ENV_FALLBACK_GLSL
+#define RB_ENV_FALLBACK_GLSL
+
+vec3 prefiltered(vec3 dir, float roughness) { return textureLod(envMap, dir, roughness * float(RB_ENV_MIPS - 1)).rgb; }
+
+vec3 envSpecularWeight(Surface s, vec3 V) {
+  float NoV = clamp(dot(s.normal, V), 1e-4, 1.0);
+  vec3 f0 = mix(vec3(f0FromIor(s.ior)), s.baseColor, s.metallic);
+  return envBrdfApprox(f0, s.roughness, NoV);
+}
+
+vec3 envReflection(Surface s, vec3 V) { return prefiltered(reflect(-V, s.normal), s.roughness) * envSpecularWeight(s, V); }
+
+// Zero for opaque surfaces.
+vec3 envTransmission(Surface s, vec3 V) {
+  float transmission = s.transmission * (1.0 - s.metallic);
+  if (transmission <= 0.0) return vec3(0.0);
+  vec3 N = s.normal;
+  GpuMaterial m = materials[s.materialId];
+  vec3 T = refract(-V, N, 1.0 / max(s.ior, 1.0));
+  float thickness = m.normalScaleThicknessFlags.y;
+  // Thick volumes bend the ray back on exit through a parallel surface: the exit direction
+  // equals -V, offset; thin walls keep the refracted direction (glTF thin-walled model).
+  vec3 dir = thickness > 0.0 ? -V : (dot(T, T) > 0.0 ? T : reflect(-V, N));
+  if (thickness > 0.0 && dot(T, T) > 0.0) dir = normalize(mix(-V, T, 0.5));
+  vec3 transmitted = prefiltered(dir, s.roughness) * s.baseColor;
+  float distanceInside = thickness / max(dot(-T, -N), 0.05);
+  if (m.attenuationColorDistance.w > 0.0 && thickness > 0.0)
+    transmitted *= pow(m.attenuationColorDistance.rgb, vec3(distanceInside / m.attenuationColorDistance.w));
+  return transmitted * transmission * (vec3(1.0) - envSpecularWeight(s, V));
+}
+
+#endif

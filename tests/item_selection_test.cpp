@@ -1,0 +1,228 @@
+// Items per effect (`benefit`, `classified`): the GPU's per-item learning and selection equal
+// their CPU references; the display error the trace passes measure equals the difference of
+// the traced and fallback images; the shadow classifier saves rays and keeps the image.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "shared/config.h"
+#include "shared/selection.h"
+#include "support/procedural.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+RenderSettings settingsFor(Policy policy, uint32_t width, uint32_t height) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.validation = true;
+  s.policy = policy;
+  return s;
+}
+
+// Renders one frame per camera; the last frame's images and per-object metrics.
+struct Rendered {
+  FrameImages images;
+  std::vector<ObjectMetrics> metrics;
+  std::vector<FrameTiming> timings;
+};
+Rendered render(const Scene& scene, const RenderSettings& s, const std::vector<Camera>& cameras) {
+  RenderSettings settings = s;
+  settings.objectMetrics = true;
+  Renderer renderer(scene, settings);
+  Rendered r;
+  for (const Camera& c : cameras)
+    for (const FrameTiming& t : renderer.render(c)) r.timings.push_back(t);
+  for (const FrameTiming& t : renderer.finish()) r.timings.push_back(t);
+  r.images = renderer.readback();
+  r.metrics = renderer.objectMetrics();
+  test::expectValidationClean(renderer.validationMessages());
+  return r;
+}
+
+// Per object, the display-space error of `traced` against `fallback` as the trace passes
+// define it (the mean absolute difference of the sRGB-encoded channels), summed over the
+// object's pixels, from the 8-bit images; and each object's pixel count.
+void imageErrorPerObject(const FrameImages& traced, const FrameImages& fallback, size_t objects, std::vector<double>& error,
+                         std::vector<uint32_t>& pixels) {
+  error.assign(objects, 0.0);
+  pixels.assign(objects, 0);
+  for (size_t p = 0; p < traced.objectIds.size(); ++p) {
+    const uint32_t id = traced.objectIds[p];
+    if (id >= objects) continue;
+    double d = 0.0;
+    for (int c = 0; c < 3; ++c) d += std::abs(double(traced.ldrRgba8[p * 4 + c]) - double(fallback.ldrRgba8[p * 4 + c])) / 255.0;
+    error[id] += d / 3.0;
+    ++pixels[id];
+  }
+}
+
+// A mirror under an emissive quad, a glass cube over an emissive floor, and a sphere casting
+// a shadow on a lit plane: one item of each effect with a clear error to remove.
+Scene itemScene() {
+  Scene scene;
+  Material mirror;
+  mirror.metallic = 1.0f;
+  mirror.roughness = 0.0f;
+  test::addObject(scene, test::quad(3.0f), glm::translate(glm::mat4(1.0f), glm::vec3(-3.0f, 0.0f, 0.0f)), mirror);
+  Material glass;
+  glass.metallic = 0.0f;
+  glass.roughness = 0.0f;
+  glass.transmission = 1.0f;
+  glass.ior = 1.5f;
+  glass.thickness = 1.0f;
+  glass.attenuationDistance = 1.0f;
+  glass.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  test::addObject(scene, test::subdividedCube(1), glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.5f, 0.0f)), glass);
+  Material emitter;  // a wall behind the scene, out of the sun's way: what the mirror reflects
+  emitter.baseColorFactor = glm::vec4(0, 0, 0, 1);
+  emitter.emissive = glm::vec3(2.0f, 0.5f, 0.2f);
+  emitter.doubleSided = true;
+  test::addObject(scene, test::quad(20.0f),
+                  glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -12)) * glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0)), emitter);
+  Material floor;  // lit, under everything: what the glass shows
+  floor.baseColorFactor = glm::vec4(0.8f, 0.3f, 0.1f, 1.0f);
+  floor.metallic = 0.0f;
+  floor.roughness = 0.9f;
+  test::addObject(scene, test::quad(20.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, -1, 0)), floor);
+  Material matte;
+  matte.metallic = 0.0f;
+  matte.roughness = 0.9f;
+  test::addObject(scene, test::quad(3.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 3.0f)), matte);
+  test::addObject(scene, test::subdividedCube(2), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.05f, 3.0f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.3f, 0.05f, 0.3f)), matte);
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  return scene;
+}
+
+Camera itemCamera() {
+  Camera cam;
+  cam.position = {0.0f, 6.0f, 7.0f};
+  cam.target = {0.0f, 0.0f, 1.0f};
+  return cam;
+}
+
+// The error each traced item removed, as the trace and lighting passes measured it, equals
+// the per-object difference of the traced (`classified`: every item) and fallback (`none`)
+// images: one effect at a time, so that each object's image difference is that item's.
+TEST(Items, MeasuredErrorEqualsTheImageDifferenceAgainstTheFallback) {
+  const Scene scene = itemScene();
+  const Camera cam = itemCamera();
+  for (uint32_t effect = 0; effect < RB_ITEMS_PER_OBJECT; ++effect) {
+    RenderSettings s = settingsFor(Policy::Classified, 160, 120);
+    s.skyIntensity = 0.1f;
+    s.shadowMapSize = 64;  // coarse: its edges are visibly wrong
+    s.rayTracing.shadows = effect == RB_ITEM_SHADOWS;
+    s.rayTracing.reflections = effect == RB_ITEM_REFLECTIONS;
+    s.rayTracing.refractions = effect == RB_ITEM_REFRACTIONS;
+    const Rendered traced = render(scene, s, {cam});
+    s.policy = Policy::None;
+    const Rendered fallback = render(scene, s, {cam});
+    std::vector<double> error;
+    std::vector<uint32_t> pixels;
+    imageErrorPerObject(traced.images, fallback.images, scene.objects.size(), error, pixels);
+    double largest = 0.0;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+      const double measured = traced.metrics[i].itemError[effect];
+      // 8-bit images: each channel within 1/255 of the shader's value.
+      EXPECT_NEAR(measured, error[i], 0.02 * error[i] + pixels[i] / 255.0 + 1.0) << "effect " << effect << ", object " << i;
+      for (uint32_t other = 0; other < RB_ITEMS_PER_OBJECT; ++other)
+        if (other != effect) EXPECT_EQ(traced.metrics[i].itemError[other], 0.0f) << "effect " << effect << ", object " << i;
+      largest = std::max(largest, measured / std::max(1u, pixels[i]));
+    }
+    EXPECT_GT(largest, 0.02) << "effect " << effect << ": some object's fallback should be visibly wrong";
+  }
+}
+
+// Every frame of an orbit, with the time scale frozen: each item's learned work per pixel
+// and benefit, its counters, S and traced pixels, and each item candidate's cost and value
+// equal the CPU reference (cost_model.h), and the GPU selects exactly the items the CPU
+// reference selects from the same candidates, under a budget that binds.
+TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  auto orbit = [&](float budgetMs, std::vector<ObjectMetrics>* last) {
+    RenderSettings s = settingsFor(Policy::Benefit, 320, 192);
+    s.budgetMs = budgetMs;
+    s.learnTimeScale = false;
+    s.checkSelection = true;
+    s.objectMetrics = true;
+    Renderer renderer(scene, s);
+    const Camera start = defaultCamera(scene, renderer.aspect());
+    std::vector<FrameTiming> t;
+    for (uint32_t f = 0; f < 6; ++f)
+      for (const FrameTiming& x : renderer.render(orbitCamera(start, f, 24))) t.push_back(x);
+    for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+    test::expectValidationClean(renderer.validationMessages());
+    for (const FrameTiming& f : t) {
+      EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << "T " << budgetMs << ", frame " << f.frame;
+      EXPECT_TRUE(f.costsMatchCpu.value_or(false)) << "T " << budgetMs << ", frame " << f.frame;
+    }
+    if (last) *last = renderer.objectMetrics();
+    return t;
+  };
+  const std::vector<FrameTiming> all = orbit(1e6f, nullptr);
+  ASSERT_EQ(all.size(), 6u);
+  ASSERT_GT(all.back().predictedTraceMs, 0.0);
+  std::vector<ObjectMetrics> metrics;
+  const std::vector<FrameTiming> part = orbit(float(all.back().predictedTraceMs / 4.0), &metrics);
+  uint32_t binding = 0;
+  for (size_t f = 0; f < part.size(); ++f) binding += part[f].selectedObjects > 0 && part[f].selectedObjects < all[f].selectedObjects;
+  EXPECT_GE(binding, 3u) << "the budget should bind in most frames";
+  uint32_t learned = 0;
+  for (const ObjectMetrics& m : metrics)
+    for (float b : m.itemBenefit) {
+      EXPECT_TRUE(std::isfinite(b) && b >= 0.0f);
+      learned += b != float(RB_PRIOR_BENEFIT_SHADOWS) && b != float(RB_PRIOR_BENEFIT_REFLECTIONS);
+    }
+  EXPECT_GT(learned, 0u) << "traced items should have measured benefits";
+}
+
+// The shadow classifier (`classified`, shadows only) traces far fewer shadow rays than full
+// RT, and its image stays far closer to full RT's than the shadow maps' is.
+TEST(Items, TheShadowClassifierSavesRaysAndKeepsTheImage) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s = settingsFor(Policy::All, 320, 192);
+  s.rayTracing.reflections = false;
+  s.rayTracing.refractions = false;
+  const Camera cam = defaultCamera(scene, 320.0f / 192.0f);
+  const Rendered full = render(scene, s, {cam});
+  s.policy = Policy::Classified;
+  const Rendered classified = render(scene, s, {cam});
+  s.policy = Policy::None;
+  const Rendered raster = render(scene, s, {cam});
+  ASSERT_EQ(full.timings.size(), 1u);
+  ASSERT_EQ(classified.timings.size(), 1u);
+  EXPECT_LT(classified.timings[0].raysTraced, full.timings[0].raysTraced / 2) << "most shadow-map lookups are certain";
+  auto meanDifference = [](const FrameImages& a, const FrameImages& b) {
+    double d = 0.0;
+    for (size_t i = 0; i < a.ldrRgba8.size(); ++i) d += std::abs(double(a.ldrRgba8[i]) - double(b.ldrRgba8[i]));
+    return d / double(a.ldrRgba8.size());
+  };
+  const double kept = meanDifference(classified.images, full.images), fallback = meanDifference(raster.images, full.images);
+  EXPECT_GT(fallback, 0.0);
+  EXPECT_LT(kept, 0.25 * fallback) << "classified " << kept << " against the shadow maps' " << fallback;
+}
+
+TEST(Items, BadClassifierSettingsAreRefusedNamingTheSetting) {
+  const Scene scene = itemScene();
+  for (float texels : {-1.0f, 65.0f, std::nanf("")}) {
+    RenderSettings s = settingsFor(Policy::Benefit, 64, 64);
+    s.rayTracing.shadowUncertaintyTexels = texels;
+    try {
+      Renderer r(scene, s);
+      ADD_FAILURE() << "accepted " << texels;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("shadowUncertaintyTexels"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace raybudget
