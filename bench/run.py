@@ -27,9 +27,13 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 BENCH_SCENES = ROOT.parent / "shared" / "scenes" / "bench"
 GENERATED = [ROOT / "data" / "default" / "court.gltf", ROOT / "data" / "plaza" / "plaza.gltf"]
 POLICIES = ["paper", "density", "nearest", "random", "benefit"]
+# `benefit` with one part left out (docs/SELECTION.md), with --ablations.
+ABLATIONS = ["benefit-no-centrality", "benefit-no-hysteresis", "benefit-prior-only", "benefit-no-classifier"]
 FRACTIONS = [0.10, 0.25, 0.50]  # of `all`'s stage cost
 ADHERENCE_SLACK = 1.05          # the promise: rt_stage_ms <= T + 5%
 COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "benefit": "tab:brown",
+          "benefit-no-centrality": "tab:pink", "benefit-no-hysteresis": "tab:cyan", "benefit-prior-only": "gold",
+          "benefit-no-classifier": "darkgreen",
           "none": "black", "all": "tab:red", "classified": "tab:olive", "oracle": "tab:gray"}
 
 
@@ -39,6 +43,7 @@ def parse_args(argv):
     p.add_argument("--out", help="output folder (default results/<date>)")
     p.add_argument("--scenes", nargs="+", help="scene files (default: the generated scenes and every bench scene)")
     p.add_argument("--policies", default=",".join(POLICIES))
+    p.add_argument("--ablations", action="store_true", help="also run benefit with each of its parts left out: " + ", ".join(ABLATIONS))
     p.add_argument("--budgets", type=int)
     p.add_argument("--frames", type=int)
     p.add_argument("--warmup", type=int)
@@ -56,6 +61,8 @@ def parse_args(argv):
     p.add_argument("--aggregate-only", action="store_true", help="no sweeps: recompute the tables, plots and strips from --out's "
                    "frames.csv and oracle.csv")
     a = p.parse_args(argv)
+    if a.ablations:
+        a.policies = ",".join([a.policies] + ABLATIONS)
     full = dict(budgets=5, frames=3, warmup=6, repeats=2, size="640x360")
     quick = dict(budgets=4, frames=3, warmup=5, repeats=2, size="320x180")
     for k, v in (quick if a.quick else full).items():

@@ -3,6 +3,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_ARB_shader_clock : require
 #include "include/bindings.glsl"
 #include "include/brdf.glsl"
 #include "include/display.glsl"
@@ -81,6 +82,6 @@ void main() {
   if (measuringItems()) {
     vec3 indirect = imageLoad(indirectImage, pixel).rgb;
     float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
-    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), vec3(error, 0.0, 0.0));
+    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0));
   }
 }

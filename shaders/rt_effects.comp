@@ -3,6 +3,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_ARB_shader_clock : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
 #include "include/display.glsl"
@@ -122,6 +123,7 @@ void main() {
   bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() && itemSelected(s.objectId, RB_ITEM_REFLECTIONS);
   bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0 && itemSelected(s.objectId, RB_ITEM_REFRACTIONS);
   if (!reflects && !refracts) return;  // the environment fallback stands
+  uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
   vec3 V = normalize(frame.cameraPositionNear.xyz - p);
@@ -141,8 +143,10 @@ void main() {
   // its compile time on lavapipe) half the size.
   vec3 color[2] = fallback;
   uint work[2] = uint[2](0u, 0u);
+  uint pathTicks[2] = uint[2](0u, 0u);  // each path's span on the clock
   for (int path = 0; path < 2; ++path) {
     if (!(path == 0 ? reflects : refracts)) continue;
+    uint pathStart = clockNow();
     vec3 origin = offsetRay(p, ng), dir = R, weight = specularWeight;
     color[path] = vec3(0.0);
     if (path == 1) {
@@ -151,6 +155,7 @@ void main() {
       weight = transmitWeight * absorbed;
     }
     color[path] = traceRadiance(origin, dir, depth, work[path]) * weight;
+    pathTicks[path] = clockNow() - pathStart;
   }
   imageStore(indirectImage, pixel, vec4(color[0] + color[1], 1.0));
   addObjectWork(s.objectId, work[0] + work[1]);
@@ -158,6 +163,12 @@ void main() {
     vec3 direct = imageLoad(directImage, pixel).rgb, untraced = direct + fallback[0] + fallback[1];
     float reflectionError = reflects ? displayError(direct + color[0] + fallback[1], untraced) : 0.0;
     float refractionError = refracts ? displayError(direct + fallback[0] + color[1], untraced) : 0.0;
-    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), vec3(0.0, reflectionError, refractionError));
+    // Each path is charged its span shared among the lanes that traced it, and the rest of
+    // the invocation (setup, fallback, measurement) shared among all, split over the lane's paths.
+    uint rest = clockNow() - start - subgroupMax(pathTicks[0]) - subgroupMax(pathTicks[1]);
+    uint reflectors = subgroupAdd(reflects ? 1u : 0u), refractors = subgroupAdd(refracts ? 1u : 0u), lanes = subgroupAdd(1u);
+    uint own = clockShare(0u, rest, lanes * (reflects && refracts ? 2u : 1u));
+    uvec2 ticks = uvec2(reflects ? clockShare(0u, pathTicks[0], reflectors) + own : 0u, refracts ? clockShare(0u, pathTicks[1], refractors) + own : 0u);
+    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError));
   }
 }

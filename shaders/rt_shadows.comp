@@ -3,6 +3,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_ARB_shader_clock : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
 #include "include/item_stats.glsl"
@@ -21,6 +22,7 @@ void main() {
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
   if (!readSurface(pixel, s) || s.unlit || !itemSelected(s.objectId, RB_ITEM_SHADOWS)) return;  // the lighting pass reads no mask there
+  uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
   vec3 origin = offsetRay(p, ng);
@@ -37,6 +39,7 @@ void main() {
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }
+  uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, work);
-  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), vec3(0.0));
+  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0));
 }

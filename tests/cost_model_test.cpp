@@ -28,6 +28,60 @@ TEST(CostModel, PredictedWorkIsPixelsTimesWorkPerPixelOrQTimesThePriorAndPaperUs
   EXPECT_EQ(select::predictedCost(0.5f, 1250.0f), 625.0f);
 }
 
+// Items (`benefit`): b starts from the first measurement (error over the traced pixels, in
+// display units), then averages with each; an untraced item drifts 1/16 of the way to its
+// effect's prior per frame; prior-only never learns b, the work per pixel still.
+TEST(CostModel, ItemBenefitIsLearnedFromTracedFramesAndDriftsToThePriorOtherwise) {
+  using select::ItemLearned;
+  const ItemLearned fresh;
+  const ItemLearned first = select::learnItem(RB_ITEM_REFLECTIONS, fresh, {600, 0, 1024 * 30, 100}, 0.0f);  // 0.3 per pixel
+  EXPECT_EQ(first.benefit, 0.3f);
+  EXPECT_TRUE(first.measured);
+  EXPECT_EQ(first.workPerPixel, 6.0f);
+  const ItemLearned second = select::learnItem(RB_ITEM_REFLECTIONS, first, {600, 0, 1024 * 10, 100}, 0.0f);
+  EXPECT_EQ(second.benefit, 0.5f * (0.3f + 0.1f));
+  const ItemLearned untraced = select::learnItem(RB_ITEM_REFLECTIONS, second, {}, 0.0f);
+  EXPECT_EQ(untraced.benefit, second.benefit + (float(RB_PRIOR_BENEFIT_REFLECTIONS) - second.benefit) * 0.0625f);
+  EXPECT_EQ(untraced.workPerPixel, second.workPerPixel);
+  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {}, 0.0f).benefit, float(RB_PRIOR_BENEFIT_SHADOWS)) << "never measured: the prior";
+  const ItemLearned priorOnly = select::learnItem(RB_ITEM_SHADOWS, fresh, {600, 0, 1024 * 30, 100}, 0.0f, RB_BENEFIT_PRIOR_ONLY);
+  EXPECT_EQ(priorOnly.benefit, float(RB_PRIOR_BENEFIT_SHADOWS));
+  EXPECT_FALSE(priorOnly.measured);
+  EXPECT_EQ(priorOnly.workPerPixel, 6.0f);
+  // Drifting for long enough reaches the prior from either side.
+  ItemLearned low = select::learnItem(RB_ITEM_SHADOWS, fresh, {1, 0, 0, 100}, 0.0f);
+  EXPECT_EQ(low.benefit, 0.0f);
+  for (int f = 0; f < 400; ++f) low = select::learnItem(RB_ITEM_SHADOWS, low, {}, 0.0f);
+  EXPECT_NEAR(low.benefit, float(RB_PRIOR_BENEFIT_SHADOWS), 1e-6f);
+}
+
+// An item's cost per pixel comes from its clock ticks at the frame's exchange rate (work per
+// tick over every item), or from its traversal work where nothing was timed.
+TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
+  EXPECT_EQ(select::itemTicksToWork(3000, 1000), 3.0f);
+  EXPECT_EQ(select::itemTicksToWork(3000, 0), 0.0f);
+  EXPECT_EQ(select::itemTicksToWork(0, 1000), 0.0f);
+  const select::ItemLearned fresh;
+  // 50 ticks a pixel at 3 work units a tick: 150 per pixel, whatever its traversal work.
+  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {100, 5000, 0, 100}, 3.0f).workPerPixel, 150.0f);
+  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {100, 5000, 0, 100}, 0.0f).workPerPixel, 1.0f) << "not timed: traversal work";
+  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {100, 0, 0, 100}, 3.0f).workPerPixel, 1.0f) << "no ticks of its own";
+}
+
+TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {
+  // Before measurement: a shadow ray per light; reflections one more path, refractions two.
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_SHADOWS, 10, 0.0f, 3), 10.0f * 3.0f * float(RB_PRIOR_WORK_PER_RAY));
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFLECTIONS, 10, 0.0f, 3), 10.0f * 4.0f * float(RB_PRIOR_WORK_PER_RAY));
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFRACTIONS, 10, 0.0f, 3), 10.0f * 5.0f * float(RB_PRIOR_WORK_PER_RAY));
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFRACTIONS, 10, 7.5f, 3), 75.0f);
+  // R' = A·P·b·(1 + S·I)·K with A = pixels / screen.
+  EXPECT_FLOAT_EQ(select::itemValue(100, 1000, 0.5f, 0.2f, false, 2.0f, 0.5f), 0.1f * 0.5f * 0.2f * 2.0f);
+  EXPECT_FLOAT_EQ(select::itemValue(100, 1000, 0.5f, 0.2f, true, 2.0f, 0.5f), 0.1f * 0.5f * 0.2f * 1.5f * 2.0f);
+  EXPECT_FLOAT_EQ(select::itemValue(100, 1000, 0.5f, 0.2f, true, 2.0f, 0.5f, RB_BENEFIT_WITHOUT_HYSTERESIS), 0.1f * 0.5f * 0.2f * 2.0f);
+  EXPECT_FLOAT_EQ(select::itemValue(100, 1000, 0.5f, 0.2f, false, 2.0f, 0.5f, RB_BENEFIT_WITHOUT_CENTRALITY), 0.1f * 0.2f * 2.0f);
+  EXPECT_EQ(select::itemValue(100, 1000, 0.5f, 0.0f, true, 2.0f, 0.5f), 0.0f) << "nothing to remove: no value";
+}
+
 TEST(CostModel, TimeScaleStartsAtThePriorAndMovesPartWayTowardsWhatWasMeasured) {
   select::TimeScale k(640, 360);
   const double prior = select::priorMsPerUnit(CostUnit::Work, 640, 360);

@@ -147,9 +147,10 @@ TEST(Items, MeasuredErrorEqualsTheImageDifferenceAgainstTheFallback) {
 // reference selects from the same candidates, under a budget that binds.
 TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
   const Scene scene = loadScene(test::defaultScenePath());
-  auto orbit = [&](float budgetMs, std::vector<ObjectMetrics>* last) {
+  auto orbit = [&](float budgetMs, std::vector<ObjectMetrics>* last, BenefitAblation ablation = BenefitAblation::None) {
     RenderSettings s = settingsFor(Policy::Benefit, 320, 192);
     s.budgetMs = budgetMs;
+    s.benefitAblation = ablation;
     s.learnTimeScale = false;
     s.checkSelection = true;
     s.objectMetrics = true;
@@ -161,8 +162,8 @@ TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
     for (const FrameTiming& x : renderer.finish()) t.push_back(x);
     test::expectValidationClean(renderer.validationMessages());
     for (const FrameTiming& f : t) {
-      EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << "T " << budgetMs << ", frame " << f.frame;
-      EXPECT_TRUE(f.costsMatchCpu.value_or(false)) << "T " << budgetMs << ", frame " << f.frame;
+      EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << ablationName(ablation) << " T " << budgetMs << ", frame " << f.frame;
+      EXPECT_TRUE(f.costsMatchCpu.value_or(false)) << ablationName(ablation) << " T " << budgetMs << ", frame " << f.frame;
     }
     if (last) *last = renderer.objectMetrics();
     return t;
@@ -182,6 +183,9 @@ TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
       learned += b != float(RB_PRIOR_BENEFIT_SHADOWS) && b != float(RB_PRIOR_BENEFIT_REFLECTIONS);
     }
   EXPECT_GT(learned, 0u) << "traced items should have measured benefits";
+  // The ablations' GPU paths equal their references too.
+  for (BenefitAblation a : {BenefitAblation::NoCentrality, BenefitAblation::NoHysteresis, BenefitAblation::PriorOnly})
+    orbit(float(all.back().predictedTraceMs / 4.0), nullptr, a);
 }
 
 // The shadow classifier (`classified`, shadows only) traces far fewer shadow rays than full

@@ -28,7 +28,8 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --repeats N           runs of every configuration, each imaged (default 3)
   --order-seed S        shuffles each repeat's configurations (default 1; 0: all, none, budgets ascending)
   --prior-time-scale    never learn the cost model's time scale: selections independent of timing
-  --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random,benefit)
+  --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random,benefit);
+                        benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier: ablations
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -97,7 +98,9 @@ struct Config {
   Policy policy;
   uint32_t budgetIndex = 0;
   float budgetMs = 0.0f;
-  std::string label() const { return policyName(policy) + (isBudgeted(policy) ? "-b" + std::to_string(budgetIndex) : std::string()); }
+  BenefitAblation ablation = BenefitAblation::None;
+  std::string name() const { return SweepPolicy{policy, ablation}.name(); }
+  std::string label() const { return name() + (isBudgeted(policy) ? "-b" + std::to_string(budgetIndex) : std::string()); }
 };
 
 // Where a run's images go and what its rows say: a repeat (with its place in the repeat's
@@ -121,7 +124,7 @@ class Sweep {
   // model, warm up on the first camera at the configuration's budget, then the recorded
   // frames, each read back when imaged. Returns the recorded frames' timings.
   std::vector<FrameTiming> run(const std::string& pathName, const std::vector<Camera>& path, const Config& cfg, const RunKind& kind) {
-    renderer_.restartSelection(cfg.policy, isBudgeted(cfg.policy) ? cfg.budgetMs : 1.0f);
+    renderer_.restartSelection(cfg.policy, isBudgeted(cfg.policy) ? cfg.budgetMs : 1.0f, cfg.ablation);
     if (isBudgeted(cfg.policy)) renderer_.setCostModel(start_);
     const std::filesystem::path dir = std::filesystem::path(c_.out) / kind.imageDir;
     if (!kind.imageDir.empty()) std::filesystem::create_directories(dir);
@@ -155,7 +158,7 @@ class Sweep {
  private:
   void writeRow(const std::string& pathName, const Config& cfg, const RunKind& kind, size_t f, const FrameTiming& t, double rmse) {
     const bool budgeted = isBudgeted(cfg.policy);
-    csv_ << std::filesystem::path(scene_.path).stem().string() << ',' << pathName << ',' << policyName(cfg.policy) << ',' << cfg.budgetIndex << ','
+    csv_ << std::filesystem::path(scene_.path).stem().string() << ',' << pathName << ',' << cfg.name() << ',' << cfg.budgetIndex << ','
          << (budgeted ? cfg.budgetMs : 0.0f) << ',' << kind.repeat << ',' << kind.order << ',' << f << ',' << passCell(t, Pass::Coverage) << ','
          << passCell(t, Pass::Select) << ',' << t.traceMs() << ',' << t.rtStageMs() << ',' << passCell(t, Pass::ShadowMaps) << ','
          << passCell(t, Pass::EnvFallback) << ',' << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
@@ -219,6 +222,14 @@ void shuffle(std::vector<T>& v, uint32_t seed) {
 
 }  // namespace
 
+SweepPolicy parseSweepPolicy(const std::string& name) {
+  const std::string prefix = "benefit-";
+  if (name.rfind(prefix, 0) == 0) return {Policy::Benefit, parseAblation(name.substr(prefix.size()))};
+  const Policy policy = parsePolicy(name);
+  if (!isBudgeted(policy)) throw Error("--policies takes budgeted policies (paper, density, nearest, random, benefit), got '" + name + "'");
+  return {policy};
+}
+
 SweepCommand parseSweep(const std::vector<std::string>& args) {
   SweepCommand c;
   for (size_t i = 0; i < args.size(); ++i) {
@@ -247,9 +258,7 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
     } else if (a == "--policies") {
       c.policies.clear();
       for (const std::string& p : splitList(value())) {
-        const Policy policy = parsePolicy(p);
-        if (!isBudgeted(policy)) throw Error("--policies takes budgeted policies (paper, density, nearest, random, benefit), got '" + p + "'");
-        c.policies.push_back(policy);
+        c.policies.push_back(parseSweepPolicy(p));
       }
       if (c.policies.empty()) throw Error("--policies needs at least one policy");
     } else if (a == "--paths") {
@@ -283,8 +292,8 @@ int runSweep(const SweepCommand& c) {
          "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
   calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,stage_overhead_ms,trace_fixed_ms,budgets_ms\n";
-  const bool paper = std::find(c.policies.begin(), c.policies.end(), Policy::Paper) != c.policies.end();
-  const bool work = std::any_of(c.policies.begin(), c.policies.end(), [](Policy p) { return p != Policy::Paper; });
+  const bool paper = std::any_of(c.policies.begin(), c.policies.end(), [](const SweepPolicy& p) { return p.policy == Policy::Paper; });
+  const bool work = std::any_of(c.policies.begin(), c.policies.end(), [](const SweepPolicy& p) { return p.policy != Policy::Paper; });
   const uint32_t budgets = c.budgetList.empty() ? c.budgets : uint32_t(c.budgetList.size());
   const uint32_t calibrationRuns = c.budgetList.empty() ? 2 + 1 + 2 * (uint32_t(paper) + uint32_t(work)) : 1;
   const uint64_t perPath = uint64_t(c.frames + c.warmup) * (calibrationRuns + uint64_t(c.repeats) * (2 + uint64_t(c.classified) + c.policies.size() * budgets));
@@ -336,7 +345,7 @@ int runSweep(const SweepCommand& c) {
     std::vector<Config> configs{{Policy::All}, {Policy::None}};
     if (c.classified) configs.push_back({Policy::Classified});
     for (uint32_t b = 0; b < points.size(); ++b)
-      for (const Policy p : c.policies) configs.push_back({p, b, points[b]});
+      for (const SweepPolicy& p : c.policies) configs.push_back({p.policy, b, points[b], p.ablation});
     for (uint32_t r = 0; r < c.repeats; ++r) {
       std::vector<Config> order = configs;
       if (c.orderSeed != 0) shuffle(order, c.orderSeed * 7919u + uint32_t(pathIndex) * 131u + r);

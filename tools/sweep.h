@@ -16,6 +16,13 @@
 
 namespace raybudget::cli {
 
+// A budgeted policy as the sweep runs it: `benefit` may leave one of its parts out (ablations).
+struct SweepPolicy {
+  Policy policy = Policy::Density;
+  BenefitAblation ablation = BenefitAblation::None;
+  std::string name() const { return std::string(policyName(policy)) + (ablation == BenefitAblation::None ? "" : std::string("-") + ablationName(ablation)); }
+};
+
 struct SweepCommand {
   std::string scene;
   std::string out = "sweep";
@@ -27,12 +34,16 @@ struct SweepCommand {
   uint32_t orderSeed = 1;  // shuffles each repeat's configurations; 0: all, none, then budgets ascending
   std::vector<float> budgetList;  // explicit budgets in ms instead of the calibrated sweep
   bool priorTimeScale = false;    // never learn the time scale: selections independent of timing (tests)
-  std::vector<Policy> policies{Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random, Policy::Benefit};
+  std::vector<SweepPolicy> policies{{Policy::Paper}, {Policy::Density}, {Policy::Nearest}, {Policy::Random}, {Policy::Benefit}};
   bool classified = true;  // run `classified` beside all and none
   std::vector<std::string> paths{"orbit", "flythrough"};
   std::string device;
   bool validation = false;
 };
+
+// Parses a budgeted policy's name: paper, density, nearest, random, benefit, or benefit with a
+// part left out (benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier).
+SweepPolicy parseSweepPolicy(const std::string& name);
 
 // Parses `sweep` arguments (after the word "sweep"). Throws raybudget::Error.
 SweepCommand parseSweep(const std::vector<std::string>& args);

@@ -44,6 +44,23 @@ Policy parsePolicy(const std::string& name) {
   throw Error("the optimal policy runs on the CPU for benchmarks only; render with another and --optimal-bound for its bound");
 }
 
+const char* ablationName(BenefitAblation a) {
+  switch (a) {
+    case BenefitAblation::None: return "";
+    case BenefitAblation::NoCentrality: return "no-centrality";
+    case BenefitAblation::NoHysteresis: return "no-hysteresis";
+    case BenefitAblation::PriorOnly: return "prior-only";
+    case BenefitAblation::NoClassifier: return "no-classifier";
+  }
+  return "?";
+}
+
+BenefitAblation parseAblation(const std::string& name) {
+  for (BenefitAblation a : {BenefitAblation::NoCentrality, BenefitAblation::NoHysteresis, BenefitAblation::PriorOnly, BenefitAblation::NoClassifier})
+    if (name == ablationName(a)) return a;
+  throw Error("unknown benefit ablation '" + name + "' (no-centrality, no-hysteresis, prior-only, no-classifier)");
+}
+
 bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All && policy != Policy::Classified; }
 const char* tracerName(Tracer tracer) { return tracer == Tracer::Native ? "native" : "compute"; }
 
@@ -274,7 +291,8 @@ struct Renderer::Impl {
   // item's work and the display error its tracing removed.
   uint32_t itemFlags() const {
     if (settings.policy != Policy::Benefit && settings.policy != Policy::Classified) return 0u;
-    return (settings.rayTracing.classifyShadows ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS;
+    const bool classify = settings.rayTracing.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
+    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS;
   }
 
   void computeToCompute(VkCommandBuffer cmd) {
@@ -420,10 +438,11 @@ struct Renderer::Impl {
 
   // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
   // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
-  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs) {
+  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs, BenefitAblation ablation) {
     RenderSettings next = settings;
     next.policy = policy;
     next.budgetMs = budgetMs;
+    next.benefitAblation = ablation;
     validateSettings(next);
     std::vector<FrameTiming> done = finish();
     settings = next;
@@ -459,7 +478,9 @@ std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->
 
 std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
 
-std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs) { return impl_->restartSelection(policy, budgetMs); }
+std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs, BenefitAblation ablation) {
+  return impl_->restartSelection(policy, budgetMs, ablation);
+}
 
 CostModel Renderer::costModel() const { return impl_->selection.costModel(); }
 

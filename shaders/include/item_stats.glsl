@@ -1,24 +1,36 @@
-// Per-item counters of the trace and lighting passes (GpuItemCost): the traversal work and
-// the display error that tracing removed, for the `benefit` policy to learn from. The
-// includer enables GL_KHR_shader_subgroup_basic, _vote and _arithmetic.
+// Per-item counters of the trace and lighting passes (GpuItemCost): the traversal work, the
+// time and the display error that tracing removed, for the `benefit` policy to learn from.
+// The includer enables GL_KHR_shader_subgroup_basic, _vote and _arithmetic.
 #ifndef RB_ITEM_STATS_GLSL
 #define RB_ITEM_STATS_GLSL
 
-// Adds this invocation's work and error per effect (x shadows, y reflections, z refractions)
-// to its object's items: lanes of the subgroup on the same object are summed first, then one
-// atomic per item with something to add. The error is summed in float over the lanes and
-// added in 1/RB_ERROR_UNITS units, rounded.
-void addItemCounts(uint objectId, uvec3 work, vec3 error) {
+// The record after the items: the frame's totals.
+uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
+
+// Adds this invocation's work, ticks and error per effect (x shadows, y reflections, z
+// refractions) to its object's items: lanes of the subgroup on the same object are summed
+// first, then one atomic per item with something to add. The error is summed in float over
+// the lanes and added in 1/RB_ERROR_UNITS units, rounded. The frame's totals of work and
+// ticks take one atomic each per subgroup.
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error) {
   bool pending = objectId != RB_NO_OBJECT;
+  uint allWork = subgroupAdd(pending ? work.x + work.y + work.z : 0u);
+  uint allTicks = subgroupAdd(pending ? ticks.x + ticks.y + ticks.z : 0u);
+  if (subgroupElect()) {
+    if (allWork != 0u) atomicAdd(itemCosts[itemTotalsIndex()].work, allWork);
+    if (allTicks != 0u) atomicAdd(itemCosts[itemTotalsIndex()].ticks, allTicks);
+  }
   while (subgroupAny(pending)) {
     uint current = subgroupMin(pending ? objectId : RB_NO_OBJECT);
     bool mine = pending && objectId == current;
     uvec3 w = subgroupAdd(mine ? work : uvec3(0u));
+    uvec3 t = subgroupAdd(mine ? ticks : uvec3(0u));
     vec3 e = subgroupAdd(mine ? error : vec3(0.0));
     if (mine && subgroupElect()) {
       for (uint k = 0u; k < RB_ITEMS_PER_OBJECT; ++k) {
         uint item = current * RB_ITEMS_PER_OBJECT + k;
         if (w[k] != 0u) atomicAdd(itemCosts[item].work, w[k]);
+        if (t[k] != 0u) atomicAdd(itemCosts[item].ticks, t[k]);
         uint units = uint(e[k] * RB_ERROR_UNITS + 0.5);
         if (units != 0u) atomicAdd(itemCosts[item].error, units);
       }
@@ -26,5 +38,11 @@ void addItemCounts(uint objectId, uvec3 work, vec3 error) {
     pending = pending && !mine;
   }
 }
+
+// The subgroup clock (VK_KHR_shader_clock): the subgroup's lanes run together, so a span
+// timed on it is the subgroup's time; each of the `sharing` lanes that caused it is charged
+// an equal part, in RB_CLOCK_UNIT ticks.
+uint clockNow() { return clock2x32ARB().x; }
+uint clockShare(uint start, uint end, uint sharing) { return sharing == 0u ? 0u : (end - start) / (sharing * RB_CLOCK_UNIT); }
 
 #endif

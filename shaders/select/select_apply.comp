@@ -17,6 +17,10 @@ void main() {
     // The pixels the trace passes will count work over, for next frame's learning.
     costs[i].pixels = bits != 0u ? floatBitsToUint(records[i].crCandidatePixels.w) : 0u;
     if (push.sizes.z != RB_SELECT_BENEFIT) return;
+    if (i == 0u) {  // the frame's totals restart (select_candidates.comp has read them)
+      items[push.walk.z * RB_ITEMS_PER_OBJECT].work = 0u;
+      items[push.walk.z * RB_ITEMS_PER_OBJECT].ticks = 0u;
+    }
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       uint id = i * RB_ITEMS_PER_OBJECT + effect;
       bool on = (bits & (1u << effect)) != 0u;

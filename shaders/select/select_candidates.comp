@@ -39,20 +39,34 @@ float priorBenefit(uint effect) {
   return effect == RB_ITEM_SHADOWS ? RB_PRIOR_BENEFIT_SHADOWS : (effect == RB_ITEM_REFLECTIONS ? RB_PRIOR_BENEFIT_REFLECTIONS : RB_PRIOR_BENEFIT_REFRACTIONS);
 }
 
+// Work units per clock tick over last frame's traced items (0: nothing timed).
+float ticksToWork() {
+  GpuItemCost totals = items[push.walk.z * RB_ITEMS_PER_OBJECT];
+  return totals.ticks > 0u && totals.work > 0u ? exactQuotient(float(totals.work), float(totals.ticks)) : 0.0;
+}
+
 // Item `effect` of object i: learns from last frame's counters, restarts them, and returns
 // its candidate's cost and value (false: not a candidate).
-bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out float value) {
+bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value) {
   uint id = i * RB_ITEMS_PER_OBJECT + effect;
   GpuItemCost c = items[id];
+  bool learnBenefit = (push.items.w & RB_BENEFIT_PRIOR_ONLY) == 0u;
   if (c.pixels > 0u) {  // traced last frame
-    if (c.work > 0u) {
-      float observed = exactQuotient(float(c.work), float(c.pixels));
+    // Its cost per pixel: its time, in work units at the frame's exchange rate (shading,
+    // texture lookups, the shadow classifier, divergence: what traversal work leaves out),
+    // or its traversal work where nothing was timed.
+    bool timed = exchange > 0.0 && c.ticks > 0u;
+    if (timed || c.work > 0u) {
+      float observed = timed ? exactQuotient(float(c.ticks), float(c.pixels)) * exchange : exactQuotient(float(c.work), float(c.pixels));
       c.workPerPixel = c.workPerPixel > 0.0 ? 0.5 * (c.workPerPixel + observed) : observed;
     }
-    float removed = exactQuotient(float(c.error), float(c.pixels) * RB_ERROR_UNITS);
-    c.benefit = c.measured != 0u ? 0.5 * (c.benefit + removed) : removed;
-    c.measured = 1u;
-  } else {
+    if (learnBenefit) {
+      float removed = exactQuotient(float(c.error), float(c.pixels) * RB_ERROR_UNITS);
+      c.benefit = c.measured != 0u ? 0.5 * (c.benefit + removed) : removed;
+      c.measured = 1u;
+    }
+  }
+  if (c.pixels == 0u || !learnBenefit) {
     // Untraced: drift towards the prior (by a power-of-two share: an exact product, so a
     // fused multiply-add rounds alike), or the prior itself before any measurement.
     float prior = priorBenefit(effect);
@@ -69,9 +83,11 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out f
   // R' = (S·I + E)·K with the hysteresis relative to E (docs/SELECTION.md): E·(1 + S·I)·K,
   // E = A·P·b.
   float A = exactQuotient(float(pixels), float(push.items.z));
-  float E = A * r.apdv.y * c.benefit;
+  float P = (push.items.w & RB_BENEFIT_WITHOUT_CENTRALITY) != 0u ? 1.0 : r.apdv.y;
+  float E = A * P * c.benefit;
   vec4 kqiS = params[i].kqiS;
-  value = E * (1.0 + float(c.selectedLast) * kqiS.z) * kqiS.x;
+  float I = (push.items.w & RB_BENEFIT_WITHOUT_HYSTERESIS) != 0u ? 0.0 : kqiS.z;
+  value = E * (1.0 + float(c.selectedLast) * I) * kqiS.x;
   return true;
 }
 
@@ -87,9 +103,10 @@ void main() {
   costs[i] = GpuObjectCost(oc.workPerPixel, 0u, 0u, 0u);
   GpuObjectRecord r = records[i];
   if (push.sizes.z == RB_SELECT_BENEFIT) {
+    float exchange = ticksToWork();
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       float cost = 0.0, value = 0.0;
-      bool add = itemCandidate(i, effect, r, cost, value);
+      bool add = itemCandidate(i, effect, r, exchange, cost, value);
       append(add, i * RB_ITEMS_PER_OBJECT + effect, cost, value, r.apdv.z);
     }
     return;

@@ -63,11 +63,17 @@ struct GpuObjectCost {
 #define RB_PRIOR_BENEFIT_REFLECTIONS 0.15
 #define RB_PRIOR_BENEFIT_REFRACTIONS 0.15
 #define RB_BENEFIT_DRIFT 0.0625
+// `benefit`'s ablations (SelectPush::items.w): P = 1 in E; I = 0; b the prior, never learned.
+#define RB_BENEFIT_WITHOUT_CENTRALITY 1u
+#define RB_BENEFIT_WITHOUT_HYSTERESIS 2u
+#define RB_BENEFIT_PRIOR_ONLY 4u
 
-// 32 bytes: what the `benefit` policy knows of an item: its learned work per traced pixel
-// (0: not learned), the work and error the trace passes counted for it this frame over
-// `pixels` (the pixels it was traced on), its learned benefit b (display error removed per
-// covered pixel), 1 once measured, and S (1: selected last frame).
+// 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
+// work units (0: not learned), the traversal work, time (subgroup clock ticks /
+// RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
+// pixels it was traced on), its learned benefit b (display error removed per covered pixel),
+// 1 once measured, and S (1: selected last frame). One more record after the items holds the
+// frame's totals of work and ticks over every item (the ticks' exchange rate to work units).
 struct GpuItemCost {
   float workPerPixel;
   uint work;
@@ -76,8 +82,10 @@ struct GpuItemCost {
   float benefit;
   uint measured;
   uint selectedLast;
-  uint unused;
+  uint ticks;
 };
+// Clock ticks per unit of GpuItemCost::ticks: a 32-bit sum then holds 2^36 ticks a frame.
+#define RB_CLOCK_UNIT 16u
 
 // Frame mode: the candidates' total cost in units of 2^-20 budget (rounded up each) at or
 // below which every candidate fits for certain and no order is needed: 31/32 of the budget
@@ -110,7 +118,7 @@ struct SelectPush {
   uvec4 stage;   // x bitonic k or merge run, y bitonic j or merge pass, z which order (0 main, 1 relevance), w `paper` pointers N
   vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work)
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects
-  uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w unused
+  uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_WITHOUT_* bits
 };
 
 // Policies on the GPU, numbered as select::Policy (engine/src/select/policies.h).

@@ -21,6 +21,15 @@ namespace raybudget {
 // traces every item, shadows only where the shadow map is uncertain: what the classifier
 // alone costs in error and saves in time.
 enum class Policy { None, All, Paper, Density, Nearest, Random, Benefit, Classified };
+
+// `benefit` with one of its parts left out, for the benchmark's ablations
+// (docs/SELECTION.md): P in E = A·P·b (P = 1), the hysteresis S·I (I = 0), the measured b
+// (b stays the prior), the shadow classifier (every pixel of a shadow item traces).
+enum class BenefitAblation { None, NoCentrality, NoHysteresis, PriorOnly, NoClassifier };
+// "", "no-centrality", "no-hysteresis", "prior-only", "no-classifier"
+const char* ablationName(BenefitAblation ablation);
+// Throws raybudget::Error naming the valid ones.
+BenefitAblation parseAblation(const std::string& name);
 const char* policyName(Policy policy);
 // Throws raybudget::Error naming the policies.
 Policy parsePolicy(const std::string& name);
@@ -64,6 +73,7 @@ struct RenderSettings {
   float budgetMs = 4.0f;
   uint32_t graphPointers = 4;      // `paper`: N
   uint32_t seed = 1;               // `random`
+  BenefitAblation benefitAblation = BenefitAblation::None;
   // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
   // timestamps (off: the prior stays, so a run selects the same objects on any machine;
   // per-object work per pixel is learned from the deterministic work counters either way).
@@ -202,7 +212,7 @@ class Renderer {
   // last learned. With learnTimeScale off the next frames select exactly as a new Renderer
   // would. Finishes the frames in flight and returns their timings. Throws Error on a bad
   // budget.
-  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs);
+  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs, BenefitAblation ablation = BenefitAblation::None);
 
   // The cost model as learned so far (the current policy's unit included), and a way to
   // start from a saved one: a benchmark gives every configuration the same learned state,

@@ -29,14 +29,27 @@ float priorBenefit(uint32_t effect) {
                                          : (effect == RB_ITEM_REFLECTIONS ? RB_PRIOR_BENEFIT_REFLECTIONS : RB_PRIOR_BENEFIT_REFRACTIONS));
 }
 
-ItemLearned learnItem(uint32_t effect, const ItemLearned& before, uint32_t work, uint32_t error, uint32_t pixels) {
+float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
+  return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
+}
+
+ItemLearned learnItem(uint32_t effect, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation) {
   ItemLearned after = before;
+  const bool learnBenefit = !(ablation & RB_BENEFIT_PRIOR_ONLY);
+  const uint32_t pixels = counts.pixels;
   if (pixels > 0) {
-    after.workPerPixel = learnedWorkPerPixel(before.workPerPixel, work, pixels);
-    const float removed = exactQuotient(float(error), float(pixels) * float(RB_ERROR_UNITS));
-    after.benefit = before.measured ? 0.5f * (before.benefit + removed) : removed;
-    after.measured = true;
-  } else {
+    const bool timed = exchange > 0.0f && counts.ticks > 0;
+    if (timed || counts.work > 0) {
+      const float observed = timed ? exactQuotient(float(counts.ticks), float(pixels)) * exchange : exactQuotient(float(counts.work), float(pixels));
+      after.workPerPixel = before.workPerPixel > 0.0f ? 0.5f * (before.workPerPixel + observed) : observed;
+    }
+    if (learnBenefit) {
+      const float removed = exactQuotient(float(counts.error), float(pixels) * float(RB_ERROR_UNITS));
+      after.benefit = before.measured ? 0.5f * (before.benefit + removed) : removed;
+      after.measured = true;
+    }
+  }
+  if (pixels == 0 || !learnBenefit) {
     const float prior = priorBenefit(effect);
     // The drift's product is exact (a power-of-two share), so a fused multiply-add rounds alike.
     after.benefit = before.measured ? before.benefit + (prior - before.benefit) * float(RB_BENEFIT_DRIFT) : prior;
@@ -50,10 +63,10 @@ float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, ui
   return float(pixels) * perPixel;
 }
 
-float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, bool selectedLast, float K, float I) {
+float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, bool selectedLast, float K, float I, uint32_t ablation) {
   const float A = exactQuotient(float(pixels), float(screenPixels));
-  const float E = A * P * benefit;
-  const float hysteresis = 1.0f + (selectedLast ? 1.0f : 0.0f) * I;
+  const float E = A * (ablation & RB_BENEFIT_WITHOUT_CENTRALITY ? 1.0f : P) * benefit;
+  const float hysteresis = 1.0f + (selectedLast ? 1.0f : 0.0f) * (ablation & RB_BENEFIT_WITHOUT_HYSTERESIS ? 0.0f : I);
   return E * hysteresis * K;
 }
 

@@ -39,14 +39,24 @@ struct ItemLearned {
 float priorBenefit(uint32_t effect);
 // What an item knows after a frame that counted `work` and `error` (in 1/RB_ERROR_UNITS) over
 // the `pixels` it was traced on (0: not traced; its benefit drifts to the prior).
-ItemLearned learnItem(uint32_t effect, const ItemLearned& before, uint32_t work, uint32_t error, uint32_t pixels);
+// An item's cost per pixel is learned from its clock ticks at `exchange` work units per tick
+// (itemTicksToWork: the frame's totals), or from its traversal work where nothing was timed
+// (exchange 0 or no ticks). `ablation`: RB_BENEFIT_* bits (RB_BENEFIT_PRIOR_ONLY: b stays the prior).
+struct ItemCounts {
+  uint32_t work = 0, ticks = 0, error = 0, pixels = 0;
+};
+ItemLearned learnItem(uint32_t effect, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0);
+// Work units per tick from the frame's totals over every item (0: nothing timed).
+float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks);
 // An item candidate's predicted work: its pixels times its work per pixel, or before that
 // is learned, the rays per pixel (a shadow ray per light; a reflection or refraction path and
 // its hit's shadow rays) times a prior per ray.
 float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, uint32_t lights);
 // R' = (S·I + E)·K with the hysteresis relative to E: E·(1 + S·I)·K, E = A·P·b, A the item's
 // pixels over the screen's.
-float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, bool selectedLast, float K, float I);
+// pixels over the screen's (`ablation`: RB_BENEFIT_WITHOUT_CENTRALITY: P = 1,
+// RB_BENEFIT_WITHOUT_HYSTERESIS: I = 0).
+float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, bool selectedLast, float K, float I, uint32_t ablation = 0);
 
 // Predicted milliseconds: the time scale times the work.
 inline float predictedCost(float msPerUnit, float work) { return msPerUnit * work; }

@@ -18,9 +18,9 @@ namespace raybudget::select {
 enum class SortMethod { Auto, Bitonic, Merge };
 
 // What `benefit` needs of the frame: the effects traced (RB_RT_* bits), the scene's light
-// count, the pixels on screen.
+// count, the pixels on screen, the parts left out (RB_BENEFIT_* bits: ablations).
 struct ItemFrame {
-  uint32_t effects = 0, lights = 0, pixels = 0;
+  uint32_t effects = 0, lights = 0, pixels = 0, ablation = 0;
 };
 
 class GpuSelector {

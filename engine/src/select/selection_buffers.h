@@ -19,7 +19,7 @@ struct SelectionBuffers {
   vk::Buffer objectRecords;  // GpuObjectRecord per object: A, P, D, V, C, R
   vk::Buffer selection;      // uint per object: 1 = traced this frame
   vk::Buffer objectCosts;    // GpuObjectCost per object: learned work per pixel, this frame's work
-  vk::Buffer itemCosts;      // GpuItemCost per item (RB_ITEMS_PER_OBJECT per object): what `benefit` learns
+  vk::Buffer itemCosts;      // GpuItemCost per item (RB_ITEMS_PER_OBJECT per object), then the frame's totals: what `benefit` learns
   vk::Buffer tileObjects;    // RB_TILE_OBJECT_WORDS per tile (shaders/select/coverage.comp)
   vk::Buffer tileList;       // uvec4 dispatch (x = tiles, w = rays traced), then the tiles to trace
 };

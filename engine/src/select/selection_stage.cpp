@@ -34,7 +34,11 @@ PolicyOptions policyOptions(const RenderSettings& s) { return {s.graphPointers, 
 ItemFrame itemFrame(const RenderSettings& s, uint32_t lights) {
   const RayTracingSettings& rt = s.rayTracing;
   const uint32_t effects = (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
-  return {effects, lights, s.width * s.height};
+  uint32_t ablation = 0;
+  if (s.benefitAblation == BenefitAblation::NoCentrality) ablation = RB_BENEFIT_WITHOUT_CENTRALITY;
+  if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
+  if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
+  return {effects, lights, s.width * s.height, ablation};
 }
 
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each).
@@ -112,7 +116,7 @@ struct SelectionStage::Impl {
         slot.costsAfter = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.records = vk::createBuffer(c, records * sizeof(gpu::GpuObjectRecord), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.params = vk::createBuffer(c, records * sizeof(gpu::GpuObjectParams), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-        const VkDeviceSize items = records * RB_ITEMS_PER_OBJECT * sizeof(gpu::GpuItemCost);
+        const VkDeviceSize items = (records * RB_ITEMS_PER_OBJECT + 1) * sizeof(gpu::GpuItemCost);
         slot.itemsBefore = vk::createBuffer(c, items, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.itemsAfter = vk::createBuffer(c, items, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.coverage = vk::createBuffer(c, records * sizeof(gpu::GpuCoverage), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -214,18 +218,20 @@ struct SelectionStage::Impl {
       return e == RB_ITEM_REFLECTIONS ? coverage[i].sumYHi.y : coverage[i].sumYHi.z;
     };
     const uint32_t items = buffers.objects * RB_ITEMS_PER_OBJECT;
+    const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
+    if (after[items].work != 0 || after[items].ticks != 0) return false;  // the totals restart
     std::vector<ItemLearned> learned(items);
     std::vector<int64_t> expectedSlot(items, -1);
     size_t expected = 0;
     for (uint32_t id = 0; id < items; ++id) {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
       const gpu::GpuItemCost& b = before[id];
-      learned[id] = learnItem(e, {b.workPerPixel, b.benefit, b.measured != 0}, b.work, b.error, b.pixels);
+      learned[id] = learnItem(e, {b.workPerPixel, b.benefit, b.measured != 0}, {b.work, b.ticks, b.error, b.pixels}, exchange, frame.ablation);
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
-          a.work != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) || a.pixels != (on ? pixelsOf(i, e) : 0u))
+          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) || a.pixels != (on ? pixelsOf(i, e) : 0u))
         return false;
       if (records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0) ++expected;
     }
@@ -236,7 +242,8 @@ struct SelectionStage::Impl {
       if (records[i].crCandidatePixels.z < 0.5f || pixels == 0) return false;
       const float work = predictedItemWork(e, pixels, learned[c.id].workPerPixel, frame.lights);
       const glm::vec4 kqiS = params[i].kqiS;
-      const float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[c.id].benefit, before[c.id].selectedLast != 0, kqiS.x, kqiS.z);
+      const float value =
+          itemValue(pixels, frame.pixels, records[i].apdv.y, learned[c.id].benefit, before[c.id].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
       if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost) ||
           std::bit_cast<uint32_t>(value) != std::bit_cast<uint32_t>(c.value))
         return false;
@@ -292,7 +299,7 @@ struct SelectionStage::Impl {
     VK_CHECK(vkQueueWaitIdle(ctx.queue()));
     const VkDeviceSize count = buffers.objects, bytes = std::max<VkDeviceSize>(1, count) * sizeof(gpu::GpuObjectRecord);
     const VkDeviceSize flagBytes = std::max<VkDeviceSize>(1, count) * 4, coverageBytes = std::max<VkDeviceSize>(1, count) * sizeof(gpu::GpuCoverage);
-    const VkDeviceSize itemBytes = std::max<VkDeviceSize>(1, count) * RB_ITEMS_PER_OBJECT * sizeof(gpu::GpuItemCost);
+    const VkDeviceSize itemBytes = (std::max<VkDeviceSize>(1, count) * RB_ITEMS_PER_OBJECT + 1) * sizeof(gpu::GpuItemCost);
     vk::Buffer host = vk::createBuffer(ctx, bytes + flagBytes + coverageBytes + itemBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,

@@ -151,8 +151,14 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   const bool rayQueryExts = std::all_of(rayQueryExtensions.begin(), rayQueryExtensions.end(),
                                         [&](const char* e) { return hasDeviceExtension(physical_, e); });
   fAs.pNext = &fRq;
+  // The trace passes time each pixel's work with the subgroup clock (VK_KHR_shader_clock): what
+  // the `benefit` policy learns each item's cost from (shaders/include/item_stats.glsl).
+  if (!hasDeviceExtension(physical_, VK_KHR_SHADER_CLOCK_EXTENSION_NAME))
+    throw Error(std::string(properties_.deviceName) + " lacks the required extension " VK_KHR_SHADER_CLOCK_EXTENSION_NAME);
+  VkPhysicalDeviceShaderClockFeaturesKHR fClock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  if (rayQueryExts) f13.pNext = &fAs;
+  f13.pNext = &fClock;
+  if (rayQueryExts) fClock.pNext = &fAs;
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   f12.pNext = &f13;
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -167,14 +173,18 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   require(f12.runtimeDescriptorArray, "runtimeDescriptorArray");
   require(f12.shaderSampledImageArrayNonUniformIndexing, "shaderSampledImageArrayNonUniformIndexing");
   require(f2.features.imageCubeArray, "imageCubeArray");
+  require(fClock.shaderSubgroupClock, "shaderSubgroupClock");
   rayQuery_ = rayQueryExts && fRq.rayQuery && fAs.accelerationStructure && f12.bufferDeviceAddress;
   VkPhysicalDeviceRayQueryFeaturesKHR eRq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
   eRq.rayQuery = VK_TRUE;
   VkPhysicalDeviceAccelerationStructureFeaturesKHR eAs{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
   eAs.accelerationStructure = VK_TRUE;
   eAs.pNext = &eRq;
+  VkPhysicalDeviceShaderClockFeaturesKHR eClock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
+  eClock.shaderSubgroupClock = VK_TRUE;
+  if (rayQuery_) eClock.pNext = &eAs;
   VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  if (rayQuery_) e13.pNext = &eAs;
+  e13.pNext = &eClock;
   e13.dynamicRendering = VK_TRUE;
   e13.synchronization2 = VK_TRUE;
   e13.maintenance4 = VK_TRUE;
@@ -201,10 +211,10 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   dci.pNext = &e2;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
-  if (rayQuery_) {
-    dci.enabledExtensionCount = uint32_t(rayQueryExtensions.size());
-    dci.ppEnabledExtensionNames = rayQueryExtensions.data();
-  }
+  std::vector<const char*> extensions{VK_KHR_SHADER_CLOCK_EXTENSION_NAME};
+  if (rayQuery_) extensions.insert(extensions.end(), rayQueryExtensions.begin(), rayQueryExtensions.end());
+  dci.enabledExtensionCount = uint32_t(extensions.size());
+  dci.ppEnabledExtensionNames = extensions.data();
   VkDevice device = VK_NULL_HANDLE;
   VK_CHECK(vkCreateDevice(physical_, &dci, nullptr, &device));
   device_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
