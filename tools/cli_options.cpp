@@ -53,6 +53,9 @@ render options:
                         X texels around disagreeing, 0..64 (default 2; 0: PCF alone)
   --no-shadow-classifier
                         benefit and classified: every pixel of a traced shadow item traces
+  --item-stats          write items.csv: per object and effect (item) in the last frame, its
+                        pixels, whether traced, and with benefit or classified the display
+                        error its tracing removed, its clock ticks and traversal work
   --benefit-ablation A  benefit with a part left out: no-centrality (P = 1), no-hysteresis
                         (I = 0), prior-only (b never measured), no-classifier
   --tracer compute|native
@@ -147,7 +150,10 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     } else if (a == "--depth") c.settings.rayTracing.depth = parseUint(a, value(), 1, 4);
     else if (a == "--max-roughness") c.settings.rayTracing.maxRoughness = parseWithin(a, value(), 0.0f, 1.0f);
     else if (a == "--shadow-uncertainty") c.settings.rayTracing.shadowUncertaintyTexels = parseWithin(a, value(), 0.0f, 64.0f);
-    else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
+    else if (a == "--item-stats") {
+      c.itemStats = true;
+      c.settings.objectMetrics = true;
+    } else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;

@@ -15,6 +15,7 @@ struct RenderCommand {
   uint32_t frames = 1;
   std::string out = "out";
   std::string camera = "static";  // static | orbit | flythrough
+  bool itemStats = false;         // write items.csv: per object and effect, what its tracing cost and removed
   RenderSettings settings;
 };
 

@@ -12,6 +12,22 @@
 
 namespace {
 
+void writeItemStats(const std::filesystem::path& path, const std::vector<raybudget::ObjectMetrics>& metrics) {
+  std::FILE* f = std::fopen(path.string().c_str(), "w");
+  if (!f) throw raybudget::Error("cannot write " + path.string());
+  std::fprintf(f, "object,effect,pixels,traced,error,ticks,work,benefit\n");
+  const char* effects[] = {"shadows", "reflections", "refractions"};
+  for (size_t i = 0; i < metrics.size(); ++i) {
+    const raybudget::ObjectMetrics& m = metrics[i];
+    const uint32_t pixels[] = {m.pixels, m.reflectionPixels, m.refractionPixels};
+    for (uint32_t e = 0; e < 3; ++e)
+      if (pixels[e] > 0)
+        std::fprintf(f, "%zu,%s,%u,%d,%.6g,%llu,%u,%.6g\n", i, effects[e], pixels[e], int((m.selectedItems >> e) & 1u), double(m.itemError[e]),
+                     static_cast<unsigned long long>(m.itemTicks[e]), m.itemWork[e], double(m.itemBenefit[e]));
+  }
+  std::fclose(f);
+}
+
 int render(const raybudget::cli::RenderCommand& c) {
   using namespace raybudget;
   const Scene scene = loadScene(c.scene);
@@ -42,6 +58,7 @@ int render(const raybudget::cli::RenderCommand& c) {
   writePng(std::filesystem::path(c.out) / "frame.png", images.width, images.height, images.ldrRgba8);
   writeExr(std::filesystem::path(c.out) / "frame.exr", images.width, images.height, images.hdrRgba16);
 
+  if (c.itemStats) writeItemStats(std::filesystem::path(c.out) / "items.csv", renderer.objectMetrics());
   const PassSummary s = summarize(all);
   std::printf("GPU time per pass, median of %zu frames at %ux%u:\n", all.size(), images.width, images.height);
   for (size_t p = 0; p < kPassCount; ++p)

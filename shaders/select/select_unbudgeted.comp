@@ -13,4 +13,16 @@ void main() {
   if (i >= push.objectMaterial.x) return;
   bool all = push.objectMaterial.y == 1u;
   selected[i] = all && floatBitsToUint(objectRecords[i].crCandidatePixels.w) > 0u ? RB_ITEMS_ALL : 0u;
+  // The item counters start over (`classified` measures them; ObjectMetrics reads this frame's).
+  for (uint k = 0u; k < RB_ITEMS_PER_OBJECT; ++k) {
+    uint item = i * RB_ITEMS_PER_OBJECT + k;
+    itemCosts[item].work = 0u;
+    itemCosts[item].ticks = 0u;
+    itemCosts[item].error = 0u;
+  }
+  if (i == 0u) {
+    uint totals = uint(itemCosts.length()) - 1u;
+    itemCosts[totals].work = 0u;
+    itemCosts[totals].ticks = 0u;
+  }
 }

@@ -163,6 +163,7 @@ struct ObjectMetrics {
   uint32_t selectedItems = 0;
   std::array<float, 3> itemError{};
   std::array<uint32_t, 3> itemWork{};
+  std::array<uint64_t, 3> itemTicks{};  // subgroup clock ticks the trace passes spent on the item
   std::array<float, 3> itemBenefit{};
 };
 

@@ -326,6 +326,7 @@ struct SelectionStage::Impl {
         const gpu::GpuItemCost& item = items[i * RB_ITEMS_PER_OBJECT + e];
         out[i].itemError[e] = float(double(item.error) / RB_ERROR_UNITS);
         out[i].itemWork[e] = item.work;
+        out[i].itemTicks[e] = uint64_t(item.ticks) * RB_CLOCK_UNIT;
         out[i].itemBenefit[e] = item.benefit;
       }
     }
