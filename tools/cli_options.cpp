@@ -55,7 +55,8 @@ render options:
                         benefit and classified: every pixel of a traced shadow item traces
   --item-stats          write items.csv: per object and effect (item) in the last frame, its
                         pixels, whether traced, and with benefit or classified the display
-                        error its tracing removed, its clock ticks and traversal work
+                        error its tracing removed, its clock ticks and traversal work, and
+                        with benefit its learned benefit and cost per pixel
   --benefit-ablation A  benefit with a part left out: no-centrality (P = 1), no-hysteresis
                         (I = 0), prior-only (b never measured), no-classifier
   --tracer compute|native

@@ -165,6 +165,7 @@ struct ObjectMetrics {
   std::array<uint32_t, 3> itemWork{};
   std::array<uint64_t, 3> itemTicks{};  // subgroup clock ticks the trace passes spent on the item
   std::array<float, 3> itemBenefit{};
+  std::array<float, 3> itemCostPerPixel{};  // `benefit`: the learned cost per traced pixel, work units (0: not learned)
 };
 
 struct FrameImages {

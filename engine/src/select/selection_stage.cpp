@@ -328,6 +328,7 @@ struct SelectionStage::Impl {
         out[i].itemWork[e] = item.work;
         out[i].itemTicks[e] = uint64_t(item.ticks) * RB_CLOCK_UNIT;
         out[i].itemBenefit[e] = item.benefit;
+        out[i].itemCostPerPixel[e] = item.workPerPixel;
       }
     }
     return out;
