@@ -69,14 +69,7 @@ Scene itemScene() {
   mirror.metallic = 1.0f;
   mirror.roughness = 0.0f;
   test::addObject(scene, test::quad(3.0f), glm::translate(glm::mat4(1.0f), glm::vec3(-3.0f, 0.0f, 0.0f)), mirror);
-  Material glass;
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
-  glass.ior = 1.5f;
-  glass.thickness = 1.0f;
-  glass.attenuationDistance = 1.0f;
-  glass.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  const Material glass = test::tintedGlass();
   test::addObject(scene, test::subdividedCube(1), glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.5f, 0.0f)), glass);
   Material emitter;  // a wall behind the scene, out of the sun's way: what the mirror reflects
   emitter.baseColorFactor = glm::vec4(0, 0, 0, 1);

@@ -211,14 +211,7 @@ TEST(RtReflections, MirrorShowsTheObjectAboveIt) {
 // 1-unit path halves red (attenuation colour 0.5 at distance 1) and keeps green.
 TEST(RtRefractions, VolumeAttenuatesAlongThePathThroughTheCube) {
   Scene scene;
-  Material glass;
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
-  glass.ior = 1.5f;
-  glass.thickness = 1.0f;
-  glass.attenuationDistance = 1.0f;
-  glass.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  const Material glass = test::tintedGlass();
   test::addObject(scene, test::subdividedCube(1), glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)), glass);  // unit cube
   Material white;
   white.baseColorFactor = glm::vec4(0, 0, 0, 1);

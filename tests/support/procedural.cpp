@@ -120,6 +120,18 @@ Mesh smallAndLargeTriangles(int perAxis, int large) {
   return m;
 }
 
+Material tintedGlass() {
+  Material glass;
+  glass.metallic = 0.0f;
+  glass.roughness = 0.0f;
+  glass.transmission = 1.0f;
+  glass.ior = 1.5f;
+  glass.thickness = 1.0f;
+  glass.attenuationDistance = 1.0f;
+  glass.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  return glass;
+}
+
 void addObject(Scene& scene, Mesh mesh, const glm::mat4& transform, const Material& material) {
   scene.materials.push_back(material);
   for (Primitive& p : mesh.primitives) p.material = int32_t(scene.materials.size() - 1);

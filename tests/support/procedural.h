@@ -16,6 +16,9 @@ Mesh smallAndLargeTriangles(int perAxis, int large);
 // A scene holding `mesh` once, placed by `transform`, with a diffuse grey material.
 Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform = glm::mat4(1.0f));
 
+// Clear glass with a volume (thickness 1, IOR 1.5) that halves red over one unit of path.
+Material tintedGlass();
+
 // Adds `mesh` with its own `material` as a new object and grows the scene bounds.
 void addObject(Scene& scene, Mesh mesh, const glm::mat4& transform, const Material& material);
 
