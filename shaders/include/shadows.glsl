@@ -48,10 +48,12 @@ float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spreadSca
 }
 float shadowFromCube(GpuLight light, vec3 position, vec3 normal) { return shadowFromCube(light, position, normal, 1.0); }
 
-// The fallback's visibility of `light` at the point (the lighting pass's lookup).
-float shadowFromLight(GpuLight light, vec3 position, vec3 normal) {
-  return uint(light.directionType.w) == RB_LIGHT_POINT ? shadowFromCube(light, position, normal) : shadowFromMap(light, position, normal);
+// The fallback's visibility of `light` at the point, its taps `spread` times as far out as
+// the lighting pass's PCF (spread 1: the lighting pass's lookup).
+float shadowFromLight(GpuLight light, vec3 position, vec3 normal, float spread) {
+  return uint(light.directionType.w) == RB_LIGHT_POINT ? shadowFromCube(light, position, normal, spread) : shadowFromMap(light, position, normal, spread);
 }
+float shadowFromLight(GpuLight light, vec3 position, vec3 normal) { return shadowFromLight(light, position, normal, 1.0); }
 
 // The shadow classifier: whether the shadow map decides the point for certain, with its
 // visibility. Uncertain: the PCF result strictly between lit and shadowed (a shadow edge
@@ -61,10 +63,7 @@ float shadowFromLight(GpuLight light, vec3 position, vec3 normal) {
 bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, float reach, out float visibility) {
   visibility = shadowFromLight(light, position, normal);
   if (light.spotShadow.z < 0.0 || (visibility > 0.0 && visibility < 1.0)) return false;
-  if (reach <= 0.0) return true;
-  bool point = uint(light.directionType.w) == RB_LIGHT_POINT;
-  float wide = point ? shadowFromCube(light, position, normal, 2.0 * reach) : shadowFromMap(light, position, normal, 2.0 * reach);
-  return wide == visibility;
+  return reach <= 0.0 || shadowFromLight(light, position, normal, 2.0 * reach) == visibility;
 }
 
 #endif

@@ -5,12 +5,17 @@
 #include "shared/selection.h"
 
 namespace raybudget::select {
+namespace {
+// a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
+float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
+// A learned per-pixel figure after an observation: the mean of the two, or the observation
+// alone when nothing was learned yet (0).
+float averagedWith(float previous, float observed) { return previous > 0.0f ? 0.5f * (previous + observed) : observed; }
+}  // namespace
 
 float learnedWorkPerPixel(float previous, uint32_t work, uint32_t pixels) {
   if (pixels == 0 || work == 0) return previous;
-  // Correctly rounded, as the GPU computes it in double (select_common.glsl's exactQuotient).
-  const float observed = float(double(float(work)) / double(float(pixels)));
-  return previous > 0.0f ? 0.5f * (previous + observed) : observed;
+  return averagedWith(previous, exactQuotient(float(work), float(pixels)));
 }
 
 float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workPerPixel, float Q) {
@@ -18,11 +23,6 @@ float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workP
   const float perPixel = workPerPixel > 0.0f ? workPerPixel : Q * float(RB_PRIOR_WORK_PER_RAY);
   return float(pixels) * perPixel;
 }
-
-namespace {
-// a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
-float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
-}  // namespace
 
 float priorBenefit(uint32_t effect) {
   return float(effect == RB_ITEM_SHADOWS ? RB_PRIOR_BENEFIT_SHADOWS
@@ -38,11 +38,10 @@ ItemLearned learnItem(uint32_t effect, const ItemLearned& before, const ItemCoun
   const bool learnBenefit = !(ablation & RB_BENEFIT_PRIOR_ONLY);
   const uint32_t pixels = counts.pixels;
   if (pixels > 0) {
-    const bool timed = exchange > 0.0f && counts.ticks > 0;
-    if (timed || counts.work > 0) {
-      const float observed = timed ? exactQuotient(float(counts.ticks), float(pixels)) * exchange : exactQuotient(float(counts.work), float(pixels));
-      after.workPerPixel = before.workPerPixel > 0.0f ? 0.5f * (before.workPerPixel + observed) : observed;
-    }
+    if (exchange > 0.0f && counts.ticks > 0)
+      after.workPerPixel = averagedWith(before.workPerPixel, exactQuotient(float(counts.ticks), float(pixels)) * exchange);
+    else
+      after.workPerPixel = learnedWorkPerPixel(before.workPerPixel, counts.work, pixels);
     if (learnBenefit) {
       const float removed = exactQuotient(float(counts.error), float(pixels) * float(RB_ERROR_UNITS));
       after.benefit = before.measured ? 0.5f * (before.benefit + removed) : removed;
