@@ -35,6 +35,10 @@ void append(bool add, uint id, float cost, float value, float distance) {
 }
 
 // engine/src/select/cost_model.cpp is the CPU reference of these lines, equal bit for bit.
+// A learned per-pixel figure after an observation: the mean of the two, or the observation
+// alone when nothing was learned yet (0).
+float averagedWith(float previous, float observed) { return previous > 0.0 ? 0.5 * (previous + observed) : observed; }
+
 float priorBenefit(uint effect) {
   return effect == RB_ITEM_SHADOWS ? RB_PRIOR_BENEFIT_SHADOWS : (effect == RB_ITEM_REFLECTIONS ? RB_PRIOR_BENEFIT_REFLECTIONS : RB_PRIOR_BENEFIT_REFRACTIONS);
 }
@@ -58,7 +62,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     bool timed = exchange > 0.0 && c.ticks > 0u;
     if (timed || c.work > 0u) {
       float observed = timed ? exactQuotient(float(c.ticks), float(c.pixels)) * exchange : exactQuotient(float(c.work), float(c.pixels));
-      c.workPerPixel = c.workPerPixel > 0.0 ? 0.5 * (c.workPerPixel + observed) : observed;
+      c.workPerPixel = averagedWith(c.workPerPixel, observed);
     }
     if (learnBenefit) {
       float removed = exactQuotient(float(c.error), float(c.pixels) * RB_ERROR_UNITS);
@@ -98,7 +102,7 @@ void main() {
   GpuObjectCost oc = costs[i];
   if (oc.pixels > 0u && oc.work > 0u) {
     float observed = exactQuotient(float(oc.work), float(oc.pixels));
-    oc.workPerPixel = oc.workPerPixel > 0.0 ? 0.5 * (oc.workPerPixel + observed) : observed;
+    oc.workPerPixel = averagedWith(oc.workPerPixel, observed);
   }
   costs[i] = GpuObjectCost(oc.workPerPixel, 0u, 0u, 0u);
   GpuObjectRecord r = records[i];
