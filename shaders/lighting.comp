@@ -10,6 +10,7 @@
 #include "include/gbuffer.glsl"
 #include "include/item_stats.glsl"
 #include "include/shadows.glsl"
+#include "include/probe.glsl"
 
 // Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
 // ray-traced shadow mask where traced, else the shadow maps), emissive, and diffuse ambient
@@ -44,9 +45,11 @@ void main() {
   vec3 N = s.normal;
   vec3 color = s.emissive;
   // Ray-traced visibility replaces the shadow maps where the shadow pass traced: pixels of
-  // objects whose shadow item is selected.
-  bool rtShadows = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && itemSelected(s.objectId, RB_ITEM_SHADOWS);
-  bool measure = rtShadows && measuringItems();
+  // objects whose shadow item is selected. Where the probe traced, it is measured, not shown.
+  bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u;
+  bool rtShadows = rtEnabled && itemSelected(s.objectId, RB_ITEM_SHADOWS);
+  bool probed = rtEnabled && !rtShadows && itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel);
+  bool measure = (rtShadows || probed) && measuringItems();
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
@@ -70,7 +73,7 @@ void main() {
       }
     }
     float mapped = rtShadows && !measure ? 1.0 : shadowFromLight(light, s.position, N);
-    float visibility = rtShadows ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : mapped;
+    float visibility = rtShadows || probed ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : mapped;
     vec3 unshadowed = shadePbr(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.ior) * light.colorIntensity.rgb * attenuation;
     color += unshadowed * visibility;
     fallbackColor += unshadowed * mapped;
@@ -78,10 +81,10 @@ void main() {
   // Diffuse ambient: the roughest prefiltered level approximates irradiance / pi.
   vec3 ambient = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission);
   color += ambient;
-  imageStore(directImage, pixel, vec4(color, 1.0));
+  imageStore(directImage, pixel, vec4(probed ? fallbackColor + ambient : color, 1.0));
   if (measuringItems()) {
     vec3 indirect = imageLoad(indirectImage, pixel).rgb;
     float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
-    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0));
+    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0), uvec3(0u));
   }
 }

@@ -9,6 +9,7 @@
 #include "include/display.glsl"
 #include "include/env_fallback.glsl"
 #include "include/item_stats.glsl"
+#include "include/probe.glsl"
 
 // Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to the
 // frame's cut-off, RayTracingSettings::maxRoughness) trace a closest-hit reflection ray, shaded with direct light (and
@@ -20,7 +21,8 @@
 // item (the object's reflections, its refractions) is selected, the other keeps the
 // environment fallback (include/env_fallback.glsl); replaces the fallback's result in
 // indirectImage for the pixels it traces. With RB_RT_MEASURE_ITEMS each traced path adds its
-// work and the display-space difference it made against the fallback to its item.
+// work and the display-space difference it made against the fallback to its item. A path whose
+// item the probe traces here (include/probe.glsl) is measured and not shown.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
@@ -117,11 +119,15 @@ void main() {
   ivec2 pixel = tilePixel();
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit || !pixelSelected(s.objectId)) return;
+  if (!readSurface(pixel, s) || s.unlit || s.objectId == RB_NO_OBJECT) return;
   uint effects = frame.rayTracing.x;
   float transmission = s.transmission * (1.0 - s.metallic);
-  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() && itemSelected(s.objectId, RB_ITEM_REFLECTIONS);
-  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0 && itemSelected(s.objectId, RB_ITEM_REFRACTIONS);
+  // Per path: whether its item is probed here rather than selected.
+  bool probed[2] = bool[2](!itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && itemProbed(s.objectId, RB_ITEM_REFLECTIONS, pixel),
+                           !itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && itemProbed(s.objectId, RB_ITEM_REFRACTIONS, pixel));
+  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() &&
+                  (itemSelected(s.objectId, RB_ITEM_REFLECTIONS) || probed[0]);
+  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0 && (itemSelected(s.objectId, RB_ITEM_REFRACTIONS) || probed[1]);
   if (!reflects && !refracts) return;  // the environment fallback stands
   uint start = clockNow();
   vec3 p, ng;
@@ -157,8 +163,8 @@ void main() {
     color[path] = traceRadiance(origin, dir, depth, work[path]) * weight;
     pathTicks[path] = clockNow() - pathStart;
   }
-  imageStore(indirectImage, pixel, vec4(color[0] + color[1], 1.0));
-  addObjectWork(s.objectId, work[0] + work[1]);
+  imageStore(indirectImage, pixel, vec4((probed[0] ? fallback[0] : color[0]) + (probed[1] ? fallback[1] : color[1]), 1.0));
+  addObjectWork(s.objectId, (probed[0] ? 0u : work[0]) + (probed[1] ? 0u : work[1]));
   if (measuringItems()) {
     vec3 direct = imageLoad(directImage, pixel).rgb, untraced = direct + fallback[0] + fallback[1];
     float reflectionError = reflects ? displayError(direct + color[0] + fallback[1], untraced) : 0.0;
@@ -169,6 +175,7 @@ void main() {
     uint reflectors = subgroupAdd(reflects ? 1u : 0u), refractors = subgroupAdd(refracts ? 1u : 0u), lanes = subgroupAdd(1u);
     uint own = clockShare(0u, rest, lanes * (reflects && refracts ? 2u : 1u));
     uvec2 ticks = uvec2(reflects ? clockShare(0u, pathTicks[0], reflectors) + own : 0u, refracts ? clockShare(0u, pathTicks[1], refractors) + own : 0u);
-    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError));
+    uvec3 probedPixels = uvec3(0u, reflects && probed[0] ? 1u : 0u, refracts && probed[1] ? 1u : 0u);
+    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError), probedPixels);
   }
 }

@@ -8,20 +8,24 @@
 #include "include/gbuffer.glsl"
 #include "include/item_stats.glsl"
 #include "include/shadows.glsl"
+#include "include/probe.glsl"
 
 // Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
 // the geometric normal), alpha masks respected, for the pixels of objects whose shadow item
 // is selected. With RB_RT_CLASSIFY_SHADOWS a light whose shadow map is certain at the pixel
 // (include/shadows.glsl's classifier) keeps the map's visibility and traces no ray. Writes
 // each light's visibility into its layer of the shadow mask, which the lighting pass uses
-// instead of the shadow maps.
+// instead of the shadow maps. Where the probe traces a left-out shadow item, the mask is
+// written for the lighting pass to measure, which still shows the shadow maps there.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {
   ivec2 pixel = tilePixel();
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit || !itemSelected(s.objectId, RB_ITEM_SHADOWS)) return;  // the lighting pass reads no mask there
+  if (!readSurface(pixel, s) || s.unlit) return;
+  bool probe = !itemSelected(s.objectId, RB_ITEM_SHADOWS);
+  if (probe && !itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
@@ -40,6 +44,6 @@ void main() {
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
-  addObjectWork(s.objectId, work);
-  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0));
+  addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
+  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(probe ? 1u : 0u, 0u, 0u));
 }

@@ -28,6 +28,21 @@ TEST(CostModel, PredictedWorkIsPixelsTimesWorkPerPixelOrQTimesThePriorAndPaperUs
   EXPECT_EQ(select::predictedCost(0.5f, 1250.0f), 625.0f);
 }
 
+// The probe's stride: the least whole number of rotating tile sets whose cost fits its budget;
+// none with nothing left out, no budget, or more than RB_PROBE_MAX_STRIDE sets needed.
+TEST(CostModel, ProbeStrideIsTheLeastThatFitsTheProbeBudget) {
+  EXPECT_EQ(select::probeStride(10.0, 1.0), 10u);
+  EXPECT_EQ(select::probeStride(10.5, 1.0), 11u);
+  EXPECT_EQ(select::probeStride(0.5, 1.0), 1u) << "everything left out fits: every tile";
+  EXPECT_EQ(select::probeStride(0.0, 1.0), 0u);
+  EXPECT_EQ(select::probeStride(10.0, 0.0), 0u);
+  EXPECT_EQ(select::probeStride(double(RB_PROBE_MAX_STRIDE), 1.0), RB_PROBE_MAX_STRIDE);
+  EXPECT_EQ(select::probeStride(double(RB_PROBE_MAX_STRIDE) + 0.5, 1.0), 0u);
+  EXPECT_TRUE(select::probeStrideFits(10u, 10.0 * (1.0 + 1e-7), 1.0, 1e-5)) << "a sum in another order may round up past 10";
+  EXPECT_TRUE(select::probeStrideFits(11u, 10.0 * (1.0 + 1e-7), 1.0, 1e-5));
+  EXPECT_FALSE(select::probeStrideFits(12u, 10.0, 1.0, 1e-5));
+}
+
 // Items (`benefit`): b starts from the first measurement (error over the traced pixels, in
 // display units), then averages with each; an untraced item drifts 1/16 of the way to its
 // effect's prior per frame; prior-only never learns b, the work per pixel still.

@@ -15,34 +15,7 @@
 namespace raybudget {
 namespace {
 
-RenderSettings settingsFor(Policy policy, uint32_t width, uint32_t height) {
-  RenderSettings s;
-  s.width = width;
-  s.height = height;
-  s.validation = true;
-  s.policy = policy;
-  return s;
-}
-
-// Renders one frame per camera; the last frame's images and per-object metrics.
-struct Rendered {
-  FrameImages images;
-  std::vector<ObjectMetrics> metrics;
-  std::vector<FrameTiming> timings;
-};
-Rendered render(const Scene& scene, const RenderSettings& s, const std::vector<Camera>& cameras) {
-  RenderSettings settings = s;
-  settings.objectMetrics = true;
-  Renderer renderer(scene, settings);
-  Rendered r;
-  for (const Camera& c : cameras)
-    for (const FrameTiming& t : renderer.render(c)) r.timings.push_back(t);
-  for (const FrameTiming& t : renderer.finish()) r.timings.push_back(t);
-  r.images = renderer.readback();
-  r.metrics = renderer.objectMetrics();
-  test::expectValidationClean(renderer.validationMessages());
-  return r;
-}
+using test::settingsFor;
 
 // Per object, the display-space error of `traced` against `fallback` as the trace passes
 // define it (the mean absolute difference of the sRGB-encoded channels), summed over the
@@ -115,9 +88,9 @@ TEST(Items, MeasuredErrorEqualsTheImageDifferenceAgainstTheFallback) {
     s.rayTracing.shadows = effect == RB_ITEM_SHADOWS;
     s.rayTracing.reflections = effect == RB_ITEM_REFLECTIONS;
     s.rayTracing.refractions = effect == RB_ITEM_REFRACTIONS;
-    const Rendered traced = render(scene, s, {cam});
+    const test::RenderedFrames traced = test::renderFrames(scene, s, {cam});
     s.policy = Policy::None;
-    const Rendered fallback = render(scene, s, {cam});
+    const test::RenderedFrames fallback = test::renderFrames(scene, s, {cam});
     std::vector<double> error;
     std::vector<uint32_t> pixels;
     imageErrorPerObject(traced.images, fallback.images, scene.objects.size(), error, pixels);
@@ -127,7 +100,9 @@ TEST(Items, MeasuredErrorEqualsTheImageDifferenceAgainstTheFallback) {
       // 8-bit images: each channel within 1/255 of the shader's value.
       EXPECT_NEAR(measured, error[i], 0.02 * error[i] + pixels[i] / 255.0 + 1.0) << "effect " << effect << ", object " << i;
       for (uint32_t other = 0; other < RB_ITEMS_PER_OBJECT; ++other)
-        if (other != effect) EXPECT_EQ(traced.metrics[i].itemError[other], 0.0f) << "effect " << effect << ", object " << i;
+        if (other != effect) {
+          EXPECT_EQ(traced.metrics[i].itemError[other], 0.0f) << "effect " << effect << ", object " << i;
+        }
       largest = std::max(largest, measured / std::max(1u, pixels[i]));
     }
     EXPECT_GT(largest, 0.02) << "effect " << effect << ": some object's fallback should be visibly wrong";
@@ -189,11 +164,11 @@ TEST(Items, TheShadowClassifierSavesRaysAndKeepsTheImage) {
   s.rayTracing.reflections = false;
   s.rayTracing.refractions = false;
   const Camera cam = defaultCamera(scene, 320.0f / 192.0f);
-  const Rendered full = render(scene, s, {cam});
+  const test::RenderedFrames full = test::renderFrames(scene, s, {cam});
   s.policy = Policy::Classified;
-  const Rendered classified = render(scene, s, {cam});
+  const test::RenderedFrames classified = test::renderFrames(scene, s, {cam});
   s.policy = Policy::None;
-  const Rendered raster = render(scene, s, {cam});
+  const test::RenderedFrames raster = test::renderFrames(scene, s, {cam});
   ASSERT_EQ(full.timings.size(), 1u);
   ASSERT_EQ(classified.timings.size(), 1u);
   EXPECT_LT(classified.timings[0].raysTraced, full.timings[0].raysTraced / 2) << "most shadow-map lookups are certain";

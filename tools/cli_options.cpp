@@ -57,6 +57,9 @@ render options:
                         pixels, whether traced, and with benefit or classified the display
                         error its tracing removed, its clock ticks and traversal work, and
                         with benefit its learned benefit and cost per pixel
+  --probe-share F       benefit: the share of the trace budget for the sparse probe, which
+                        traces left-out items on a few rotating tiles to measure their
+                        benefit, not shown; 0..0.5 (default 0.05; 0: no probe)
   --benefit-ablation A  benefit with a part left out: no-centrality (P = 1), no-hysteresis
                         (I = 0), prior-only (b never measured), no-classifier
   --tracer compute|native
@@ -156,6 +159,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       c.settings.objectMetrics = true;
     } else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
+    else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;

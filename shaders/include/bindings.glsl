@@ -65,6 +65,8 @@ layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost obj
 layout(set = 0, binding = 36, std430) buffer TileObjectBlock { uint tileObjects[]; };
 // Per item (object * RB_ITEMS_PER_OBJECT + effect): what `benefit` learns (shared/selection.h).
 layout(set = 0, binding = 37, std430) buffer ItemCostBlock { GpuItemCost itemCosts[]; };
+// The record after the items: the frame's totals.
+uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
 
 // The 8x8 tile of a pass with one invocation per tile (coverage, tile list): its pixels
 // [first, last); false past the last tile.
@@ -76,8 +78,9 @@ bool screenTile(uint t, out uvec2 first, out uvec2 last) {
   return t < tilesX * tilesY;
 }
 
-// Whether the pixel's object has any item selected for ray tracing this frame.
-bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && selected[objectId] != 0u; }
+// Whether the pixel's object has any item selected for ray tracing this frame (probed items
+// have bits of their own: include/probe.glsl).
+bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && (selected[objectId] & RB_ITEMS_ALL) != 0u; }
 // Whether its item `effect` (RB_ITEM_*) is selected.
 bool itemSelected(uint objectId, uint effect) { return objectId != RB_NO_OBJECT && (selected[objectId] & (1u << effect)) != 0u; }
 bool measuringItems() { return (frame.rayTracing.w & RB_RT_MEASURE_ITEMS) != 0u; }

@@ -4,15 +4,13 @@
 #ifndef RB_ITEM_STATS_GLSL
 #define RB_ITEM_STATS_GLSL
 
-// The record after the items: the frame's totals.
-uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
-
-// Adds this invocation's work, ticks and error per effect (x shadows, y reflections, z
-// refractions) to its object's items: lanes of the subgroup on the same object are summed
-// first, then one atomic per item with something to add. The error is summed in float over
+// Adds this invocation's work, ticks, error and probed pixels (1 where the probe traced the
+// item here) per effect (x shadows, y reflections, z refractions) to its object's items: lanes
+// of the subgroup on the same object are summed first, then one atomic per item with something
+// to add. The error is summed in float over
 // the lanes and added in 1/RB_ERROR_UNITS units, rounded. The frame's totals of work and
 // ticks take one atomic each per subgroup.
-void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error) {
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 probed) {
   bool pending = objectId != RB_NO_OBJECT;
   uint allWork = subgroupAdd(pending ? work.x + work.y + work.z : 0u);
   uint allTicks = subgroupAdd(pending ? ticks.x + ticks.y + ticks.z : 0u);
@@ -26,6 +24,7 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error) {
     uvec3 w = subgroupAdd(mine ? work : uvec3(0u));
     uvec3 t = subgroupAdd(mine ? ticks : uvec3(0u));
     vec3 e = subgroupAdd(mine ? error : vec3(0.0));
+    uvec3 p = subgroupAdd(mine ? probed : uvec3(0u));
     if (mine && subgroupElect()) {
       for (uint k = 0u; k < RB_ITEMS_PER_OBJECT; ++k) {
         uint item = current * RB_ITEMS_PER_OBJECT + k;
@@ -33,6 +32,7 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error) {
         if (t[k] != 0u) atomicAdd(itemCosts[item].ticks, t[k]);
         uint units = uint(e[k] * RB_ERROR_UNITS + 0.5);
         if (units != 0u) atomicAdd(itemCosts[item].error, units);
+        if (p[k] != 0u) atomicAdd(itemCosts[item].pixels, p[k]);
       }
     }
     pending = pending && !mine;

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Frame mode, after the walk has marked the selected objects (or items) in the frame's
 // selection: each object's S for the next frame's relevance is set from it, and its traced
-// pixel count noted; with `benefit` each item's S and traced pixels too.
+// pixel count noted; with `benefit` each item's S and traced pixels too, and the candidate
+// items the walk left out are marked for the probe when it runs (shared/selection.h).
 #include "include/select_common.glsl"
 
 layout(local_size_x = 64) in;
@@ -10,7 +11,7 @@ layout(local_size_x = 64) in;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i < push.walk.z) {
-    uint bits = selected[i];
+    uint bits = selected[i] & RB_ITEMS_ALL;
     float s = bits != 0u ? 1.0 : 0.0;
     if (s != params[i].kqiS.w) atomicAdd(result2.x, 1u);
     params[i].kqiS.w = s;
@@ -21,11 +22,16 @@ void main() {
       items[push.walk.z * RB_ITEMS_PER_OBJECT].work = 0u;
       items[push.walk.z * RB_ITEMS_PER_OBJECT].ticks = 0u;
     }
+    bool probing = items[push.walk.z * RB_ITEMS_PER_OBJECT].pixels != 0u && records[i].crCandidatePixels.z > 0.5;
+    uint probed = 0u;
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       uint id = i * RB_ITEMS_PER_OBJECT + effect;
       bool on = (bits & (1u << effect)) != 0u;
+      uint pixels = itemPixels(i, effect);
       items[id].selectedLast = on ? 1u : 0u;
-      items[id].pixels = on ? itemPixels(i, effect) : 0u;
+      items[id].pixels = on ? pixels : 0u;  // a probed item's: counted by the trace passes
+      if (!on && probing && pixels > 0u) probed |= 1u << (RB_PROBE_SHIFT + effect);
     }
+    if (probed != 0u) selected[i] = bits | probed;
   }
 }

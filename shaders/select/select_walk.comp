@@ -12,7 +12,7 @@
 // float operations in the same order as engine/src/select (the tests compare bit for bit).
 // Writes every candidate's flag (0 or 1) for select(), or in frame mode marks the selected
 // objects in the frame's selection (zeroed by select_candidates.comp), nothing else reads
-// the flags there.
+// the flags there. With `benefit` in frame mode it then sets the frame's probe stride.
 #include "include/select_common.glsl"
 
 // The device's subgroup size: the workgroup is one subgroup (were it more, each would walk
@@ -171,6 +171,27 @@ Picked selectPaper(uint n, float budget, uint pointers) {
   return p;
 }
 
+// `benefit`, frame mode, after the walk: the probe stride for what the walk left out (the
+// least that keeps its predicted cost within the probe budget, shared/selection.h), kept in
+// the items' totals record for the tile list and the trace passes; the probe's predicted cost.
+float setProbeStride(uint n) {
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();  // the lanes' marks in the frame's selection are visible
+  float lanePart = 0.0;
+  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
+    GpuCandidate c = candidates[ci];
+    if ((selected[c.id / RB_ITEMS_PER_OBJECT] & (1u << (c.id % RB_ITEMS_PER_OBJECT))) == 0u) lanePart += c.cost;
+  }
+  float left = subgroupAdd(lanePart), budget = push.budget.z;
+  uint stride = 0u;
+  if (left > 0.0 && budget > 0.0) {
+    float ratio = ceil(exactQuotient(left, budget));
+    stride = ratio <= float(RB_PROBE_MAX_STRIDE) ? max(uint(ratio), 1u) : 0u;
+  }
+  if (gl_SubgroupInvocationID == 0u) items[push.walk.z * RB_ITEMS_PER_OBJECT].pixels = stride;
+  return stride == 0u ? 0.0 : left / float(stride);
+}
+
 void main() {
   uint n = candidateCount(), policy = push.sizes.z;
   float budget = push.budget.x;
@@ -199,6 +220,8 @@ void main() {
   } else {
     p = selectGreedy(n, budget);
   }
+  // The predicted cost includes the probe's (the time scale learns from the trace time).
+  if (policy == RB_SELECT_BENEFIT && push.walk.y != 0u) p.cost += setProbeStride(n);
   if (gl_SubgroupInvocationID == 0u) {
     result.yzw = uvec3(floatBitsToUint(p.cost), floatBitsToUint(p.value), p.count);
     result2.w = everything || policy == RB_SELECT_NONE ? 0u : 1u;  // the selection needed an order

@@ -68,12 +68,22 @@ struct GpuObjectCost {
 #define RB_BENEFIT_WITHOUT_HYSTERESIS 2u
 #define RB_BENEFIT_PRIOR_ONLY 4u
 
+// The sparse probe (`benefit`): candidate items the walk left out are traced, measured and
+// not shown, on the 8x8 tiles whose turn it is this frame, one tile in `stride` each frame in
+// rotation (shaders/include/probe.glsl), with `stride` the least that keeps the probe's
+// predicted cost within its share of the budget. The frame's selection holds a probed item's
+// bit at RB_PROBE_SHIFT + effect; more than RB_PROBE_MAX_STRIDE needed: no probe that frame.
+#define RB_PROBE_SHIFT 3u
+#define RB_PROBE_MAX_STRIDE 256u
+
 // 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
 // 1 once measured, and S (1: selected last frame). One more record after the items holds the
-// frame's totals of work and ticks over every item (the ticks' exchange rate to work units).
+// frame's totals of work and ticks over every item (the ticks' exchange rate to work units),
+// and in `pixels` the frame's probe stride (0: no probe). A probed item's `pixels` start at 0
+// and count the covered pixels the probe traced.
 struct GpuItemCost {
   float workPerPixel;
   uint work;
@@ -116,7 +126,7 @@ struct GpuCandidate {
 struct SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
   uvec4 stage;   // x bitonic k or merge run, y bitonic j or merge pass, z which order (0 main, 1 relevance), w `paper` pointers N
-  vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work)
+  vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work), z `benefit`'s probe budget
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects
   uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_WITHOUT_* bits
 };

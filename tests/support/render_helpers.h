@@ -35,6 +35,38 @@ inline RenderResult renderWithValidation(const Scene& scene, uint32_t width, uin
   return r;
 }
 
+// Settings with validation on, for `policy` at width x height.
+inline RenderSettings settingsFor(Policy policy, uint32_t width, uint32_t height) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.validation = true;
+  s.policy = policy;
+  return s;
+}
+
+// One frame per camera: every frame's timings, the last frame's images and per-object
+// metrics. A validation message fails the test.
+struct RenderedFrames {
+  FrameImages images;
+  std::vector<ObjectMetrics> metrics;
+  std::vector<FrameTiming> timings;
+};
+void expectValidationClean(const std::vector<std::string>& messages);
+inline RenderedFrames renderFrames(const Scene& scene, const RenderSettings& s, const std::vector<Camera>& cameras) {
+  RenderSettings settings = s;
+  settings.objectMetrics = true;
+  Renderer renderer(scene, settings);
+  RenderedFrames r;
+  for (const Camera& c : cameras)
+    for (const FrameTiming& t : renderer.render(c)) r.timings.push_back(t);
+  for (const FrameTiming& t : renderer.finish()) r.timings.push_back(t);
+  r.images = renderer.readback();
+  r.metrics = renderer.objectMetrics();
+  expectValidationClean(renderer.validationMessages());
+  return r;
+}
+
 // The objects each 8x8 tile of an object-ID image shows (tiles row by row; pixels showing
 // no object left out).
 inline std::vector<std::set<uint32_t>> objectsPerTile(const std::vector<uint32_t>& ids, uint32_t width, uint32_t height) {

@@ -74,6 +74,10 @@ struct RenderSettings {
   uint32_t graphPointers = 4;      // `paper`: N
   uint32_t seed = 1;               // `random`
   BenefitAblation benefitAblation = BenefitAblation::None;
+  // `benefit`: the share of the trace budget (T less the stage's fixed cost) kept for the
+  // sparse probe, which traces and measures left-out items on a rotating few tiles so that
+  // their learned benefit stays fresh, without showing the result (0: no probe; 0..0.5).
+  float probeShare = 0.05f;
   // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
   // timestamps (off: the prior stays, so a run selects the same objects on any machine;
   // per-object work per pixel is learned from the deterministic work counters either way).

@@ -1,6 +1,7 @@
 #include "select/cost_model.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "shared/selection.h"
 
@@ -101,6 +102,16 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   }
   const double scale = (m.traceMs - traceFixedMs_) / m.work;
   learned_[u] = 0.7 * current + 0.3 * std::clamp(scale, 0.5 * used, 2.0 * used);
+}
+
+uint32_t probeStride(double left, double budget) {
+  if (!(left > 0.0) || !(budget > 0.0)) return 0;
+  const double ratio = std::ceil(left / budget);
+  return ratio <= double(RB_PROBE_MAX_STRIDE) ? std::max<uint32_t>(uint32_t(ratio), 1u) : 0u;
+}
+
+bool probeStrideFits(uint32_t stride, double left, double budget, double tolerance) {
+  return stride == probeStride(left * (1.0 - tolerance), budget) || stride == probeStride(left * (1.0 + tolerance), budget);
 }
 
 }  // namespace raybudget::select

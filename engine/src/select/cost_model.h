@@ -58,6 +58,14 @@ float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, ui
 // RB_BENEFIT_WITHOUT_HYSTERESIS: I = 0).
 float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, bool selectedLast, float K, float I, uint32_t ablation = 0);
 
+// `benefit`'s sparse probe (shared/selection.h): the stride for `left`, the predicted cost of
+// the candidates the walk left out, within `budget`: the least whole stride with left / stride
+// <= budget, 0 (no probe) where there is nothing to probe, no budget, or more than
+// RB_PROBE_MAX_STRIDE would be needed.
+uint32_t probeStride(double left, double budget);
+// Whether the GPU's `stride` is probeStride's for a `left` known within a relative `tolerance`.
+bool probeStrideFits(uint32_t stride, double left, double budget, double tolerance);
+
 // Predicted milliseconds: the time scale times the work.
 inline float predictedCost(float msPerUnit, float work) { return msPerUnit * work; }
 

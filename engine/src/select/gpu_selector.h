@@ -18,9 +18,11 @@ namespace raybudget::select {
 enum class SortMethod { Auto, Bitonic, Merge };
 
 // What `benefit` needs of the frame: the effects traced (RB_RT_* bits), the scene's light
-// count, the pixels on screen, the parts left out (RB_BENEFIT_* bits: ablations).
+// count, the pixels on screen, the parts left out (RB_BENEFIT_* bits: ablations), the probe's
+// budget (in the budget's units; 0: no probe).
 struct ItemFrame {
   uint32_t effects = 0, lights = 0, pixels = 0, ablation = 0;
+  float probeBudget = 0.0f;  // the sparse probe's share of the budget (shared/selection.h)
 };
 
 class GpuSelector {
@@ -47,7 +49,8 @@ class GpuSelector {
   // Records, into the frame's command buffer, the selection among the objects' candidates
   // with costs kappa * work (cost_model.h: the paper's C for `paper`, else pixels times the
   // learned work per pixel). Afterwards
-  // resultBuffer() holds uvec4(candidates, predicted cost bits, value bits, selected) and
+  // resultBuffer() holds uvec4(candidates, predicted cost bits (with `benefit`, the probe's
+  // included), value bits, selected) and
   // uvec4(objects whose selection changed, the candidates' total cost in 2^-20 budget
   // units (lo, hi), 1 when the selection needed the sort).
   // With `benefit` the candidates are items (object * RB_ITEMS_PER_OBJECT + effect); the

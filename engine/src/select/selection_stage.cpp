@@ -31,14 +31,14 @@ namespace {
 
 PolicyOptions policyOptions(const RenderSettings& s) { return {s.graphPointers, s.seed, 1, 4096}; }
 
-ItemFrame itemFrame(const RenderSettings& s, uint32_t lights) {
+ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget) {
   const RayTracingSettings& rt = s.rayTracing;
   const uint32_t effects = (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
   uint32_t ablation = 0;
   if (s.benefitAblation == BenefitAblation::NoCentrality) ablation = RB_BENEFIT_WITHOUT_CENTRALITY;
   if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
   if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
-  return {effects, lights, s.width * s.height, ablation};
+  return {effects, lights, s.width * s.height, ablation, probeBudget};
 }
 
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each).
@@ -79,6 +79,7 @@ struct SelectionStage::Impl {
     double traceFixedMs = 0.0;  // ... the trace passes' fixed cost it assumed
     ItemFrame items;  // ... and what `benefit` knew of the frame
     float traceBudgetMs = 0.0f;  // ... and the part of T it left for the work
+    float selectBudgetMs = 0.0f;  // ... of which the selection's (the rest: `benefit`'s probe)
     bool belowFixedCost = false;  // T at or below the stage's fixed cost: nothing traced
   };
 
@@ -138,10 +139,13 @@ struct SelectionStage::Impl {
     slot.selected = true;
     slot.budgeted = isBudgeted(s.policy);
     slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
-    slot.items = itemFrame(s, lights);
     slot.traceFixedMs = timeScale.traceFixedMs();
     slot.belowFixedCost = double(s.budgetMs) <= timeScale.fixedMs();
     slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float(double(s.budgetMs) - timeScale.fixedMs());
+    // `benefit` keeps a share of the trace budget for the probe of what it leaves out.
+    const float probeBudgetMs = policy == Policy::Benefit ? slot.traceBudgetMs * s.probeShare : 0.0f;
+    slot.selectBudgetMs = slot.traceBudgetMs - probeBudgetMs;
+    slot.items = itemFrame(s, lights, probeBudgetMs);
     if (slot.budgeted) {
       const bool check = s.checkSelection;
       if (check) {  // what the cost model starts from
@@ -154,7 +158,7 @@ struct SelectionStage::Impl {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       }
-      selector->recordFrame(cmd, buffers.objects, policy, slot.traceBudgetMs, float(slot.msPerUnit), policyOptions(s), itemFrame(s, lights));
+      selector->recordFrame(cmd, buffers.objects, policy, slot.selectBudgetMs, float(slot.msPerUnit), policyOptions(s), slot.items);
       readToTransfer(cmd);
       const VkBufferCopy result{0, 0, 32};
       vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.result.buffer, 1, &result);
@@ -184,7 +188,7 @@ struct SelectionStage::Impl {
     for (uint32_t i = 0; i < buffers.objects; ++i) {
       perPixel[i] = learnedWorkPerPixel(before[i].workPerPixel, before[i].work, before[i].pixels);
       // The counters restart; a selected object's pixels are what the trace passes will cover.
-      const uint32_t pixels = selected[i] ? std::bit_cast<uint32_t>(records[i].crCandidatePixels.w) : 0u;
+      const uint32_t pixels = (selected[i] & RB_ITEMS_ALL) ? std::bit_cast<uint32_t>(records[i].crCandidatePixels.w) : 0u;
       if (std::bit_cast<uint32_t>(perPixel[i]) != std::bit_cast<uint32_t>(after[i].workPerPixel) || after[i].work != 0 || after[i].pixels != pixels)
         return false;
     }
@@ -203,7 +207,9 @@ struct SelectionStage::Impl {
 
   // `benefit`: whether each item's learned state (cost_model.h's learnItem), restarted
   // counters, S and traced pixels, and each item candidate's cost and value equal the CPU
-  // reference bit for bit.
+  // reference bit for bit; and whether the probe marks exactly the candidates left out, at
+  // the stride probeStride gives for their cost (summed in another order on the GPU: within
+  // a relative 1e-5).
   bool itemsMatchCpu(const Slot& slot, std::span<const gpu::GpuCandidate> candidates) const {
     const auto* before = static_cast<const gpu::GpuItemCost*>(slot.itemsBefore.mapped);
     const auto* after = static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped);
@@ -236,6 +242,17 @@ struct SelectionStage::Impl {
       if (records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0) ++expected;
     }
     if (expected != candidates.size()) return false;
+    double left = 0.0;
+    for (const gpu::GpuCandidate& c : candidates)
+      if (c.id < items && !((selected[c.id / RB_ITEMS_PER_OBJECT] >> (c.id % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
+    const uint32_t stride = after[items].pixels;
+    if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
+    for (uint32_t id = 0; id < items; ++id) {
+      const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
+      const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
+      const bool probed = stride != 0 && candidate && !((selected[i] >> e) & 1u);
+      if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
+    }
     for (const gpu::GpuCandidate& c : candidates) {
       if (c.id >= items) return false;
       const uint32_t i = c.id / RB_ITEMS_PER_OBJECT, e = c.id % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
@@ -272,7 +289,7 @@ struct SelectionStage::Impl {
       std::vector<Candidate> c;
       for (const gpu::GpuCandidate& x : g) c.push_back({x.id, x.cost, x.value, x.distance});
       if (s.optimalBound) {
-        t.optimalValueBound = optimalValueBound(c, slot.traceBudgetMs);
+        t.optimalValueBound = optimalValueBound(c, slot.selectBudgetMs);
         if (!c.empty())
           t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
         for (const Candidate& x : c) t.candidatesMs += x.cost;
@@ -280,7 +297,7 @@ struct SelectionStage::Impl {
       if (s.checkSelection) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
         const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit);
-        t.selectionMatchesCpu = gpuIds == selectObjects(policy, c, slot.traceBudgetMs, policyOptions(s)).ids;
+        t.selectionMatchesCpu = gpuIds == selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s)).ids;
         t.costsMatchCpu = costsMatchCpu(slot, policy, g);
       }
     }
@@ -320,8 +337,8 @@ struct SelectionStage::Impl {
     for (size_t i = 0; i < count; ++i) {
       const gpu::GpuObjectRecord& g = records[i];
       out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), cov[i].sumYHi.y, cov[i].sumYHi.z, g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w,
-                g.crCandidatePixels.x, g.crCandidatePixels.y, g.crCandidatePixels.z > 0.5f, selected[i] != 0u};
-      out[i].selectedItems = selected[i];
+                g.crCandidatePixels.x, g.crCandidatePixels.y, g.crCandidatePixels.z > 0.5f, (selected[i] & RB_ITEMS_ALL) != 0u};
+      out[i].selectedItems = selected[i] & RB_ITEMS_ALL;
       for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
         const gpu::GpuItemCost& item = items[i * RB_ITEMS_PER_OBJECT + e];
         out[i].itemError[e] = float(double(item.error) / RB_ERROR_UNITS);
