@@ -28,12 +28,12 @@ BENCH_SCENES = ROOT.parent / "shared" / "scenes" / "bench"
 GENERATED = [ROOT / "data" / "default" / "court.gltf", ROOT / "data" / "plaza" / "plaza.gltf"]
 POLICIES = ["paper", "density", "nearest", "random", "benefit"]
 # `benefit` with one part left out (docs/SELECTION.md), with --ablations.
-ABLATIONS = ["benefit-no-centrality", "benefit-no-hysteresis", "benefit-prior-only", "benefit-no-classifier"]
+ABLATIONS = ["benefit-no-centrality", "benefit-no-hysteresis", "benefit-prior-only", "benefit-no-classifier", "benefit-no-probe"]
 FRACTIONS = [0.10, 0.25, 0.50]  # of `all`'s stage cost
 ADHERENCE_SLACK = 1.05          # the promise: rt_stage_ms <= T + 5%
 COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "benefit": "tab:brown",
           "benefit-no-centrality": "tab:pink", "benefit-no-hysteresis": "tab:cyan", "benefit-prior-only": "gold",
-          "benefit-no-classifier": "darkgreen",
+          "benefit-no-classifier": "darkgreen", "benefit-no-probe": "sienna",
           "none": "black", "all": "tab:red", "classified": "tab:olive", "oracle": "tab:gray"}
 
 

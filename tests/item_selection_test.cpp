@@ -152,7 +152,7 @@ TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
     }
   EXPECT_GT(learned, 0u) << "traced items should have measured benefits";
   // The ablations' GPU paths equal their references too.
-  for (BenefitAblation a : {BenefitAblation::NoCentrality, BenefitAblation::NoHysteresis, BenefitAblation::PriorOnly})
+  for (BenefitAblation a : {BenefitAblation::NoCentrality, BenefitAblation::NoHysteresis, BenefitAblation::PriorOnly, BenefitAblation::NoProbe})
     orbit(float(all.back().predictedTraceMs / 4.0), nullptr, a);
 }
 

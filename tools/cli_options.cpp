@@ -61,7 +61,7 @@ render options:
                         traces left-out items on a few rotating tiles to measure their
                         benefit, not shown; 0..0.5 (default 0.05; 0: no probe)
   --benefit-ablation A  benefit with a part left out: no-centrality (P = 1), no-hysteresis
-                        (I = 0), prior-only (b never measured), no-classifier
+                        (I = 0), prior-only (b never measured), no-classifier, no-probe
   --tracer compute|native
                         compute: our BVH in compute shaders (default); native: the device's
                         VK_KHR_ray_query with Vulkan acceleration structures

@@ -29,7 +29,7 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --order-seed S        shuffles each repeat's configurations (default 1; 0: all, none, budgets ascending)
   --prior-time-scale    never learn the cost model's time scale: selections independent of timing
   --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random,benefit);
-                        benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier: ablations
+                        benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier, -no-probe: ablations
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)

@@ -42,7 +42,8 @@ struct SweepCommand {
 };
 
 // Parses a budgeted policy's name: paper, density, nearest, random, benefit, or benefit with a
-// part left out (benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier).
+// part left out (benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier,
+// -no-probe).
 SweepPolicy parseSweepPolicy(const std::string& name);
 
 // Parses `sweep` arguments (after the word "sweep"). Throws raybudget::Error.

@@ -51,14 +51,16 @@ const char* ablationName(BenefitAblation a) {
     case BenefitAblation::NoHysteresis: return "no-hysteresis";
     case BenefitAblation::PriorOnly: return "prior-only";
     case BenefitAblation::NoClassifier: return "no-classifier";
+    case BenefitAblation::NoProbe: return "no-probe";
   }
   return "?";
 }
 
 BenefitAblation parseAblation(const std::string& name) {
-  for (BenefitAblation a : {BenefitAblation::NoCentrality, BenefitAblation::NoHysteresis, BenefitAblation::PriorOnly, BenefitAblation::NoClassifier})
+  for (BenefitAblation a : {BenefitAblation::NoCentrality, BenefitAblation::NoHysteresis, BenefitAblation::PriorOnly, BenefitAblation::NoClassifier,
+                            BenefitAblation::NoProbe})
     if (name == ablationName(a)) return a;
-  throw Error("unknown benefit ablation '" + name + "' (no-centrality, no-hysteresis, prior-only, no-classifier)");
+  throw Error("unknown benefit ablation '" + name + "' (no-centrality, no-hysteresis, prior-only, no-classifier, no-probe)");
 }
 
 bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All && policy != Policy::Classified; }

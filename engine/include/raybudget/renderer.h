@@ -24,9 +24,10 @@ enum class Policy { None, All, Paper, Density, Nearest, Random, Benefit, Classif
 
 // `benefit` with one of its parts left out, for the benchmark's ablations
 // (docs/SELECTION.md): P in E = A·P·b (P = 1), the hysteresis S·I (I = 0), the measured b
-// (b stays the prior), the shadow classifier (every pixel of a shadow item traces).
-enum class BenefitAblation { None, NoCentrality, NoHysteresis, PriorOnly, NoClassifier };
-// "", "no-centrality", "no-hysteresis", "prior-only", "no-classifier"
+// (b stays the prior), the shadow classifier (every pixel of a shadow item traces), the probe
+// (probeShare 0: the selection gets the whole trace budget).
+enum class BenefitAblation { None, NoCentrality, NoHysteresis, PriorOnly, NoClassifier, NoProbe };
+// "", "no-centrality", "no-hysteresis", "prior-only", "no-classifier", "no-probe"
 const char* ablationName(BenefitAblation ablation);
 // Throws raybudget::Error naming the valid ones.
 BenefitAblation parseAblation(const std::string& name);

@@ -143,7 +143,8 @@ struct SelectionStage::Impl {
     slot.belowFixedCost = double(s.budgetMs) <= timeScale.fixedMs();
     slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float(double(s.budgetMs) - timeScale.fixedMs());
     // `benefit` keeps a share of the trace budget for the probe of what it leaves out.
-    const float probeBudgetMs = policy == Policy::Benefit ? slot.traceBudgetMs * s.probeShare : 0.0f;
+    const bool probe = policy == Policy::Benefit && s.benefitAblation != BenefitAblation::NoProbe;
+    const float probeBudgetMs = probe ? slot.traceBudgetMs * s.probeShare : 0.0f;
     slot.selectBudgetMs = slot.traceBudgetMs - probeBudgetMs;
     slot.items = itemFrame(s, lights, probeBudgetMs);
     if (slot.budgeted) {
