@@ -131,6 +131,22 @@ TEST(CostModel, TimeScaleStartsAtThePriorAndMovesPartWayTowardsWhatWasMeasured) 
 
 // Frames that traced nothing time the trace passes' fixed cost (their dispatches over an
 // empty tile list); the scale then fits what the work adds beyond it.
+// The budget's headroom: none until a quarter of the window was measured, then the chosen
+// quantile of measured over predicted work time, never below 1.
+TEST(CostModel, HeadroomIsAQuantileOfTheRecentPredictionErrors) {
+  select::TimeScale k(640, 360);
+  const double used = 1e-5, work = 1e5;  // 1 ms predicted
+  const double ratios[5] = {0.8, 0.9, 1.0, 1.1, 1.5};
+  for (int f = 0; f < 7; ++f) k.learn(CostUnit::Work, {used, work, ratios[f % 5] * used * work, 0.2, false});
+  EXPECT_EQ(k.headroom(0.9), 1.0) << "7 frames: too few to tell";
+  for (int f = 7; f < 40; ++f) k.learn(CostUnit::Work, {used, work, ratios[f % 5] * used * work, 0.2, false});
+  EXPECT_NEAR(k.headroom(0.9), 1.5, 1e-9);
+  EXPECT_NEAR(k.headroom(0.7), 1.1, 1e-9);
+  EXPECT_EQ(k.headroom(0.1), 1.0) << "the budget never grows past T";
+  for (int f = 0; f < 32; ++f) k.learn(CostUnit::Work, {used, 0.0, 0.0, 0.2, true});
+  EXPECT_EQ(k.headroom(0.9), 1.0) << "frames where nothing fitted relax it";
+}
+
 TEST(CostModel, FramesThatTraceNothingGiveTheFixedCostAndTheScaleFitsTheRest) {
   const double fixed = 0.5, scale = 5e-6;  // the prior is 3.1e-6 ms per unit
   select::TimeScale k(640, 360);

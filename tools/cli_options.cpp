@@ -1,6 +1,7 @@
 #include "cli_options.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <optional>
 
@@ -57,6 +58,10 @@ render options:
                         pixels, whether traced, and with benefit or classified the display
                         error its tracing removed, its clock ticks and traversal work, and
                         with benefit its learned benefit and cost per pixel
+  --budget-confidence C
+                        the share of frames the stage should hold T in if recent prediction
+                        errors recur: the selection's budget is divided by that quantile of
+                        measured over predicted trace time, 0.5..0.99 (default 0.9)
   --probe-share F       benefit: the share of the trace budget for the sparse probe, which
                         traces left-out items on a few rotating tiles to measure their
                         benefit, not shown; 0..0.5 (default 0.05; 0: no probe)
@@ -95,10 +100,17 @@ std::optional<float> parseFinite(const std::string& value) {
 }
 
 // A number within lo..hi (inclusive); the error names the option.
+// A range bound as a user writes it: 0.0, 64.0, 0.99.
+std::string boundText(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, v == std::floor(v) ? "%.1f" : "%g", double(v));
+  return text;
+}
+
 float parseWithin(const std::string& option, const std::string& value, float lo, float hi) {
   const std::optional<float> v = parseFinite(value);
   if (!v || *v < lo || *v > hi)
-    throw Error(option + " needs a number within " + std::to_string(lo).substr(0, 3) + ".." + std::to_string(hi).substr(0, 3) + ", got '" + value + "'");
+    throw Error(option + " needs a number within " + boundText(lo) + ".." + boundText(hi) + ", got '" + value + "'");
   return *v;
 }
 
@@ -159,6 +171,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       c.settings.objectMetrics = true;
     } else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
+    else if (a == "--budget-confidence") c.settings.budgetConfidence = parseWithin(a, value(), 0.5f, 0.99f);
     else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;

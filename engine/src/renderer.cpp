@@ -110,6 +110,8 @@ void validateSettings(const RenderSettings& s) {
   if (isBudgeted(s.policy) && (!std::isfinite(s.budgetMs) || s.budgetMs <= 0.0f || s.budgetMs > 1e6f))
     throw Error("the trace budget must be a positive number of milliseconds (at most 1e6), got " + std::to_string(s.budgetMs));
   if (s.graphPointers > 64) throw Error("the paper's graph takes at most 64 relevance pointers per node");
+  if (!std::isfinite(s.budgetConfidence) || s.budgetConfidence < 0.5f || s.budgetConfidence > 0.99f)
+    throw Error("the budget's confidence (budgetConfidence) must be within 0.5..0.99, got " + std::to_string(s.budgetConfidence));
   if (!std::isfinite(s.probeShare) || s.probeShare < 0.0f || s.probeShare > 0.5f)
     throw Error("the probe's share of the budget (probeShare) must be within 0..0.5, got " + std::to_string(s.probeShare));
   if (!std::isfinite(s.rayTracing.maxRoughness) || s.rayTracing.maxRoughness < 0.0f || s.rayTracing.maxRoughness > 1.0f)

@@ -79,6 +79,11 @@ struct RenderSettings {
   // sparse probe, which traces and measures left-out items on a rotating few tiles so that
   // their learned benefit stays fresh, without showing the result (0: no probe; 0..0.5).
   float probeShare = 0.05f;
+  // Budgeted policies, with learnTimeScale: the share of frames the stage should hold T in if
+  // the recent frames' prediction errors recur. The selection's budget is divided by that
+  // quantile of their measured over predicted trace time (cost_model.h's headroom): higher
+  // holds T more often and uses less of it (0.5..0.99; 0.5: the median error, about none).
+  float budgetConfidence = 0.9f;
   // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
   // timestamps (off: the prior stays, so a run selects the same objects on any machine;
   // per-object work per pixel is learned from the deterministic work counters either way).
@@ -107,7 +112,7 @@ struct FrameTiming {
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
   // Budgeted policies: the stage budget T, the part of it the selection got for the
   // candidates' work (T less the stage's learned fixed cost: coverage, select, the trace
-  // passes' own), the cost model's prediction for the trace passes (their fixed cost plus
+  // passes' own; divided by the headroom of RenderSettings::budgetConfidence), the cost model's prediction for the trace passes (their fixed cost plus
   // the selection's work) and their measured time, objects selected and their summed R.
   double budgetMs = 0.0;
   double traceBudgetMs = 0.0;

@@ -97,11 +97,24 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   const double current = msPerUnit(unit), used = m.msPerUnitUsed;
   if (m.work * used <= 1e-3) {  // nothing traced: the trace passes' time is their fixed cost
     traceFixedMs_ = traceFixedMs_ > 0.0 ? 0.7 * traceFixedMs_ + 0.3 * m.traceMs : m.traceMs;
-    if (m.candidatesButNoneFit) learned_[u] = 0.9 * current;  // nothing to measure: let the model relax
+    if (m.candidatesButNoneFit) {  // nothing to measure: let the model relax
+      learned_[u] = 0.9 * current;
+      ratios_[ratioCount_++ % kRatioWindow] = 1.0;  // and the headroom, which would else stay
+    }
     return;
   }
   const double scale = (m.traceMs - traceFixedMs_) / m.work;
+  ratios_[ratioCount_++ % kRatioWindow] = scale / used;
   learned_[u] = 0.7 * current + 0.3 * std::clamp(scale, 0.5 * used, 2.0 * used);
+}
+
+double TimeScale::headroom(double confidence) const {
+  const size_t n = std::min(ratioCount_, kRatioWindow);
+  if (n < kRatioWindow / 4) return 1.0;
+  std::array<double, kRatioWindow> sorted = ratios_;
+  std::sort(sorted.begin(), sorted.begin() + n);
+  const size_t at = std::min(n - 1, size_t(confidence * double(n)));
+  return std::max(1.0, sorted[at]);
 }
 
 uint32_t probeStride(double left, double budget) {

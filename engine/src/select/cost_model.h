@@ -106,6 +106,12 @@ class TimeScale {
   double traceFixedMs() const { return traceFixedMs_; }
   // The stage's fixed cost t0: overhead + the trace passes' fixed cost.
   double fixedMs() const { return overheadMs_ + traceFixedMs_; }
+  // The headroom the budget leaves for prediction errors: the `confidence` quantile of the
+  // recent frames' measured over predicted work time (at least 1; 1 before kRatioWindow / 4
+  // frames were measured). The selection's budget is divided by it, so that the stage holds T
+  // in about that share of frames if the errors recur. A frame whose candidates all failed to
+  // fit counts as an exact prediction, so that a headroom that left nothing to trace relaxes.
+  double headroom(double confidence) const;
   // A saved state (zeros: the prior, no fixed cost). Values are the caller's to validate.
   void set(double msPerWorkUnit, double msPerPaperCost, double overheadMs, double traceFixedMs);
   void learn(CostUnit unit, const StageMeasurement& m);
@@ -114,6 +120,9 @@ class TimeScale {
   uint32_t width_, height_;
   std::array<double, 2> learned_{0.0, 0.0};
   double overheadMs_ = 0.0, traceFixedMs_ = 0.0;
+  static constexpr size_t kRatioWindow = 32;
+  std::array<double, kRatioWindow> ratios_{};  // the last frames' measured / predicted work time
+  size_t ratioCount_ = 0;
 };
 
 }  // namespace raybudget::select

@@ -141,7 +141,8 @@ struct SelectionStage::Impl {
     slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
     slot.traceFixedMs = timeScale.traceFixedMs();
     slot.belowFixedCost = double(s.budgetMs) <= timeScale.fixedMs();
-    slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float(double(s.budgetMs) - timeScale.fixedMs());
+    // Room for the prediction's recent errors (cost_model.h's headroom).
+    slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float((double(s.budgetMs) - timeScale.fixedMs()) / timeScale.headroom(s.budgetConfidence));
     // `benefit` keeps a share of the trace budget for the probe of what it leaves out.
     const bool probe = policy == Policy::Benefit && s.benefitAblation != BenefitAblation::NoProbe;
     const float probeBudgetMs = probe ? slot.traceBudgetMs * s.probeShare : 0.0f;
