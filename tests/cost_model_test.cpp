@@ -145,6 +145,10 @@ TEST(CostModel, HeadroomIsAQuantileOfTheRecentPredictionErrors) {
   EXPECT_EQ(k.headroom(0.1), 1.0) << "the budget never grows past T";
   for (int f = 0; f < 32; ++f) k.learn(CostUnit::Work, {used, 0.0, 0.0, 0.2, true});
   EXPECT_EQ(k.headroom(0.9), 1.0) << "frames where nothing fitted relax it";
+  for (int f = 0; f < 40; ++f) k.learn(CostUnit::Work, {used, work, 2.0 * used * work, 0.2, false});
+  EXPECT_GT(k.headroom(0.9), 1.0);
+  k.set(used, 0.0, 0.2, 0.0);
+  EXPECT_EQ(k.headroom(0.9), 1.0) << "a saved state has no errors behind it";
 }
 
 TEST(CostModel, FramesThatTraceNothingGiveTheFixedCostAndTheScaleFitsTheRest) {

@@ -85,6 +85,7 @@ void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double overhead
   learned_ = {msPerWorkUnit, msPerPaperCost};
   overheadMs_ = overheadMs;
   traceFixedMs_ = traceFixedMs;
+  forgetErrors();
 }
 
 // Each step moves 30% of the way (the timestamps arrive two frames late: a bigger step

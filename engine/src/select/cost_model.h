@@ -112,8 +112,12 @@ class TimeScale {
   // in about that share of frames if the errors recur. A frame whose candidates all failed to
   // fit counts as an exact prediction, so that a headroom that left nothing to trace relaxes.
   double headroom(double confidence) const;
-  // A saved state (zeros: the prior, no fixed cost). Values are the caller's to validate.
+  // A saved state (zeros: the prior, no fixed cost), without the recent errors behind the
+  // headroom. Values are the caller's to validate.
   void set(double msPerWorkUnit, double msPerPaperCost, double overheadMs, double traceFixedMs);
+  // Forgets the recent errors (a restarted selection's headroom must not depend on what ran
+  // before it).
+  void forgetErrors() { ratioCount_ = 0; }
   void learn(CostUnit unit, const StageMeasurement& m);
 
  private:

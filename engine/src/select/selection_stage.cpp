@@ -311,6 +311,7 @@ struct SelectionStage::Impl {
 
   void restart(const RenderSettings& s) {
     ensureSelector(s);
+    timeScale.forgetErrors();
     ctx.submitAndWait([&](VkCommandBuffer cmd) { recordSelectionReset(cmd, buffers, initialParams); });
   }
 
