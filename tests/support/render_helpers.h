@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <set>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -65,6 +66,16 @@ inline RenderedFrames renderFrames(const Scene& scene, const RenderSettings& s, 
   r.metrics = renderer.objectMetrics();
   expectValidationClean(renderer.validationMessages());
   return r;
+}
+
+// Making a renderer with `settings` is refused with a raybudget::Error that names `setting`.
+inline void expectRefusedNaming(const Scene& scene, const RenderSettings& settings, const std::string& setting) {
+  try {
+    Renderer r(scene, settings);
+    ADD_FAILURE() << "a bad " << setting << " was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(setting), std::string::npos) << e.what();
+  }
 }
 
 // The objects each 8x8 tile of an object-ID image shows (tiles row by row; pixels showing
