@@ -132,7 +132,7 @@ TEST(CostModel, TimeScaleStartsAtThePriorAndMovesPartWayTowardsWhatWasMeasured) 
 // Frames that traced nothing time the trace passes' fixed cost (their dispatches over an
 // empty tile list); the scale then fits what the work adds beyond it.
 // The budget's headroom: none until a quarter of the window was measured, then the chosen
-// quantile of measured over predicted work time, never below 1.
+// quantile of measured over predicted work time over their median, never below 1.
 TEST(CostModel, HeadroomIsAQuantileOfTheRecentPredictionErrors) {
   select::TimeScale k(640, 360);
   const double used = 1e-5, work = 1e5;  // 1 ms predicted
@@ -143,9 +143,12 @@ TEST(CostModel, HeadroomIsAQuantileOfTheRecentPredictionErrors) {
   EXPECT_NEAR(k.headroom(0.9), 1.5, 1e-9);
   EXPECT_NEAR(k.headroom(0.7), 1.1, 1e-9);
   EXPECT_EQ(k.headroom(0.1), 1.0) << "the budget never grows past T";
+  select::TimeScale biased(640, 360);  // the same errors on a scale still 3x too low
+  for (int f = 0; f < 40; ++f) biased.learn(CostUnit::Work, {used, work, 3.0 * ratios[f % 5] * used * work, 0.2, false});
+  EXPECT_NEAR(biased.headroom(0.9), 1.5, 1e-9) << "the spread, not the bias";
   for (int f = 0; f < 32; ++f) k.learn(CostUnit::Work, {used, 0.0, 0.0, 0.2, true});
   EXPECT_EQ(k.headroom(0.9), 1.0) << "frames where nothing fitted relax it";
-  for (int f = 0; f < 40; ++f) k.learn(CostUnit::Work, {used, work, 2.0 * used * work, 0.2, false});
+  for (int f = 0; f < 40; ++f) k.learn(CostUnit::Work, {used, work, ratios[f % 5] * used * work, 0.2, false});
   EXPECT_GT(k.headroom(0.9), 1.0);
   k.set(used, 0.0, 0.2, 0.0);
   EXPECT_EQ(k.headroom(0.9), 1.0) << "a saved state has no errors behind it";

@@ -114,8 +114,10 @@ double TimeScale::headroom(double confidence) const {
   if (n < kRatioWindow / 4) return 1.0;
   std::array<double, kRatioWindow> sorted = ratios_;
   std::sort(sorted.begin(), sorted.begin() + n);
+  // Relative to the median: a bias the scale is still learning away (the first frames, from
+  // the prior) is not noise, and would otherwise hold the budget down for a whole window.
   const size_t at = std::min(n - 1, size_t(confidence * double(n)));
-  return std::max(1.0, sorted[at]);
+  return std::max(1.0, sorted[at] / sorted[n / 2]);
 }
 
 uint32_t probeStride(double left, double budget) {

@@ -107,8 +107,8 @@ class TimeScale {
   // The stage's fixed cost t0: overhead + the trace passes' fixed cost.
   double fixedMs() const { return overheadMs_ + traceFixedMs_; }
   // The headroom the budget leaves for prediction errors: the `confidence` quantile of the
-  // recent frames' measured over predicted work time (at least 1; 1 before kRatioWindow / 4
-  // frames were measured). The selection's budget is divided by it, so that the stage holds T
+  // recent frames' measured over predicted work time over their median (the spread; the
+  // bias is the scale's to learn), at least 1; 1 before kRatioWindow / 4 frames were measured. The selection's budget is divided by it, so that the stage holds T
   // in about that share of frames if the errors recur. A frame whose candidates all failed to
   // fit counts as an exact prediction, so that a headroom that left nothing to trace relaxes.
   double headroom(double confidence) const;
