@@ -100,12 +100,12 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
     traceFixedMs_ = traceFixedMs_ > 0.0 ? 0.7 * traceFixedMs_ + 0.3 * m.traceMs : m.traceMs;
     if (m.candidatesButNoneFit) {  // nothing to measure: let the model relax
       learned_[u] = 0.9 * current;
-      ratios_[ratioCount_++ % kRatioWindow] = 1.0;  // and the headroom, which would else stay
+      recordError(1.0);  // and the headroom, which would else stay
     }
     return;
   }
   const double scale = (m.traceMs - traceFixedMs_) / m.work;
-  ratios_[ratioCount_++ % kRatioWindow] = scale / used;
+  recordError(scale / used);
   learned_[u] = 0.7 * current + 0.3 * std::clamp(scale, 0.5 * used, 2.0 * used);
 }
 

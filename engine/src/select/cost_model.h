@@ -108,8 +108,9 @@ class TimeScale {
   double fixedMs() const { return overheadMs_ + traceFixedMs_; }
   // The headroom the budget leaves for prediction errors: the `confidence` quantile of the
   // recent frames' measured over predicted work time over their median (the spread; the
-  // bias is the scale's to learn), at least 1; 1 before kRatioWindow / 4 frames were measured. The selection's budget is divided by it, so that the stage holds T
-  // in about that share of frames if the errors recur. A frame whose candidates all failed to
+  // bias is the scale's to learn), at least 1; 1 before kRatioWindow / 4 frames were measured.
+  // The selection's budget is divided by it, so that the stage holds T in about that share of
+  // frames if the errors recur. A frame whose candidates all failed to
   // fit counts as an exact prediction, so that a headroom that left nothing to trace relaxes.
   double headroom(double confidence) const;
   // A saved state (zeros: the prior, no fixed cost), without the recent errors behind the
@@ -118,6 +119,7 @@ class TimeScale {
   // Forgets the recent errors (a restarted selection's headroom must not depend on what ran
   // before it).
   void forgetErrors() { ratioCount_ = 0; }
+  void recordError(double measuredOverPredicted) { ratios_[ratioCount_++ % kRatioWindow] = measuredOverPredicted; }
   void learn(CostUnit unit, const StageMeasurement& m);
 
  private:

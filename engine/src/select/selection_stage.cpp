@@ -227,9 +227,13 @@ struct SelectionStage::Impl {
     };
     const uint32_t items = buffers.objects * RB_ITEMS_PER_OBJECT;
     const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
+    double left = 0.0;
+    for (const gpu::GpuCandidate& c : candidates)
+      if (c.id < items && !((selected[c.id / RB_ITEMS_PER_OBJECT] >> (c.id % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
+    const uint32_t stride = after[items].pixels;
+    if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
     if (after[items].work != 0 || after[items].ticks != 0) return false;  // the totals restart
     std::vector<ItemLearned> learned(items);
-    std::vector<int64_t> expectedSlot(items, -1);
     size_t expected = 0;
     for (uint32_t id = 0; id < items; ++id) {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
@@ -241,20 +245,12 @@ struct SelectionStage::Impl {
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
           a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) || a.pixels != (on ? pixelsOf(i, e) : 0u))
         return false;
-      if (records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0) ++expected;
-    }
-    if (expected != candidates.size()) return false;
-    double left = 0.0;
-    for (const gpu::GpuCandidate& c : candidates)
-      if (c.id < items && !((selected[c.id / RB_ITEMS_PER_OBJECT] >> (c.id % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
-    const uint32_t stride = after[items].pixels;
-    if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
-    for (uint32_t id = 0; id < items; ++id) {
-      const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
-      const bool probed = stride != 0 && candidate && !((selected[i] >> e) & 1u);
+      if (candidate) ++expected;
+      const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
       if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
     }
+    if (expected != candidates.size()) return false;
     for (const gpu::GpuCandidate& c : candidates) {
       if (c.id >= items) return false;
       const uint32_t i = c.id / RB_ITEMS_PER_OBJECT, e = c.id % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
