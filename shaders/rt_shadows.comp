@@ -13,7 +13,9 @@
 // Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
 // the geometric normal), alpha masks respected, for the pixels of objects whose shadow item
 // is selected. With RB_RT_CLASSIFY_SHADOWS a light whose shadow map is certain at the pixel
-// (include/shadows.glsl's classifier) keeps the map's visibility and traces no ray. Writes
+// (include/shadows.glsl's classifier) keeps the map's visibility and traces no ray; with
+// RB_RT_SHORTEN_SHADOW_RAYS a ray ends just past the nearest blocker the map holds around it
+// (include/shadows.glsl's shadowRayEnd). Writes
 // each light's visibility into its layer of the shadow mask, which the lighting pass uses
 // instead of the shadow maps. Where the probe traces a left-out shadow item, the mask is
 // written for the lighting pass to measure, which still shows the shadow maps there.
@@ -31,6 +33,7 @@ void main() {
   readExactSurface(pixel, p, ng);
   vec3 origin = offsetRay(p, ng);
   bool classify = (frame.rayTracing.w & RB_RT_CLASSIFY_SHADOWS) != 0u;
+  bool shorten = (frame.rayTracing.w & RB_RT_SHORTEN_SHADOW_RAYS) != 0u;
   uint work = 0u;
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
@@ -39,7 +42,7 @@ void main() {
     if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) {
       float mapped;
       if (classify && shadowMapCertain(lights[i], s.position, s.normal, frame.exposure.y, mapped)) visible = mapped;
-      else visible = traceVisibility(origin, L, dist, work);
+      else visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }

@@ -292,13 +292,15 @@ struct Renderer::Impl {
     return (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
   }
 
-  // RB_RT_CLASSIFY_SHADOWS / RB_RT_MEASURE_ITEMS for the item-aware policies: the shadow pass
-  // traces only where the shadow map is uncertain, and the trace and lighting passes count each
-  // item's work and the display error its tracing removed.
+  // RB_RT_CLASSIFY_SHADOWS / RB_RT_MEASURE_ITEMS / RB_RT_SHORTEN_SHADOW_RAYS for the item-aware
+  // policies: the shadow pass traces only where the shadow map is uncertain and ends its rays
+  // past the map's nearest blocker, and the trace and lighting passes count each item's work
+  // and the display error its tracing removed.
   uint32_t itemFlags() const {
     if (settings.policy != Policy::Benefit && settings.policy != Policy::Classified) return 0u;
-    const bool classify = settings.rayTracing.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
-    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS;
+    const RayTracingSettings& rt = settings.rayTracing;
+    const bool classify = rt.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
+    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
   }
 
   void computeToCompute(VkCommandBuffer cmd) {

@@ -67,6 +67,9 @@ layout(set = 0, binding = 36, std430) buffer TileObjectBlock { uint tileObjects[
 layout(set = 0, binding = 37, std430) buffer ItemCostBlock { GpuItemCost itemCosts[]; };
 // The record after the items: the frame's totals.
 uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
+// The shadow maps of bindings 13 and 14 read as depths (no compare, nearest).
+layout(set = 0, binding = 38) uniform sampler2DArray shadowMapDepths;
+layout(set = 0, binding = 39) uniform samplerCubeArray pointShadowDepths;
 
 // The 8x8 tile of a pass with one invocation per tile (coverage, tile list): its pixels
 // [first, last); false past the last tile.

@@ -66,4 +66,81 @@ bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, float reach, o
   return reach <= 0.0 || shadowFromLight(light, position, normal, 2.0 * reach) == visibility;
 }
 
+// Where a shadow ray from `origin` towards `light` may end (`dist`: the light, or 1e30 for a
+// directional one) with the shadow map's word: a ray towards a light passes through the
+// light's centre of projection, so it projects onto the origin's texel all along, and a
+// blocker on it lies in the map at that texel, no nearer the light than the nearest depth the
+// map holds there. The nearest depth is taken over 6x6 texels around the point (nine gathers):
+// texel centres at least two texels away on each side cover the slope-scaled depth bias
+// (1.75 texels' slope) of a blocker whose surface spans them; the ray then ends
+// RB_SHADOW_RAY_END_TEXELS texels (world size at the receiver) past that depth. Nothing
+// rendered there, or the point outside the map: the full ray. A blocker thinner than a texel
+// that the map misses entirely is missed here too, as the classifier misses it already
+// (docs/SELECTION.md measures what this changes).
+#define RB_SHADOW_RAY_END_TEXELS 3.0
+
+float nearestDepth2D(vec2 uv, float layer, vec2 texel) {
+  float d = 1.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) {
+      vec4 g = textureGather(shadowMapDepths, vec3(uv + vec2(x, y) * 2.0 * texel, layer));
+      d = min(d, min(min(g.x, g.y), min(g.z, g.w)));
+    }
+  return d;
+}
+
+float nearestDepthCube(vec3 dir, float cube, float texel) {
+  vec3 up = abs(dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0);
+  vec3 t = normalize(cross(up, dir)), b = cross(dir, t);
+  float d = 1.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) {
+      vec4 g = textureGather(pointShadowDepths, vec4(dir + (t * float(x) + b * float(y)) * 2.0 * texel, cube));
+      d = min(d, min(min(g.x, g.y), min(g.z, g.w)));
+    }
+  return d;
+}
+
+// View depth of a perspective (zero-to-one) shadow map's depth value.
+float viewDepth(float depth, float n, float f) { return f * n / (f - depth * (f - n)); }
+
+float shadowRayEnd(GpuLight light, vec3 origin, vec3 L, float dist) {
+  float layer = light.spotShadow.z;
+  if (layer < 0.0) return dist;
+  uint type = uint(light.directionType.w);
+  float n = light.shadowParams.y, f = light.shadowParams.z;
+  float t;      // where the nearest blocker depth is, along the ray
+  float texel;  // a texel's world size at the receiver
+  if (type == RB_LIGHT_POINT) {
+    vec3 v = origin - light.positionRange.xyz;
+    vec3 a = abs(v);
+    float w0 = max(a.x, max(a.y, a.z));
+    if (w0 >= f || w0 <= n) return dist;
+    float d = nearestDepthCube(normalize(v), layer, light.shadowParams.x);
+    if (d >= 1.0) return dist;
+    // The major axis's component shrinks linearly along the ray.
+    float along = a.x >= max(a.y, a.z) ? abs(L.x) : (a.y >= a.z ? abs(L.y) : abs(L.z));
+    t = (w0 - viewDepth(d, n, f)) / max(along, 1e-6);
+    texel = light.shadowParams.x * w0;
+  } else {
+    vec4 c0 = light.shadowViewProj * vec4(origin, 1.0), c1 = light.shadowViewProj * vec4(origin + L, 1.0);
+    if (c0.w <= 0.0) return dist;
+    vec3 p = c0.xyz / c0.w;
+    vec2 uv = p.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || p.z > 1.0) return dist;
+    float d = nearestDepth2D(uv, layer, 1.0 / vec2(textureSize(shadowMapDepths, 0).xy));
+    if (d >= 1.0) return dist;
+    if (type == RB_LIGHT_SPOT) {
+      // View depth falls linearly along the ray (c.w is the spot's view depth).
+      t = (c0.w - viewDepth(d, n, f)) / max(c0.w - c1.w, 1e-6);
+      texel = light.shadowParams.x * c0.w;
+    } else {
+      // Orthographic: depth falls linearly along the ray.
+      t = (p.z - d) / max(p.z - c1.z, 1e-12);
+      texel = light.shadowParams.x;
+    }
+  }
+  return min(dist, max(t, 0.0) + RB_SHADOW_RAY_END_TEXELS * texel);
+}
+
 #endif

@@ -28,9 +28,11 @@
 #define RB_RT_REFRACTIONS 4u
 // FrameUniforms.rayTracing.w bits: the shadow pass traces only where the shadow map is
 // uncertain; the trace and lighting passes count per item its work and the display error
-// its tracing removed (GpuItemCost).
+// its tracing removed (GpuItemCost); the shadow pass's rays end past the map's nearest
+// blocker.
 #define RB_RT_CLASSIFY_SHADOWS 1u
 #define RB_RT_MEASURE_ITEMS 2u
+#define RB_RT_SHORTEN_SHADOW_RAYS 4u
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 

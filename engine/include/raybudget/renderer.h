@@ -55,6 +55,9 @@ struct RayTracingSettings {
   // Off: every pixel of a selected shadow item traces.
   bool classifyShadows = true;
   float shadowUncertaintyTexels = 2.0f;
+  // `benefit` and `classified`: a shadow ray ends a few texels past the nearest blocker the
+  // light's shadow map holds around the point instead of at the light (off: at the light).
+  bool shortenShadowRays = true;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };

@@ -44,7 +44,9 @@ enum Binding : uint32_t {
   kObjectCosts = 35,
   kTileObjects = 36,
   kItemCosts = 37,
-  kBindingCount = 38,
+  kShadowMapDepths = 38,
+  kPointShadowDepths = 39,
+  kBindingCount = 40,
 };
 
 }  // namespace raybudget::passes

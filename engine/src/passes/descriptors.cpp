@@ -21,7 +21,8 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
   if (binding == kLights) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
-  if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition || binding >= kShadowMapDepths)
+    return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
   if (binding == kBvhNodes || binding == kBvhTriangles) return {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1};
   if (binding == kBvhInstances || binding == kIndices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
@@ -169,6 +170,10 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
                                               {selection.tileObjects.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.itemCosts.buffer, 0, VK_WHOLE_SIZE}};
   for (uint32_t b = kCoverage; b <= kItemCosts; ++b) write(b, 1, &heuristic[b - kCoverage], nullptr);
+  // The shadow maps again, read as depths (no compare): where shadow rays may end.
+  const VkDescriptorImageInfo depths[] = {{samplers.nearest, t.shadowMaps.view, ro}, {samplers.nearest, t.pointShadows.view, ro}};
+  write(kShadowMapDepths, 1, nullptr, &depths[0]);
+  write(kPointShadowDepths, 1, nullptr, &depths[1]);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
