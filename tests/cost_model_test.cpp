@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "select/cost_model.h"
+#include "select/object_params.h"
 #include "shared/selection.h"
 
 namespace raybudget {
@@ -45,29 +46,61 @@ TEST(CostModel, ProbeStrideIsTheLeastThatFitsTheProbeBudget) {
 
 // Items (`benefit`): b starts from the first measurement (error over the traced pixels, in
 // display units), then averages with each; an untraced item drifts 1/16 of the way to its
-// effect's prior per frame; prior-only never learns b, the work per pixel still.
+// prior per frame; prior-only never learns b, the work per pixel still.
 TEST(CostModel, ItemBenefitIsLearnedFromTracedFramesAndDriftsToThePriorOtherwise) {
   using select::ItemLearned;
+  const float reflectionPrior = 0.12f, shadowPrior = 0.05f;
   const ItemLearned fresh;
-  const ItemLearned first = select::learnItem(RB_ITEM_REFLECTIONS, fresh, {600, 0, 1024 * 30, 100}, 0.0f);  // 0.3 per pixel
+  const ItemLearned first = select::learnItem(reflectionPrior, fresh, {600, 0, 1024 * 30, 100}, 0.0f);  // 0.3 per pixel
   EXPECT_EQ(first.benefit, 0.3f);
   EXPECT_TRUE(first.measured);
   EXPECT_EQ(first.workPerPixel, 6.0f);
-  const ItemLearned second = select::learnItem(RB_ITEM_REFLECTIONS, first, {600, 0, 1024 * 10, 100}, 0.0f);
+  const ItemLearned second = select::learnItem(reflectionPrior, first, {600, 0, 1024 * 10, 100}, 0.0f);
   EXPECT_EQ(second.benefit, 0.5f * (0.3f + 0.1f));
-  const ItemLearned untraced = select::learnItem(RB_ITEM_REFLECTIONS, second, {}, 0.0f);
-  EXPECT_EQ(untraced.benefit, second.benefit + (float(RB_PRIOR_BENEFIT_REFLECTIONS) - second.benefit) * 0.0625f);
+  const ItemLearned untraced = select::learnItem(reflectionPrior, second, {}, 0.0f);
+  EXPECT_EQ(untraced.benefit, second.benefit + (reflectionPrior - second.benefit) * 0.0625f);
   EXPECT_EQ(untraced.workPerPixel, second.workPerPixel);
-  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {}, 0.0f).benefit, float(RB_PRIOR_BENEFIT_SHADOWS)) << "never measured: the prior";
-  const ItemLearned priorOnly = select::learnItem(RB_ITEM_SHADOWS, fresh, {600, 0, 1024 * 30, 100}, 0.0f, RB_BENEFIT_PRIOR_ONLY);
-  EXPECT_EQ(priorOnly.benefit, float(RB_PRIOR_BENEFIT_SHADOWS));
+  EXPECT_EQ(select::learnItem(shadowPrior, fresh, {}, 0.0f).benefit, shadowPrior) << "never measured: the prior";
+  const ItemLearned priorOnly = select::learnItem(shadowPrior, fresh, {600, 0, 1024 * 30, 100}, 0.0f, RB_BENEFIT_PRIOR_ONLY);
+  EXPECT_EQ(priorOnly.benefit, shadowPrior);
   EXPECT_FALSE(priorOnly.measured);
   EXPECT_EQ(priorOnly.workPerPixel, 6.0f);
   // Drifting for long enough reaches the prior from either side.
-  ItemLearned low = select::learnItem(RB_ITEM_SHADOWS, fresh, {1, 0, 0, 100}, 0.0f);
+  ItemLearned low = select::learnItem(shadowPrior, fresh, {1, 0, 0, 100}, 0.0f);
   EXPECT_EQ(low.benefit, 0.0f);
-  for (int f = 0; f < 400; ++f) low = select::learnItem(RB_ITEM_SHADOWS, low, {}, 0.0f);
-  EXPECT_NEAR(low.benefit, float(RB_PRIOR_BENEFIT_SHADOWS), 1e-6f);
+  for (int f = 0; f < 400; ++f) low = select::learnItem(shadowPrior, low, {}, 0.0f);
+  EXPECT_NEAR(low.benefit, shadowPrior, 1e-6f);
+}
+
+// The items' priors follow the object's materials: a mirror keeps the whole reflection prior,
+// a smooth dielectric the cosine-weighted mean of its Fresnel reflectance, clear glass the
+// refraction prior times the share it transmits; an object takes the most of its primitives.
+TEST(CostModel, ItemPriorsFollowTheMaterials) {
+  Material mirror, plastic, glass;
+  mirror.metallic = 1.0f;
+  mirror.baseColorFactor = glm::vec4(1.0f);
+  plastic.metallic = 0.0f;
+  plastic.ior = 1.5f;
+  glass = plastic;
+  glass.transmission = 1.0f;
+  Scene scene;
+  scene.materials = {mirror, plastic, glass};
+  auto priorsOf = [&](std::vector<int32_t> materials) {
+    scene.meshes.assign(1, Mesh{});
+    for (int32_t m : materials) scene.meshes[0].primitives.push_back(Primitive{0, 0, m});
+    Object o;
+    o.mesh = 0;
+    return select::itemPriors(scene, o);
+  };
+  const float fresnel = 0.04f + 0.96f / 21.0f;  // F0 = ((1.5 - 1) / (1.5 + 1))^2
+  const glm::vec3 m = priorsOf({0}), p = priorsOf({1}), g = priorsOf({2}), both = priorsOf({1, 0});
+  EXPECT_FLOAT_EQ(m.y, float(RB_PRIOR_BENEFIT_REFLECTIONS));
+  EXPECT_FLOAT_EQ(m.z, 0.0f) << "a metal transmits nothing";
+  EXPECT_NEAR(p.y, float(RB_PRIOR_BENEFIT_REFLECTIONS) * fresnel, 1e-6f);
+  EXPECT_LT(p.y, 0.1f * m.y) << "a smooth dielectric reflects under a tenth of a mirror";
+  EXPECT_NEAR(g.z, float(RB_PRIOR_BENEFIT_REFRACTIONS) * (1.0f - fresnel), 1e-6f);
+  EXPECT_EQ(both, m) << "the most of the primitives";
+  for (const glm::vec3& v : {m, p, g}) EXPECT_EQ(v.x, float(RB_PRIOR_BENEFIT_SHADOWS));
 }
 
 // An item's cost per pixel comes from its clock ticks at the frame's exchange rate (work per
@@ -78,9 +111,9 @@ TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
   EXPECT_EQ(select::itemTicksToWork(0, 1000), 0.0f);
   const select::ItemLearned fresh;
   // 50 ticks a pixel at 3 work units a tick: 150 per pixel, whatever its traversal work.
-  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {100, 5000, 0, 100}, 3.0f).workPerPixel, 150.0f);
-  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {100, 5000, 0, 100}, 0.0f).workPerPixel, 1.0f) << "not timed: traversal work";
-  EXPECT_EQ(select::learnItem(RB_ITEM_SHADOWS, fresh, {100, 0, 0, 100}, 3.0f).workPerPixel, 1.0f) << "no ticks of its own";
+  EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100}, 3.0f).workPerPixel, 150.0f);
+  EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100}, 0.0f).workPerPixel, 1.0f) << "not timed: traversal work";
+  EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 0, 0, 100}, 3.0f).workPerPixel, 1.0f) << "no ticks of its own";
 }
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {

@@ -39,10 +39,6 @@ void append(bool add, uint id, float cost, float value, float distance) {
 // alone when nothing was learned yet (0).
 float averagedWith(float previous, float observed) { return previous > 0.0 ? 0.5 * (previous + observed) : observed; }
 
-float priorBenefit(uint effect) {
-  return effect == RB_ITEM_SHADOWS ? RB_PRIOR_BENEFIT_SHADOWS : (effect == RB_ITEM_REFLECTIONS ? RB_PRIOR_BENEFIT_REFLECTIONS : RB_PRIOR_BENEFIT_REFRACTIONS);
-}
-
 // Work units per clock tick over last frame's traced items (0: nothing timed).
 float ticksToWork() {
   GpuItemCost totals = items[push.walk.z * RB_ITEMS_PER_OBJECT];
@@ -73,7 +69,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   if (c.pixels == 0u || !learnBenefit) {
     // Untraced: drift towards the prior (by a power-of-two share: an exact product, so a
     // fused multiply-add rounds alike), or the prior itself before any measurement.
-    float prior = priorBenefit(effect);
+    float prior = params[i].priors[effect];
     c.benefit = c.measured != 0u ? c.benefit + (prior - c.benefit) * RB_BENEFIT_DRIFT : prior;
   }
   items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u);

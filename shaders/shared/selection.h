@@ -17,10 +17,12 @@ struct GpuCoverage {
   uvec4 sumYHi;      // x sum y hi, y reflection pixels, z refraction pixels, w unused
 };
 
-// 16 bytes: the object's authored or derived K, Q, I, and w = 1 when it was selected last
-// frame (S).
+// 32 bytes: the object's authored or derived K, Q, I, and w = 1 when it was selected last
+// frame (S); and its items' prior benefit per covered pixel (x shadows, y reflections,
+// z refractions), from its materials (engine/src/select/object_params.h).
 struct GpuObjectParams {
   vec4 kqiS;
+  vec4 priors;
 };
 
 // 32 bytes: A, P, D, V and C, R, candidate (1/0), pixels (uint bits).
@@ -58,7 +60,8 @@ struct GpuObjectCost {
 // An item's benefit per covered pixel before it was measured, and where an untraced item's
 // estimate drifts to (by RB_BENEFIT_DRIFT of the gap per frame, a power of two so that the
 // step is exact and the CPU reference equals it): optimistic, so that an unmeasured or
-// long-untraced item gets traced and measured again (docs/SELECTION.md).
+// long-untraced item gets traced and measured again (docs/SELECTION.md). Per effect, for a
+// perfect mirror and clear glass; an object's materials scale them (GpuObjectParams::priors).
 #define RB_PRIOR_BENEFIT_SHADOWS 0.05
 #define RB_PRIOR_BENEFIT_REFLECTIONS 0.15
 #define RB_PRIOR_BENEFIT_REFRACTIONS 0.15

@@ -25,16 +25,11 @@ float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workP
   return float(pixels) * perPixel;
 }
 
-float priorBenefit(uint32_t effect) {
-  return float(effect == RB_ITEM_SHADOWS ? RB_PRIOR_BENEFIT_SHADOWS
-                                         : (effect == RB_ITEM_REFLECTIONS ? RB_PRIOR_BENEFIT_REFLECTIONS : RB_PRIOR_BENEFIT_REFRACTIONS));
-}
-
 float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
   return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
 }
 
-ItemLearned learnItem(uint32_t effect, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation) {
+ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation) {
   ItemLearned after = before;
   const bool learnBenefit = !(ablation & RB_BENEFIT_PRIOR_ONLY);
   const uint32_t pixels = counts.pixels;
@@ -50,7 +45,6 @@ ItemLearned learnItem(uint32_t effect, const ItemLearned& before, const ItemCoun
     }
   }
   if (pixels == 0 || !learnBenefit) {
-    const float prior = priorBenefit(effect);
     // The drift's product is exact (a power-of-two share), so a fused multiply-add rounds alike.
     after.benefit = before.measured ? before.benefit + (prior - before.benefit) * float(RB_BENEFIT_DRIFT) : prior;
   }

@@ -35,17 +35,16 @@ struct ItemLearned {
   float benefit = 0.0f;
   bool measured = false;
 };
-// The prior benefit per covered pixel of an effect's item (RB_PRIOR_BENEFIT_*).
-float priorBenefit(uint32_t effect);
 // What an item knows after a frame that counted `work` and `error` (in 1/RB_ERROR_UNITS) over
-// the `pixels` it was traced on (0: not traced; its benefit drifts to the prior).
+// the `pixels` it was traced on (0: not traced; its benefit drifts to `prior`, the item's
+// GpuObjectParams::priors).
 // An item's cost per pixel is learned from its clock ticks at `exchange` work units per tick
 // (itemTicksToWork: the frame's totals), or from its traversal work where nothing was timed
 // (exchange 0 or no ticks). `ablation`: RB_BENEFIT_* bits (RB_BENEFIT_PRIOR_ONLY: b stays the prior).
 struct ItemCounts {
   uint32_t work = 0, ticks = 0, error = 0, pixels = 0;
 };
-ItemLearned learnItem(uint32_t effect, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0);
+ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0);
 // Work units per tick from the frame's totals over every item (0: nothing timed).
 float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks);
 // An item candidate's predicted work: its pixels times its work per pixel, or before that

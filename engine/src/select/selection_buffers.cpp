@@ -12,7 +12,7 @@ std::vector<gpu::GpuObjectParams> initialObjectParams(const Scene& scene, float 
   std::vector<gpu::GpuObjectParams> params;
   for (const Object& o : scene.objects) {
     const ObjectParams p = objectParams(scene, o, maxRoughness);
-    params.push_back({glm::vec4(p.K, p.Q, p.I, 0.0f)});
+    params.push_back({glm::vec4(p.K, p.Q, p.I, 0.0f), glm::vec4(itemPriors(scene, o), 0.0f)});
   }
   if (params.empty()) params.push_back({});  // a buffer is never empty
   return params;

@@ -15,7 +15,7 @@ struct SelectionBuffers {
   uint32_t objects = 0;  // the scene's objects (each buffer holds at least one record)
   uint32_t tiles = 0;    // 8x8 tiles of the frame
   vk::Buffer coverage;       // GpuCoverage per object
-  vk::Buffer objectParams;   // GpuObjectParams per object: K, Q, I and S
+  vk::Buffer objectParams;   // GpuObjectParams per object: K, Q, I and S, the items' priors
   vk::Buffer objectRecords;  // GpuObjectRecord per object: A, P, D, V, C, R
   vk::Buffer selection;      // uint per object: 1 = traced this frame
   vk::Buffer objectCosts;    // GpuObjectCost per object: learned work per pixel, this frame's work

@@ -238,7 +238,8 @@ struct SelectionStage::Impl {
     for (uint32_t id = 0; id < items; ++id) {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
       const gpu::GpuItemCost& b = before[id];
-      learned[id] = learnItem(e, {b.workPerPixel, b.benefit, b.measured != 0}, {b.work, b.ticks, b.error, b.pixels}, exchange, frame.ablation);
+      learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0}, {b.work, b.ticks, b.error, b.pixels}, exchange,
+                              frame.ablation);
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
