@@ -11,6 +11,7 @@
 #include "include/item_stats.glsl"
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
+#include "include/rates.glsl"
 
 // Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
 // ray-traced shadow mask where traced, else the shadow maps), emissive, and diffuse ambient
@@ -49,7 +50,9 @@ void main() {
   bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u;
   bool rtShadows = rtEnabled && itemSelected(s.objectId, RB_ITEM_SHADOWS);
   bool probed = rtEnabled && !rtShadows && itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel);
-  bool measure = (rtShadows || probed) && measuringItems();
+  // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.
+  bool traced = probed || (rtShadows && itemTracedHere(s.objectId, RB_ITEM_SHADOWS, pixel));
+  bool measure = traced && measuringItems();
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
@@ -72,8 +75,12 @@ void main() {
         if (attenuation <= 0.0) continue;
       }
     }
-    float mapped = rtShadows && !measure ? 1.0 : shadowFromLight(light, s.position, N);
-    float visibility = rtShadows || probed ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : mapped;
+    // The mask: traced or certain visibility, or upsampled (RB_MASK_FILLED added), or still
+    // pending where no upsample ran: then the map's.
+    float masked = rtShadows || probed ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
+    if (masked > 1.0) masked -= RB_MASK_FILLED;
+    float mapped = rtShadows && !measure && masked >= 0.0 ? 1.0 : shadowFromLight(light, s.position, N);
+    float visibility = masked >= 0.0 ? masked : mapped;
     vec3 unshadowed = shadePbr(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.ior) * light.colorIntensity.rgb * attenuation;
     color += unshadowed * visibility;
     fallbackColor += unshadowed * mapped;

@@ -10,6 +10,7 @@
 #include "include/env_fallback.glsl"
 #include "include/item_stats.glsl"
 #include "include/probe.glsl"
+#include "include/rates.glsl"
 
 // Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to the
 // frame's cut-off, RayTracingSettings::maxRoughness) trace a closest-hit reflection ray, shaded with direct light (and
@@ -22,7 +23,10 @@
 // environment fallback (include/env_fallback.glsl); replaces the fallback's result in
 // indirectImage for the pixels it traces. With RB_RT_MEASURE_ITEMS each traced path adds its
 // work and the display-space difference it made against the fallback to its item. A path whose
-// item the probe traces here (include/probe.glsl) is measured and not shown.
+// item the probe traces here (include/probe.glsl) is measured and not shown. An item at a
+// reduced ray rate (include/rates.glsl) traces its pixels of this frame and stores the path's
+// radiance without the surface's weight, stamped with the frame, for upsample_effects.comp to
+// fill the others from.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
@@ -125,45 +129,45 @@ void main() {
   // Per path: whether its item is probed here rather than selected.
   bool probed[2] = bool[2](!itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && itemProbed(s.objectId, RB_ITEM_REFLECTIONS, pixel),
                            !itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && itemProbed(s.objectId, RB_ITEM_REFRACTIONS, pixel));
+  uint rates[2] = uint[2](itemRate(s.objectId, RB_ITEM_REFLECTIONS), itemRate(s.objectId, RB_ITEM_REFRACTIONS));
   bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() &&
-                  (itemSelected(s.objectId, RB_ITEM_REFLECTIONS) || probed[0]);
-  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0 && (itemSelected(s.objectId, RB_ITEM_REFRACTIONS) || probed[1]);
+                  ((itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && rateTraces(rates[0], pixel)) || probed[0]);
+  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0 &&
+                  ((itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && rateTraces(rates[1], pixel)) || probed[1]);
   if (!reflects && !refracts) return;  // the environment fallback stands
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
-  vec3 V = normalize(frame.cameraPositionNear.xyz - p);
-  vec3 N = s.normal;
-  if (dot(N, ng) < 0.0) N = -N;
-  float NoV = clamp(dot(N, V), 1e-4, 1.0);
-  vec3 f0 = mix(vec3(f0FromIor(s.ior)), s.baseColor, s.metallic);
-  vec3 specularWeight = envBrdfApprox(f0, s.roughness, NoV);
+  vec3 N, V, specularWeight, transmitWeight;
+  tracedPathWeights(s, p, ng, N, V, specularWeight, transmitWeight);
   uint depth = clamp(frame.rayTracing.y, 1u, uint(RB_RT_MAX_DEPTH));
   vec3 R = reflect(-V, N);
   if (dot(R, ng) < 0.0) R = reflect(R, ng);  // a normal map tilted the mirror ray below the surface
-  vec3 transmitWeight = s.baseColor * transmission * (vec3(1.0) - specularWeight);
   // The fallback's paths, as the env_fallback pass computed them.
   vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
   vec3 fallback[2] = vec3[2](envReflection(s, rasterV), envTransmission(s, rasterV));
   // Path 0 reflects, path 1 transmits; one traceRadiance call site keeps the shader (and
   // its compile time on lavapipe) half the size.
   vec3 color[2] = fallback;
+  vec3 radiance[2] = vec3[2](vec3(0.0), vec3(0.0));  // each traced path without the surface's weight
   uint work[2] = uint[2](0u, 0u);
   uint pathTicks[2] = uint[2](0u, 0u);  // each path's span on the clock
   for (int path = 0; path < 2; ++path) {
     if (!(path == 0 ? reflects : refracts)) continue;
     uint pathStart = clockNow();
-    vec3 origin = offsetRay(p, ng), dir = R, weight = specularWeight;
+    vec3 origin = offsetRay(p, ng), dir = R, absorbed = vec3(1.0);
     color[path] = vec3(0.0);
-    if (path == 1) {
-      vec3 absorbed;
-      if (!transmittedRay(p, ng, V, N, s.ior, s.materialId, origin, dir, absorbed, work[path])) continue;
-      weight = transmitWeight * absorbed;
-    }
-    color[path] = traceRadiance(origin, dir, depth, work[path]) * weight;
+    if (path == 1 && !transmittedRay(p, ng, V, N, s.ior, s.materialId, origin, dir, absorbed, work[path])) continue;
+    radiance[path] = traceRadiance(origin, dir, depth, work[path]) * absorbed;
+    color[path] = radiance[path] * (path == 0 ? specularWeight : transmitWeight);
     pathTicks[path] = clockNow() - pathStart;
   }
   imageStore(indirectImage, pixel, vec4((probed[0] ? fallback[0] : color[0]) + (probed[1] ? fallback[1] : color[1]), 1.0));
+  // For the upsample: the paths traced here at a reduced rate, and the frame they were traced in.
+  bool stored[2] = bool[2](reflects && !probed[0] && rates[0] != RB_RATE_FULL, refracts && !probed[1] && rates[1] != RB_RATE_FULL);
+  if (stored[0]) imageStore(reflectionRadiance, pixel, vec4(radiance[0], 1.0));
+  if (stored[1]) imageStore(refractionRadiance, pixel, vec4(radiance[1], 1.0));
+  if (stored[0] || stored[1]) imageStore(tracedStamp, pixel, uvec4(tracedStampOf(stored[0], stored[1])));
   addObjectWork(s.objectId, (probed[0] ? 0u : work[0]) + (probed[1] ? 0u : work[1]));
   if (measuringItems()) {
     vec3 direct = imageLoad(directImage, pixel).rgb, untraced = direct + fallback[0] + fallback[1];
@@ -175,7 +179,8 @@ void main() {
     uint reflectors = subgroupAdd(reflects ? 1u : 0u), refractors = subgroupAdd(refracts ? 1u : 0u), lanes = subgroupAdd(1u);
     uint own = clockShare(0u, rest, lanes * (reflects && refracts ? 2u : 1u));
     uvec2 ticks = uvec2(reflects ? clockShare(0u, pathTicks[0], reflectors) + own : 0u, refracts ? clockShare(0u, pathTicks[1], refractors) + own : 0u);
-    uvec3 probedPixels = uvec3(0u, reflects && probed[0] ? 1u : 0u, refracts && probed[1] ? 1u : 0u);
-    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError), probedPixels);
+    // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
+    uvec3 counted = uvec3(0u, reflects && (probed[0] || rates[0] != RB_RATE_FULL) ? 1u : 0u, refracts && (probed[1] || rates[1] != RB_RATE_FULL) ? 1u : 0u);
+    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError), counted);
   }
 }

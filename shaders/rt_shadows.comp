@@ -9,6 +9,7 @@
 #include "include/item_stats.glsl"
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
+#include "include/rates.glsl"
 
 // Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
 // the geometric normal), alpha masks respected, for the pixels of objects whose shadow item
@@ -28,6 +29,10 @@ void main() {
   if (!readSurface(pixel, s) || s.unlit) return;
   bool probe = !itemSelected(s.objectId, RB_ITEM_SHADOWS);
   if (probe && !itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
+  // A reduced rate traces some pixels this frame and leaves the rest pending for the upsample;
+  // lights the classifier finds certain need no ray and are written anyway.
+  uint rate = probe ? RB_RATE_FULL : itemRate(s.objectId, RB_ITEM_SHADOWS);
+  bool traces = rateTraces(rate, pixel);
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
@@ -42,11 +47,14 @@ void main() {
     if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) {
       float mapped;
       if (classify && shadowMapCertain(lights[i], s.position, s.normal, frame.exposure.y, mapped)) visible = mapped;
+      else if (!traces) visible = RB_MASK_PENDING;
       else visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
-  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(probe ? 1u : 0u, 0u, 0u));
+  // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
+  bool counted = probe || (rate != RB_RATE_FULL && traces);
+  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
 }

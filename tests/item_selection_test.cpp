@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "select/object_params.h"
 #include "shared/config.h"
 #include "shared/selection.h"
 #include "support/procedural.h"
@@ -115,10 +116,12 @@ TEST(Items, MeasuredErrorEqualsTheImageDifferenceAgainstTheFallback) {
 // reference selects from the same candidates, under a budget that binds.
 TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
   const Scene scene = loadScene(test::defaultScenePath());
-  auto orbit = [&](float budgetMs, std::vector<ObjectMetrics>* last, BenefitAblation ablation = BenefitAblation::None) {
+  auto orbit = [&](float budgetMs, std::vector<ObjectMetrics>* last, BenefitAblation ablation = BenefitAblation::None,
+                   ItemRate rate = ItemRate::Full) {
     RenderSettings s = settingsFor(Policy::Benefit, 320, 192);
     s.budgetMs = budgetMs;
     s.benefitAblation = ablation;
+    s.rayTracing.rate = rate;
     s.learnTimeScale = false;
     s.checkSelection = true;
     s.objectMetrics = true;
@@ -145,15 +148,21 @@ TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
   for (size_t f = 0; f < part.size(); ++f) binding += part[f].selectedObjects > 0 && part[f].selectedObjects < all[f].selectedObjects;
   EXPECT_GE(binding, 3u) << "the budget should bind in most frames";
   uint32_t learned = 0;
-  for (const ObjectMetrics& m : metrics)
-    for (float b : m.itemBenefit) {
+  for (size_t i = 0; i < metrics.size(); ++i) {
+    const glm::vec3 priors = select::itemPriors(scene, scene.objects[i]);
+    for (int e = 0; e < 3; ++e) {
+      const float b = metrics[i].itemBenefit[size_t(e)];
       EXPECT_TRUE(std::isfinite(b) && b >= 0.0f);
-      learned += b != float(RB_PRIOR_BENEFIT_SHADOWS) && b != float(RB_PRIOR_BENEFIT_REFLECTIONS);
+      learned += b != priors[e];
     }
+  }
   EXPECT_GT(learned, 0u) << "traced items should have measured benefits";
   // The ablations' GPU paths equal their references too.
   for (BenefitAblation a : {BenefitAblation::NoCentrality, BenefitAblation::NoHysteresis, BenefitAblation::PriorOnly, BenefitAblation::NoProbe})
     orbit(float(all.back().predictedTraceMs / 4.0), nullptr, a);
+  // So do reduced ray rates: the items' rates in the selection, their costs at the rate's
+  // share, and what the trace passes count on the pixels traced.
+  for (ItemRate r : {ItemRate::Half, ItemRate::Quarter}) orbit(float(all.back().predictedTraceMs / 4.0), nullptr, BenefitAblation::None, r);
 }
 
 // The shadow classifier (`classified`, shadows only) traces far fewer shadow rays than full

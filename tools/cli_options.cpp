@@ -56,6 +56,10 @@ render options:
                         benefit and classified: every pixel of a traced shadow item traces
   --full-shadow-rays    benefit and classified: shadow rays run to the light, not ending just
                         past the nearest blocker the shadow map holds around the point
+  --rate full|half|quarter
+                        benefit, all and classified: trace every selected item on all its
+                        pixels, a checkerboard or one pixel per 2x2 quad each frame, and fill
+                        the others from traced neighbours on the same object (default full)
   --item-stats          write items.csv: per object and effect (item) in the last frame, its
                         pixels, whether traced, and with benefit or classified the display
                         error its tracing removed, its clock ticks and traversal work, and
@@ -173,6 +177,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       c.settings.objectMetrics = true;
     } else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--full-shadow-rays") c.settings.rayTracing.shortenShadowRays = false;
+    else if (a == "--rate") c.settings.rayTracing.rate = parseItemRate(value());
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
     else if (a == "--budget-confidence") c.settings.budgetConfidence = parseWithin(a, value(), 0.5f, 0.99f);
     else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);

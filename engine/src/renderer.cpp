@@ -13,6 +13,8 @@
 #include "rt_effects_comp.h"
 #include "rt_effects_comp_native.h"
 #include "rt_shadows_comp.h"
+#include "upsample_effects_comp.h"
+#include "upsample_shadows_comp.h"
 #include "rt_shadows_comp_native.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
@@ -66,6 +68,14 @@ BenefitAblation parseAblation(const std::string& name) {
 bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All && policy != Policy::Classified; }
 const char* tracerName(Tracer tracer) { return tracer == Tracer::Native ? "native" : "compute"; }
 
+const char* itemRateName(ItemRate rate) { return rate == ItemRate::Half ? "half" : (rate == ItemRate::Quarter ? "quarter" : "full"); }
+
+ItemRate parseItemRate(const std::string& name) {
+  for (ItemRate r : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter})
+    if (name == itemRateName(r)) return r;
+  throw Error("unknown ray rate '" + name + "' (full, half, quarter)");
+}
+
 const char* passName(Pass pass) {
   switch (pass) {
     case Pass::GBuffer: return "gbuffer";
@@ -75,6 +85,8 @@ const char* passName(Pass pass) {
     case Pass::Environment: return "environment";
     case Pass::TraceShadows: return "trace_shadows";
     case Pass::TraceEffects: return "trace_effects";
+    case Pass::UpsampleShadows: return "upsample_shadows";
+    case Pass::UpsampleEffects: return "upsample_effects";
     case Pass::EnvFallback: return "env_fallback";
     case Pass::Lighting: return "lighting";
     case Pass::Compose: return "compose";
@@ -90,7 +102,9 @@ double FrameTiming::totalMs() const {
 }
 
 double FrameTiming::traceMs() const {
-  return passMs[size_t(Pass::TraceShadows)].value_or(0.0) + passMs[size_t(Pass::TraceEffects)].value_or(0.0);
+  double ms = 0.0;
+  for (Pass p : {Pass::TraceShadows, Pass::UpsampleShadows, Pass::TraceEffects, Pass::UpsampleEffects}) ms += passMs[size_t(p)].value_or(0.0);
+  return ms;
 }
 
 double FrameTiming::rtStageMs() const {
@@ -159,6 +173,8 @@ struct Renderer::Impl {
   passes::ScreenPass compose;
   passes::ScreenPass traceShadows;
   passes::ScreenPass traceEffects;
+  passes::ScreenPass upsampleShadows;
+  passes::ScreenPass upsampleEffects;
   Slot slots[kFramesInFlight];
   uint64_t frameIndex = 0;
   bool environmentReady = false;
@@ -184,7 +200,9 @@ struct Renderer::Impl {
         envFallback(ctx, pipelineLayout, kSpirv_env_fallback_comp),
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
         traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
-        traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
+        traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)),
+        upsampleShadows(ctx, pipelineLayout, kSpirv_upsample_shadows_comp),
+        upsampleEffects(ctx, pipelineLayout, kSpirv_upsample_effects_comp) {
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
@@ -194,9 +212,18 @@ struct Renderer::Impl {
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask})
+      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask, &targets.reflectionRadiance,
+                                   &targets.refractionRadiance})
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      // No pixel starts with a traced path: stamps of frame 0 with no path bit.
+      vk::imageBarrier(cmd, targets.tracedStamp, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      const VkClearColorValue zero{};
+      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(cmd, targets.tracedStamp.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       passes::ShadowMapPass::initialize(cmd, targets);
     });
   }
@@ -281,7 +308,8 @@ struct Renderer::Impl {
     u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
     u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
     u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, 0.0f, 0.0f);
-    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness), itemFlags());
+    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
+                              itemFlags() | (reducedRates() ? RB_RT_RATES : 0u));
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 
@@ -301,6 +329,12 @@ struct Renderer::Impl {
     const RayTracingSettings& rt = settings.rayTracing;
     const bool classify = rt.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
     return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
+  }
+
+  // Whether selected items are traced at a reduced rate (the policies that select items).
+  bool reducedRates() const {
+    const Policy p = settings.policy;
+    return settings.rayTracing.rate != ItemRate::Full && (p == Policy::Benefit || p == Policy::All || p == Policy::Classified);
   }
 
   void computeToCompute(VkCommandBuffer cmd) {
@@ -408,9 +442,15 @@ struct Renderer::Impl {
       timed(Pass::Environment, [&] { environment.record(fc); });
       environmentReady = true;
     }
+    // Items at a reduced ray rate leave pixels for the upsample passes.
+    const bool upsample = reducedRates();
     if (traced & RB_RT_SHADOWS) {
       timed(Pass::TraceShadows, [&] { traceShadows.recordOverTiles(fc); });
       computeToCompute(cmd);
+      if (upsample) {
+        timed(Pass::UpsampleShadows, [&] { upsampleShadows.recordOverTiles(fc); });
+        computeToCompute(cmd);
+      }
     }
     // The environment fallback first: the lighting pass reads it to measure the display error
     // of the traced shadows (RB_RT_MEASURE_ITEMS).
@@ -420,6 +460,10 @@ struct Renderer::Impl {
     if (traced & (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS)) {
       computeToCompute(cmd);
       timed(Pass::TraceEffects, [&] { traceEffects.recordOverTiles(fc); });
+      if (upsample) {
+        computeToCompute(cmd);
+        timed(Pass::UpsampleEffects, [&] { upsampleEffects.recordOverTiles(fc); });
+      }
     }
     computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });

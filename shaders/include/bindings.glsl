@@ -70,6 +70,11 @@ uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
 // The shadow maps of bindings 13 and 14 read as depths (no compare, nearest).
 layout(set = 0, binding = 38) uniform sampler2DArray shadowMapDepths;
 layout(set = 0, binding = 39) uniform samplerCubeArray pointShadowDepths;
+// Items at a reduced ray rate (include/rates.glsl): each path's traced radiance without the
+// surface's weight, and the frame and paths traced per pixel, for the upsample.
+layout(set = 0, binding = 40, rgba16f) uniform image2D reflectionRadiance;
+layout(set = 0, binding = 41, rgba16f) uniform image2D refractionRadiance;
+layout(set = 0, binding = 42, r32ui) uniform uimage2D tracedStamp;
 
 // The 8x8 tile of a pass with one invocation per tile (coverage, tile list): its pixels
 // [first, last); false past the last tile.

@@ -35,4 +35,17 @@ vec3 envTransmission(Surface s, vec3 V) {
   return transmitted * transmission * (vec3(1.0) - envSpecularWeight(s, V));
 }
 
+// What a traced path's radiance is weighted by at the surface (rt_effects.comp, and the
+// upsample for the pixels it fills): from the exact point `p` and geometric normal `ng`, the
+// shading normal N turned to the viewer's side, the view direction V, the split-sum specular
+// weight of the reflection and the transmitted share of the refraction.
+void tracedPathWeights(Surface s, vec3 p, vec3 ng, out vec3 N, out vec3 V, out vec3 specularWeight, out vec3 transmitWeight) {
+  V = normalize(frame.cameraPositionNear.xyz - p);
+  N = dot(s.normal, ng) < 0.0 ? -s.normal : s.normal;
+  float NoV = clamp(dot(N, V), 1e-4, 1.0);
+  vec3 f0 = mix(vec3(f0FromIor(s.ior)), s.baseColor, s.metallic);
+  specularWeight = envBrdfApprox(f0, s.roughness, NoV);
+  transmitWeight = s.baseColor * s.transmission * (1.0 - s.metallic) * (vec3(1.0) - specularWeight);
+}
+
 #endif

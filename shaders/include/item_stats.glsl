@@ -4,13 +4,13 @@
 #ifndef RB_ITEM_STATS_GLSL
 #define RB_ITEM_STATS_GLSL
 
-// Adds this invocation's work, ticks, error and probed pixels (1 where the probe traced the
-// item here) per effect (x shadows, y reflections, z refractions) to its object's items: lanes
+// Adds this invocation's work, ticks, error and counted pixels (1 where the probe or a reduced
+// ray rate traced the item here; a full rate's pixels are set at selection) per effect (x shadows, y reflections, z refractions) to its object's items: lanes
 // of the subgroup on the same object are summed first, then one atomic per item with something
 // to add. The error is summed in float over
 // the lanes and added in 1/RB_ERROR_UNITS units, rounded. The frame's totals of work and
 // ticks take one atomic each per subgroup.
-void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 probed) {
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted) {
   bool pending = objectId != RB_NO_OBJECT;
   uint allWork = subgroupAdd(pending ? work.x + work.y + work.z : 0u);
   uint allTicks = subgroupAdd(pending ? ticks.x + ticks.y + ticks.z : 0u);
@@ -24,7 +24,7 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 pro
     uvec3 w = subgroupAdd(mine ? work : uvec3(0u));
     uvec3 t = subgroupAdd(mine ? ticks : uvec3(0u));
     vec3 e = subgroupAdd(mine ? error : vec3(0.0));
-    uvec3 p = subgroupAdd(mine ? probed : uvec3(0u));
+    uvec3 p = subgroupAdd(mine ? counted : uvec3(0u));
     if (mine && subgroupElect()) {
       for (uint k = 0u; k < RB_ITEMS_PER_OBJECT; ++k) {
         uint item = current * RB_ITEMS_PER_OBJECT + k;

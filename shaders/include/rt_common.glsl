@@ -6,14 +6,8 @@
 #include "include/bindings.glsl"
 #include "include/brdf.glsl"
 #include "include/rayquery.glsl"
+#include "include/tile_pixel.glsl"
 #include "shared/offset_ray.h"
-
-// The pixel this invocation traces: the trace passes are dispatched over the tile list,
-// one workgroup per listed 8x8 tile.
-ivec2 tilePixel() {
-  uint t = tiles[gl_WorkGroupID.x];
-  return ivec2(t & 0xFFFFu, t >> 16) * RB_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
-}
 
 // Rays this invocation traced (every ray query counts one).
 uint rbRays = 0u;

@@ -86,6 +86,9 @@ float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 // shadows every pixel of the object (the shadow pass classifies per light), reflections and
 // refractions the classifier's counts; none for an effect the frame does not trace or a
 // scene without lights. cost_model.cpp's itemPixels is the CPU reference.
+// The share of an item's pixels a ray rate traces (cost_model.cpp's rateShare).
+float rateShare(uint rate) { return rate == RB_RATE_HALF ? 0.5 : (rate == RB_RATE_QUARTER ? 0.25 : 1.0); }
+
 uint itemPixels(uint i, uint effect) {
   if ((push.items.x & (1u << effect)) == 0u) return 0u;
   if (effect == RB_ITEM_SHADOWS) return push.items.y > 0u ? floatBitsToUint(records[i].crCandidatePixels.w) : 0u;

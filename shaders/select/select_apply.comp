@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // Frame mode, after the walk has marked the selected objects (or items) in the frame's
 // selection: each object's S for the next frame's relevance is set from it, and its traced
-// pixel count noted; with `benefit` each item's S and traced pixels too, and the candidate
-// items the walk left out are marked for the probe when it runs (shared/selection.h).
+// pixel count noted; with `benefit` each item's S and traced pixels too, the candidate items
+// the walk left out are marked for the probe when it runs, and the selected ones get their
+// ray rate (shared/selection.h).
 #include "include/select_common.glsl"
 
 layout(local_size_x = 64) in;
@@ -23,15 +24,17 @@ void main() {
       items[push.walk.z * RB_ITEMS_PER_OBJECT].ticks = 0u;
     }
     bool probing = items[push.walk.z * RB_ITEMS_PER_OBJECT].pixels != 0u && records[i].crCandidatePixels.z > 0.5;
-    uint probed = 0u;
+    uint rate = push.walk.w, marks = 0u;
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       uint id = i * RB_ITEMS_PER_OBJECT + effect;
       bool on = (bits & (1u << effect)) != 0u;
       uint pixels = itemPixels(i, effect);
       items[id].selectedLast = on ? 1u : 0u;
-      items[id].pixels = on ? pixels : 0u;  // a probed item's: counted by the trace passes
-      if (!on && probing && pixels > 0u) probed |= 1u << (RB_PROBE_SHIFT + effect);
+      // A probed item's, or one traced at a reduced rate: counted by the trace passes.
+      items[id].pixels = on && rate == RB_RATE_FULL ? pixels : 0u;
+      if (!on && probing && pixels > 0u) marks |= 1u << (RB_PROBE_SHIFT + effect);
+      if (on) marks |= rate << (RB_RATE_SHIFT + 2u * effect);
     }
-    if (probed != 0u) selected[i] = bits | probed;
+    if (marks != 0u) selected[i] = bits | marks;
   }
 }

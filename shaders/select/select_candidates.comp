@@ -79,7 +79,8 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   // refraction path and the shadow rays of its hit (a refraction enters and leaves).
   float rays = float(push.items.y) + (effect == RB_ITEM_SHADOWS ? 0.0 : float(effect));
   float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : rays * float(RB_PRIOR_WORK_PER_RAY);
-  cost = push.budget.y * (float(pixels) * perPixel);
+  // At a reduced rate a share of the pixels is traced (a power of two: exact).
+  cost = push.budget.y * (float(pixels) * perPixel * rateShare(push.walk.w));
   // R' = (S·I + E)·K with the hysteresis relative to E (docs/SELECTION.md): E·(1 + S·I)·K,
   // E = A·P·b.
   float A = exactQuotient(float(pixels), float(push.items.z));

@@ -33,6 +33,7 @@
 #define RB_RT_CLASSIFY_SHADOWS 1u
 #define RB_RT_MEASURE_ITEMS 2u
 #define RB_RT_SHORTEN_SHADOW_RAYS 4u
+#define RB_RT_RATES 8u  // some items may be traced at a reduced rate (include/tile_pixel.glsl)
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 

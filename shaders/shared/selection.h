@@ -79,6 +79,15 @@ struct GpuObjectCost {
 #define RB_PROBE_SHIFT 3u
 #define RB_PROBE_MAX_STRIDE 256u
 
+// Ray rates: the share of a selected item's pixels traced this frame: all, a checkerboard (1/2)
+// or one pixel of each 2x2 quad (1/4), rotating over frames (shaders/include/rates.glsl); the
+// others are filled from traced neighbours on the same object (shaders/upsample_*.comp). The
+// frame's selection holds an item's rate in 2 bits at RB_RATE_SHIFT + 2 * effect (0: full).
+#define RB_RATE_SHIFT 6u
+#define RB_RATE_FULL 0u
+#define RB_RATE_HALF 1u
+#define RB_RATE_QUARTER 2u
+
 // 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
@@ -130,7 +139,7 @@ struct SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
   uvec4 stage;   // x bitonic k or merge run, y bitonic j or merge pass, z which order (0 main, 1 relevance), w `paper` pointers N
   vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work), z `benefit`'s probe budget
-  uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects
+  uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects, w `benefit`'s rate (RB_RATE_*)
   uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_WITHOUT_* bits
 };
 

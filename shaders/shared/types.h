@@ -59,14 +59,14 @@ struct FrameUniforms {
   uvec4 sizeLightsFrame;    // x width, y height, z light count, w frame index
   vec4 sunDirection;        // xyz direction towards the sun (procedural sky), w sky intensity
   vec4 exposure;            // x exposure (linear scale before tonemapping), y shadow-map uncertainty reach (texels), zw unused
-  uvec4 rayTracing;         // x effects traced (RB_RT_* bits, 0: all raster), y bounce depth, z roughness cut-off (float bits), w RB_RT_CLASSIFY_SHADOWS | RB_RT_MEASURE_ITEMS | RB_RT_SHORTEN_SHADOW_RAYS
+  uvec4 rayTracing;         // x effects traced (RB_RT_* bits, 0: all raster), y bounce depth, z roughness cut-off (float bits), w RB_RT_CLASSIFY_SHADOWS | RB_RT_MEASURE_ITEMS | RB_RT_SHORTEN_SHADOW_RAYS | RB_RT_RATES
 };
 
 // Push constants for the raster passes and the compute passes, 80 bytes (the guaranteed
 // minimum is 128).
 struct DrawPush {
   mat4 viewProj;         // shadow passes: the light's view-projection; otherwise unused
-  uvec4 objectMaterial;  // x object index, y material index; compute passes: x = mip or pass argument
+  uvec4 objectMaterial;  // x object index, y material index; compute passes: x = mip or pass argument (y, z more)
 };
 
 #ifdef __cplusplus

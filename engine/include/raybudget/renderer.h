@@ -41,6 +41,13 @@ bool isBudgeted(Policy policy);
 enum class Tracer { Compute, Native };
 const char* tracerName(Tracer tracer);
 
+// The share of a selected item's pixels traced each frame: all, a checkerboard alternating
+// each frame (1/2), one pixel of each 2x2 quad rotating each frame (1/4); the others are
+// filled from traced neighbours on the same object, weighted by depth and normal.
+enum class ItemRate { Full, Half, Quarter };
+const char* itemRateName(ItemRate rate);
+ItemRate parseItemRate(const std::string& name);  // throws Error naming the choices
+
 struct RayTracingSettings {
   bool shadows = true;       // any-hit rays per light instead of shadow maps
   bool reflections = true;   // mirror rays on surfaces with roughness <= maxRoughness
@@ -58,6 +65,8 @@ struct RayTracingSettings {
   // `benefit` and `classified`: a shadow ray ends a few texels past the nearest blocker the
   // light's shadow map holds around the point instead of at the light (off: at the light).
   bool shortenShadowRays = true;
+  // `benefit`, `all` and `classified`: the rate every selected item is traced at.
+  ItemRate rate = ItemRate::Full;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };
@@ -104,7 +113,22 @@ struct RenderSettings {
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.
-enum class Pass : uint32_t { GBuffer, Coverage, Select, ShadowMaps, Environment, TraceShadows, EnvFallback, Lighting, TraceEffects, Compose, Count };
+// The upsample passes fill what reduced ray rates did not trace (RayTracingSettings::rate).
+enum class Pass : uint32_t {
+  GBuffer,
+  Coverage,
+  Select,
+  ShadowMaps,
+  Environment,
+  TraceShadows,
+  UpsampleShadows,
+  EnvFallback,
+  Lighting,
+  TraceEffects,
+  UpsampleEffects,
+  Compose,
+  Count
+};
 inline constexpr size_t kPassCount = size_t(Pass::Count);
 const char* passName(Pass pass);
 
@@ -140,7 +164,7 @@ struct FrameTiming {
   std::optional<bool> costsMatchCpu;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
-  double traceMs() const;    // the trace passes (shadows, effects)
+  double traceMs() const;    // the trace passes (shadows, effects) and their upsample
   double rtStageMs() const;  // the ray-tracing stage T bounds: coverage + select + trace
 };
 

@@ -46,7 +46,10 @@ enum Binding : uint32_t {
   kItemCosts = 37,
   kShadowMapDepths = 38,
   kPointShadowDepths = 39,
-  kBindingCount = 40,
+  kReflectionRadiance = 40,
+  kRefractionRadiance = 41,
+  kTracedStamp = 42,
+  kBindingCount = 43,
 };
 
 }  // namespace raybudget::passes

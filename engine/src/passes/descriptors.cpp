@@ -21,7 +21,8 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
   if (binding == kLights) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
-  if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition || binding >= kShadowMapDepths)
+  if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition || binding == kShadowMapDepths ||
+      binding == kPointShadowDepths)
     return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
   if (binding == kBvhNodes || binding == kBvhTriangles) return {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1};
@@ -174,6 +175,9 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   const VkDescriptorImageInfo depths[] = {{samplers.nearest, t.shadowMaps.view, ro}, {samplers.nearest, t.pointShadows.view, ro}};
   write(kShadowMapDepths, 1, nullptr, &depths[0]);
   write(kPointShadowDepths, 1, nullptr, &depths[1]);
+  const VkDescriptorImageInfo upsample[] = {{VK_NULL_HANDLE, t.reflectionRadiance.view, g}, {VK_NULL_HANDLE, t.refractionRadiance.view, g},
+                                            {VK_NULL_HANDLE, t.tracedStamp.view, g}};
+  for (uint32_t b = kReflectionRadiance; b <= kTracedStamp; ++b) write(b, 1, nullptr, &upsample[b - kReflectionRadiance]);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 

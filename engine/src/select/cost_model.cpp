@@ -25,6 +25,10 @@ float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workP
   return float(pixels) * perPixel;
 }
 
+uint32_t rateCode(ItemRate rate) { return rate == ItemRate::Half ? RB_RATE_HALF : (rate == ItemRate::Quarter ? RB_RATE_QUARTER : RB_RATE_FULL); }
+
+float rateShare(uint32_t code) { return code == RB_RATE_HALF ? 0.5f : (code == RB_RATE_QUARTER ? 0.25f : 1.0f); }
+
 float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
   return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
 }

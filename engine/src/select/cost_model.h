@@ -12,9 +12,15 @@
 #include <array>
 #include <cstdint>
 
+#include "raybudget/renderer.h"
 #include "select/policies.h"
 
 namespace raybudget::select {
+
+// A ray rate's code in the frame's selection (RB_RATE_*), and the share of an item's pixels it
+// traces each frame (1, 1/2, 1/4: powers of two, so a cost scaled by it rounds alike on the GPU).
+uint32_t rateCode(ItemRate rate);
+float rateShare(uint32_t code);
 
 // An object's work per traced pixel after a frame that counted `work` over `pixels`: the
 // mean of what it knew and the observation (the observation alone when it knew nothing,

@@ -114,7 +114,7 @@ struct GpuSelector::Impl {
     if (policy == Policy::Optimal || policy == Policy::All || policy == Policy::None)
       throw Error(std::string("frame selection runs the budgeted policies, not ") + policyName(policy));
     SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
-                    glm::vec4(budget, kappa, items.probeBudget, 0), glm::uvec4(options.paperHops, 1, objects, 0),
+                    glm::vec4(budget, kappa, items.probeBudget, 0), glm::uvec4(options.paperHops, 1, objects, items.rate),
                     glm::uvec4(items.effects, items.lights, items.pixels, items.ablation)};
     vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);  // the candidate count
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "select/policies.h"
+#include "shared/selection.h"
 #include "vk/context.h"
 
 namespace raybudget::select {
@@ -19,10 +20,11 @@ enum class SortMethod { Auto, Bitonic, Merge };
 
 // What `benefit` needs of the frame: the effects traced (RB_RT_* bits), the scene's light
 // count, the pixels on screen, the parts left out (RB_BENEFIT_* bits: ablations), the probe's
-// budget (in the budget's units; 0: no probe).
+// budget (in the budget's units; 0: no probe), the rate selected items are traced at.
 struct ItemFrame {
   uint32_t effects = 0, lights = 0, pixels = 0, ablation = 0;
   float probeBudget = 0.0f;  // the sparse probe's share of the budget (shared/selection.h)
+  uint32_t rate = RB_RATE_FULL;
 };
 
 class GpuSelector {

@@ -12,13 +12,13 @@ namespace raybudget::select {
 SelectPass::SelectPass(const vk::Context& ctx, VkPipelineLayout layout)
     : select_(vk::createComputePipeline(ctx, layout, kSpirv_select_unbudgeted_comp)), tiles_(vk::createComputePipeline(ctx, layout, kSpirv_tile_list_comp)) {}
 
-void SelectPass::record(const passes::FrameContext& fc, SelectMode mode) const {
+void SelectPass::record(const passes::FrameContext& fc, SelectMode mode, uint32_t rate) const {
   const VkCommandBuffer cmd = fc.cmd;
   const uint32_t emptyDispatch[4] = {0, 1, 1, 0};  // no tiles yet: x = 0 groups
   vkCmdUpdateBuffer(cmd, fc.selection.tileList.buffer, 0, sizeof(emptyDispatch), emptyDispatch);
   const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};
-  push.objectMaterial = glm::uvec4(objects, uint32_t(mode), 0, 0);
+  push.objectMaterial = glm::uvec4(objects, uint32_t(mode), rate, 0);
   passes::bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   if (mode != SelectMode::Keep) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, select_);

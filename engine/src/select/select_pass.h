@@ -15,7 +15,8 @@ class SelectPass {
  public:
   SelectPass(const vk::Context& ctx, VkPipelineLayout layout);
   // Barriers included: afterwards the tile list is ready for indirect dispatch and reads.
-  void record(const passes::FrameContext& fc, SelectMode mode) const;
+  // `rate`: RB_RATE_* of every selected item (All).
+  void record(const passes::FrameContext& fc, SelectMode mode, uint32_t rate) const;
 
  private:
   vk::Owned<VkPipeline> select_;

@@ -38,7 +38,7 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget)
   if (s.benefitAblation == BenefitAblation::NoCentrality) ablation = RB_BENEFIT_WITHOUT_CENTRALITY;
   if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
   if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
-  return {effects, lights, s.width * s.height, ablation, probeBudget};
+  return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate)};
 }
 
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each).
@@ -174,7 +174,7 @@ struct SelectionStage::Impl {
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     }
-    selectPass.record(fc, slot.budgeted ? SelectMode::Keep : SelectMode::All);
+    selectPass.record(fc, slot.budgeted ? SelectMode::Keep : SelectMode::All, rateCode(s.rayTracing.rate));
   }
 
   // Whether the GPU's per-object cost model (select_candidates.comp, select_apply.comp)
@@ -208,7 +208,7 @@ struct SelectionStage::Impl {
   }
 
   // `benefit`: whether each item's learned state (cost_model.h's learnItem), restarted
-  // counters, S and traced pixels, and each item candidate's cost and value equal the CPU
+  // counters, S, traced pixels and ray rate, and each item candidate's cost and value equal the CPU
   // reference bit for bit; and whether the probe marks exactly the candidates left out, at
   // the stride probeStride gives for their cost (summed in another order on the GPU: within
   // a relative 1e-5).
@@ -244,8 +244,10 @@ struct SelectionStage::Impl {
       const bool on = (selected[i] >> e) & 1u;
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
-          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) || a.pixels != (on ? pixelsOf(i, e) : 0u))
+          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) ||
+          a.pixels != (on && frame.rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
         return false;
+      if (((selected[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u) != (on ? frame.rate : 0u)) return false;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
       if (candidate) ++expected;
       const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
@@ -256,7 +258,7 @@ struct SelectionStage::Impl {
       if (c.id >= items) return false;
       const uint32_t i = c.id / RB_ITEMS_PER_OBJECT, e = c.id % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
       if (records[i].crCandidatePixels.z < 0.5f || pixels == 0) return false;
-      const float work = predictedItemWork(e, pixels, learned[c.id].workPerPixel, frame.lights);
+      const float work = predictedItemWork(e, pixels, learned[c.id].workPerPixel, frame.lights) * rateShare(frame.rate);
       const glm::vec4 kqiS = params[i].kqiS;
       const float value =
           itemValue(pixels, frame.pixels, records[i].apdv.y, learned[c.id].benefit, before[c.id].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);

@@ -1,0 +1,44 @@
+// Ray rates (shared/selection.h): which pixels of a selected item are traced this frame. The
+// includer includes bindings.glsl.
+#ifndef RB_RATES_GLSL
+#define RB_RATES_GLSL
+
+// The rate of the pixel's item `effect` (RB_RATE_FULL where nothing is selected).
+uint itemRate(uint objectId, uint effect) {
+  return objectId == RB_NO_OBJECT ? RB_RATE_FULL : (selected[objectId] >> (RB_RATE_SHIFT + 2u * effect)) & 3u;
+}
+
+// The pixel of each 2x2 quad that 1/4 traces in frame `f`: top left, top right, bottom right,
+// bottom left in turn. Its x + y has the parity of f, so it is one of the pixels 1/2 traces
+// in the same frame (tile_pixel.glsl hands those out first).
+uvec2 quarterOffset(uint f) {
+  uint turn = f & 3u;
+  return uvec2(turn == 1u || turn == 2u ? 1u : 0u, turn >= 2u ? 1u : 0u);
+}
+
+// Whether `rate` traces `pixel` this frame. 1/2: a checkerboard, the other half next frame;
+// 1/4: one pixel of each 2x2 quad, a different one each frame.
+bool rateTraces(uint rate, ivec2 pixel) {
+  uint f = frame.sizeLightsFrame.w;
+  if (rate == RB_RATE_HALF) return ((uint(pixel.x + pixel.y) + f) & 1u) == 0u;
+  if (rate == RB_RATE_QUARTER) return all(equal(uvec2(pixel & 1), quarterOffset(f)));
+  return true;
+}
+
+// The shadow mask where a reduced rate left a light's ray to the upsample
+// (shaders/upsample_shadows.comp), and the offset the upsample adds to what it fills in: it
+// reads only the values traced this frame while it writes, and the lighting pass takes the
+// offset off.
+#define RB_MASK_PENDING -1.0
+#define RB_MASK_FILLED 2.0
+
+// The traced-path stamp of rt_effects.comp: the frame (30 bits) and which paths it traced at
+// a reduced rate (bit 0 reflection, bit 1 refraction).
+uint tracedStampOf(bool reflection, bool refraction) {
+  return (frame.sizeLightsFrame.w << 2) | (reflection ? 1u : 0u) | (refraction ? 2u : 0u);
+}
+
+// Whether the pixel's selected item `effect` is traced here this frame.
+bool itemTracedHere(uint objectId, uint effect, ivec2 pixel) { return rateTraces(itemRate(objectId, effect), pixel); }
+
+#endif
