@@ -40,6 +40,26 @@ TEST_F(GpuSelection, EqualsTheCpuReferenceOnThousandsOfRandomSets) {
   EXPECT_EQ(compared, 3000u);
 }
 
+// `benefit` over rate segments (the multiple-choice knapsack's greedy: a segment only onto its
+// item's previous one) equals its CPU reference on random sets too.
+TEST_F(GpuSelection, RateSegmentsEqualTheCpuReferenceOnRandomSets) {
+  select::GpuSelector bitonic(ctx, 4096, select::SortMethod::Bitonic), merge(ctx, 4096, select::SortMethod::Merge);
+  bvh::Rng rng(91);
+  select::PolicyOptions options;
+  options.rateSegments = true;
+  size_t upgraded = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    select::GpuSelector& gpu = trial % 2 ? bitonic : merge;
+    const size_t n = 1 + size_t(rng.next() * (trial % 25 == 0 ? 900.0f : 60.0f));
+    const std::vector<Candidate> c = test::randomSegments(rng, n);
+    const float budget = test::randomBudget(rng, c);
+    const select::Selection cpu = select::selectObjects(Policy::Benefit, c, budget, options), g = gpu.select(c, Policy::Benefit, budget, options);
+    ASSERT_EQ(g.ids, cpu.ids) << "trial " << trial << ", " << c.size() << " segments, budget " << budget;
+    for (uint32_t id : cpu.ids) upgraded += id % 4 != 0;
+  }
+  EXPECT_GT(upgraded, 100u) << "the sets should take later segments too";
+}
+
 class GpuSelectionSort : public test::ValidatedGpuTest, public ::testing::WithParamInterface<select::SortMethod> {};
 
 TEST_P(GpuSelectionSort, EqualsTheCpuReferenceAtOneHundredThousand) {

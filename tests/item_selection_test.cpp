@@ -162,7 +162,7 @@ TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
     orbit(float(all.back().predictedTraceMs / 4.0), nullptr, a);
   // So do reduced ray rates: the items' rates in the selection, their costs at the rate's
   // share, and what the trace passes count on the pixels traced.
-  for (ItemRate r : {ItemRate::Half, ItemRate::Quarter}) orbit(float(all.back().predictedTraceMs / 4.0), nullptr, BenefitAblation::None, r);
+  for (ItemRate r : {ItemRate::Half, ItemRate::Quarter, ItemRate::Auto}) orbit(float(all.back().predictedTraceMs / 4.0), nullptr, BenefitAblation::None, r);
 }
 
 // The shadow classifier (`classified`, shadows only) traces far fewer shadow rays than full

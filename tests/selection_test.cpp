@@ -118,6 +118,42 @@ TEST(SelectionPolicies, BaselinesAndDensityDoWhatTheySay) {
   EXPECT_EQ(r1.ids.size(), 20u);
 }
 
+// Rate segments: a segment goes in only onto its item's previous one, in density order with
+// fill-in; the multiple-choice bound takes at most one prefix per item and equals a brute
+// force over the options.
+TEST(SelectionPolicies, RateSegmentsClimbEachItemsHullInOrder) {
+  select::PolicyOptions o;
+  o.rateSegments = true;
+  // Item 0: densities 10, 2, 0.5; item 1: one segment of density 2; item 2: its second
+  // segment is denser than its first (not a hull), so it must wait for the first.
+  const std::vector<Candidate> c = {{0, 1, 10, 0}, {1, 1, 2, 0}, {2, 2, 1, 0}, {4, 4, 8, 0}, {8, 5, 5, 0}, {9, 1, 100, 0}};
+  // Density order: 9, 0, 1 and 4 (tied, by ID), 8, 2. Budget 5: 9 waits for 8, 0 (4 left),
+  // 1 (3 left), 4 and 8 do not fit, 2 (1 left).
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 5.0f, o).ids, (std::vector<uint32_t>{0, 1, 2}));
+  // Budget 6: 0, 1, 4 (0 left).
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 6.0f, o).ids, (std::vector<uint32_t>{0, 1, 4}));
+  // Budget 11: 0, 1, 4 (5 left), 8 (0 left); 9 came before 8 in the order, so it stays out.
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 11.0f, o).ids, (std::vector<uint32_t>{0, 1, 4, 8}));
+  // Without segments the same candidates are independent: 9 goes in first (4 left), 0, 1, 2.
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 5.0f).ids, (std::vector<uint32_t>{0, 1, 2, 9}));
+  // The bound: options per item are the prefixes; brute force over them.
+  for (float budget : {0.0f, 1.0f, 3.0f, 5.0f, 6.0f, 7.0f, 11.0f, 14.0f}) {
+    const std::vector<std::vector<std::pair<double, double>>> options = {{{1, 10}, {2, 12}, {4, 13}}, {{4, 8}}, {{5, 5}, {6, 105}}};
+    double best = 0.0;
+    for (int a = -1; a < 3; ++a)
+      for (int b = -1; b < 1; ++b)
+        for (int d = -1; d < 2; ++d) {
+          double cost = 0.0, value = 0.0;
+          if (a >= 0) cost += options[0][size_t(a)].first, value += options[0][size_t(a)].second;
+          if (b >= 0) cost += options[1][size_t(b)].first, value += options[1][size_t(b)].second;
+          if (d >= 0) cost += options[2][size_t(d)].first, value += options[2][size_t(d)].second;
+          if (cost <= budget) best = std::max(best, value);
+        }
+    EXPECT_DOUBLE_EQ(select::optimalValueBound(c, budget, 1024, true), best) << "budget " << budget;
+    EXPECT_GE(select::optimalValueBound(c, budget, 1024, true), select::selectObjects(Policy::Benefit, c, budget, o).value - 1e-9);
+  }
+}
+
 TEST(SelectionPolicies, RejectBadInput) {
   const std::vector<Candidate> ok = {{0, 1, 1, 0}};
   EXPECT_THROW(select::selectObjects(Policy::Paper, ok, -1.0f), Error);

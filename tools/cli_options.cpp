@@ -56,10 +56,11 @@ render options:
                         benefit and classified: every pixel of a traced shadow item traces
   --full-shadow-rays    benefit and classified: shadow rays run to the light, not ending just
                         past the nearest blocker the shadow map holds around the point
-  --rate full|half|quarter
+  --rate full|half|quarter|auto
                         benefit, all and classified: trace every selected item on all its
                         pixels, a checkerboard or one pixel per 2x2 quad each frame, and fill
-                        the others from traced neighbours on the same object (default full)
+                        the others from traced neighbours on the same object (default full);
+                        auto: benefit chooses a rate per item
   --item-stats          write items.csv: per object and effect (item) in the last frame, its
                         pixels, whether traced, and with benefit or classified the display
                         error its tracing removed, its clock ticks and traversal work, and

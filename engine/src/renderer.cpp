@@ -68,12 +68,20 @@ BenefitAblation parseAblation(const std::string& name) {
 bool isBudgeted(Policy policy) { return policy != Policy::None && policy != Policy::All && policy != Policy::Classified; }
 const char* tracerName(Tracer tracer) { return tracer == Tracer::Native ? "native" : "compute"; }
 
-const char* itemRateName(ItemRate rate) { return rate == ItemRate::Half ? "half" : (rate == ItemRate::Quarter ? "quarter" : "full"); }
+const char* itemRateName(ItemRate rate) {
+  switch (rate) {
+    case ItemRate::Half: return "half";
+    case ItemRate::Quarter: return "quarter";
+    case ItemRate::Auto: return "auto";
+    case ItemRate::Full: break;
+  }
+  return "full";
+}
 
 ItemRate parseItemRate(const std::string& name) {
-  for (ItemRate r : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter})
+  for (ItemRate r : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter, ItemRate::Auto})
     if (name == itemRateName(r)) return r;
-  throw Error("unknown ray rate '" + name + "' (full, half, quarter)");
+  throw Error("unknown ray rate '" + name + "' (full, half, quarter, auto)");
 }
 
 const char* passName(Pass pass) {
@@ -334,7 +342,8 @@ struct Renderer::Impl {
   // Whether selected items are traced at a reduced rate (the policies that select items).
   bool reducedRates() const {
     const Policy p = settings.policy;
-    return settings.rayTracing.rate != ItemRate::Full && (p == Policy::Benefit || p == Policy::All || p == Policy::Classified);
+    const ItemRate r = settings.rayTracing.rate;
+    return r != ItemRate::Full && (p == Policy::Benefit || ((p == Policy::All || p == Policy::Classified) && r != ItemRate::Auto));
   }
 
   void computeToCompute(VkCommandBuffer cmd) {

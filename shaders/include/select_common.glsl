@@ -89,6 +89,29 @@ float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 // The share of an item's pixels a ray rate traces (cost_model.cpp's rateShare).
 float rateShare(uint rate) { return rate == RB_RATE_HALF ? 0.5 : (rate == RB_RATE_QUARTER ? 0.25 : 1.0); }
 
+// RB_RATE_AUTO's segments of an item of `effect` (shared/selection.h): how many, and segment
+// k's share of the item's full-rate cost and value and the rate it reaches
+// (cost_model.cpp's rateSegment is the CPU reference).
+uint rateSegments(uint effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
+void rateSegment(uint effect, uint k, out float costShare, out float valueShare, out uint rate) {
+  if (effect == RB_ITEM_SHADOWS) {
+    costShare = 1.0;
+    valueShare = 1.0;
+    rate = RB_RATE_FULL;
+    return;
+  }
+  bool reflections = effect == RB_ITEM_REFLECTIONS;
+  costShare = k == 2u ? 0.5 : 0.25;
+  rate = k == 0u ? RB_RATE_QUARTER : (k == 1u ? RB_RATE_HALF : RB_RATE_FULL);
+  if (k == 0u) valueShare = reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS;
+  else if (k == 1u) valueShare = reflections ? RB_KEEP_HALF_GAIN_REFLECTIONS : RB_KEEP_HALF_GAIN_REFRACTIONS;
+  else valueShare = reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS;
+}
+
+// Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.
+bool rateSegmentsWalk() { return push.sizes.z == RB_SELECT_BENEFIT && push.walk.w == RB_RATE_AUTO; }
+uint candidateItem(uint id) { return rateSegmentsWalk() ? id / RB_SEGMENT_SLOTS : id; }
+
 uint itemPixels(uint i, uint effect) {
   if ((push.items.x & (1u << effect)) == 0u) return 0u;
   if (effect == RB_ITEM_SHADOWS) return push.items.y > 0u ? floatBitsToUint(records[i].crCandidatePixels.w) : 0u;

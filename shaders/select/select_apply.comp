@@ -24,17 +24,19 @@ void main() {
       items[push.walk.z * RB_ITEMS_PER_OBJECT].ticks = 0u;
     }
     bool probing = items[push.walk.z * RB_ITEMS_PER_OBJECT].pixels != 0u && records[i].crCandidatePixels.z > 0.5;
-    uint rate = push.walk.w, marks = 0u;
+    // A fixed rate for every selected item, or each item's as the walk chose it.
+    uint fixedRate = push.walk.w, marks = 0u, chosen = selected[i];
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       uint id = i * RB_ITEMS_PER_OBJECT + effect;
       bool on = (bits & (1u << effect)) != 0u;
       uint pixels = itemPixels(i, effect);
+      uint rate = fixedRate == RB_RATE_AUTO ? (chosen >> (RB_RATE_SHIFT + 2u * effect)) & 3u : fixedRate;
       items[id].selectedLast = on ? 1u : 0u;
       // A probed item's, or one traced at a reduced rate: counted by the trace passes.
       items[id].pixels = on && rate == RB_RATE_FULL ? pixels : 0u;
       if (!on && probing && pixels > 0u) marks |= 1u << (RB_PROBE_SHIFT + effect);
-      if (on) marks |= rate << (RB_RATE_SHIFT + 2u * effect);
+      if (on && fixedRate != RB_RATE_AUTO) marks |= fixedRate << (RB_RATE_SHIFT + 2u * effect);
     }
-    if (marks != 0u) selected[i] = bits | marks;
+    if (marks != 0u) selected[i] = chosen | marks;
   }
 }

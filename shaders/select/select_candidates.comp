@@ -79,7 +79,8 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   // refraction path and the shadow rays of its hit (a refraction enters and leaves).
   float rays = float(push.items.y) + (effect == RB_ITEM_SHADOWS ? 0.0 : float(effect));
   float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : rays * float(RB_PRIOR_WORK_PER_RAY);
-  // At a reduced rate a share of the pixels is traced (a power of two: exact).
+  // At a fixed reduced rate a share of the pixels is traced (a power of two: exact); with
+  // rates chosen per item (share 1) the full rate's, which the segments share out.
   cost = push.budget.y * (float(pixels) * perPixel * rateShare(push.walk.w));
   // R' = (S·I + E)·K with the hysteresis relative to E (docs/SELECTION.md): E·(1 + S·I)·K,
   // E = A·P·b.
@@ -108,7 +109,18 @@ void main() {
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       float cost = 0.0, value = 0.0;
       bool add = itemCandidate(i, effect, r, exchange, cost, value);
-      append(add, i * RB_ITEMS_PER_OBJECT + effect, cost, value, r.apdv.z);
+      uint item = i * RB_ITEMS_PER_OBJECT + effect;
+      if (!rateSegmentsWalk()) {
+        append(add, item, cost, value, r.apdv.z);
+        continue;
+      }
+      // Rates chosen per item: a candidate per segment of the item's hull (shared/selection.h).
+      for (uint k = 0u; k < 3u; ++k) {
+        float costShare, valueShare;
+        uint rate;
+        rateSegment(effect, k, costShare, valueShare, rate);
+        append(add && k < rateSegments(effect), item * RB_SEGMENT_SLOTS + k, cost * costShare, value * valueShare, r.apdv.z);
+      }
     }
     return;
   }

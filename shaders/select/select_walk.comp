@@ -27,7 +27,7 @@ struct Picked {
 
 void mark(uint ci, uint id, bool on) {
   if (push.walk.y == 0u) selectedFlags[ci] = on ? 1u : 0u;
-  else if (on) markSelected(id);
+  else if (on && !rateSegmentsWalk()) markSelected(id);  // segments: by the items' levels (markLevels)
 }
 void mark(uint ci, bool on) { mark(ci, candidates[ci].id, on); }
 
@@ -36,10 +36,36 @@ void mark(uint ci, bool on) { mark(ci, candidates[ci].id, on); }
 void clearAll(uint n) {
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
     if (push.walk.y == 0u) selectedFlags[ci] = 0u;
-    else clearSelected(candidates[ci].id);
+    else if (!rateSegmentsWalk()) clearSelected(candidates[ci].id);
   }
   subgroupMemoryBarrierBuffer();
   subgroupBarrier();
+}
+
+// Rate segments (`benefit` with RB_RATE_AUTO): each item's level, the segments taken so far,
+// in scratch[item]. Every lane writes the same levels and reads only its own writes.
+uint segmentGroups() { return push.walk.y != 0u ? push.walk.z * RB_ITEMS_PER_OBJECT : push.stage.w; }
+void clearLevels() {
+  for (uint g = gl_SubgroupInvocationID; g < segmentGroups(); g += gl_SubgroupSize) scratch[g] = 0u;
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();
+}
+// Whether segment `id` may be taken: its item has taken the segments before it.
+bool segmentNext(uint id) { return scratch[id / RB_SEGMENT_SLOTS] == id % RB_SEGMENT_SLOTS; }
+
+// Frame mode: marks each item with a level in the frame's selection, with the rate its last
+// segment reaches.
+void markLevels() {
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();
+  for (uint item = gl_SubgroupInvocationID; item < segmentGroups(); item += gl_SubgroupSize) {
+    uint effect = item % RB_ITEMS_PER_OBJECT, level = scratch[item];
+    if (level == 0u) continue;
+    float costShare, valueShare;
+    uint rate;
+    rateSegment(effect, level - 1u, costShare, valueShare, rate);
+    atomicOr(selected[item / RB_ITEMS_PER_OBJECT], (1u << effect) | (rate << (RB_RATE_SHIFT + 2u * effect)));
+  }
 }
 
 // The best single candidate that fits, as a lane sees it (the CPU reference's: higher
@@ -65,6 +91,7 @@ bool betterSingle(GpuCandidate c, uint ci, Single b) {
 Picked selectGreedy(uint n, float budget) {
   Picked p = Picked(0.0, 0.0, 0u);
   bool density = push.sizes.z == RB_SELECT_DENSITY || push.sizes.z == RB_SELECT_BENEFIT;
+  bool segments = rateSegmentsWalk();
   float remaining = budget;
   uint lane = gl_SubgroupInvocationID;
   Single best = Single(0u, 0.0, 0u, 0u);
@@ -84,17 +111,22 @@ Picked selectGreedy(uint n, float budget) {
       [[unroll]] for (uint j = 0u; j < gl_WorkGroupSize.x; ++j) {
         if (j >= count) break;
         float cost = subgroupShuffle(c.cost, j), value = subgroupShuffle(c.value, j);
-        if (cost <= remaining) {
+        uint id = subgroupShuffle(c.id, j);
+        // A rate segment goes only onto its item's previous one (the hull's next step).
+        if (cost <= remaining && (!segments || segmentNext(id))) {
           remaining -= cost;
           p.cost += cost;
           p.value += value;
           ++p.count;
           taken = taken || lane == j;
+          if (segments) scratch[id / RB_SEGMENT_SLOTS] = id % RB_SEGMENT_SLOTS + 1u;
         }
       }
     }
     if (valid) mark(ci, c.id, taken);
-    if (density && valid && c.cost <= budget && betterSingle(c, ci, best)) best = Single(1u, c.value, c.id, ci);
+    // Rate segments: a single option is an item's first segment (the others build on it).
+    bool single = !segments || c.id % RB_SEGMENT_SLOTS == 0u;
+    if (density && valid && single && c.cost <= budget && betterSingle(c, ci, best)) best = Single(1u, c.value, c.id, ci);
   }
   bool found = best.found != 0u;
   if (!subgroupAny(found)) return p;
@@ -105,6 +137,10 @@ Picked selectGreedy(uint n, float budget) {
   uint winner = subgroupMin(top && best.id == topId ? best.index : 0xFFFFFFFFu);
   if (topValue <= p.value) return p;
   clearAll(n);
+  if (segments) {
+    clearLevels();
+    scratch[candidates[winner].id / RB_SEGMENT_SLOTS] = 1u;
+  }
   if (lane == 0u) mark(winner, true);
   return Picked(candidates[winner].cost, topValue, 1u);
 }
@@ -180,7 +216,8 @@ float setProbeStride(uint n) {
   float lanePart = 0.0;
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
     GpuCandidate c = candidates[ci];
-    if ((selected[c.id / RB_ITEMS_PER_OBJECT] & (1u << (c.id % RB_ITEMS_PER_OBJECT))) == 0u) lanePart += c.cost;
+    uint item = candidateItem(c.id);  // with rate segments, a left-out item's add up to its full cost
+    if ((selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) == 0u) lanePart += c.cost;
   }
   float left = subgroupAdd(lanePart), budget = push.budget.z;
   uint stride = 0u;
@@ -197,6 +234,7 @@ void main() {
   float budget = push.budget.x;
   Picked p = Picked(0.0, 0.0, 0u);
   bool everything = policy == RB_SELECT_ALL || allCandidatesFit();  // (no order needed)
+  if (rateSegmentsWalk()) clearLevels();
   if (everything || policy == RB_SELECT_NONE) {
     Picked lanePart = Picked(0.0, 0.0, 0u);
     // Four candidates per lane and step, their loads issued together: one subgroup walks
@@ -211,6 +249,7 @@ void main() {
         uint ci = base + k * gl_SubgroupSize + gl_SubgroupInvocationID;
         if (ci >= n) continue;
         mark(ci, c[k].id, everything);
+        if (everything && rateSegmentsWalk()) atomicMax(scratch[c[k].id / RB_SEGMENT_SLOTS], c[k].id % RB_SEGMENT_SLOTS + 1u);
         if (everything) lanePart = Picked(lanePart.cost + c[k].cost, lanePart.value + c[k].value, lanePart.count + 1u);
       }
     }
@@ -220,6 +259,7 @@ void main() {
   } else {
     p = selectGreedy(n, budget);
   }
+  if (rateSegmentsWalk() && push.walk.y != 0u) markLevels();
   // The predicted cost includes the probe's (the time scale learns from the trace time).
   if (policy == RB_SELECT_BENEFIT && push.walk.y != 0u) p.cost += setProbeStride(n);
   if (gl_SubgroupInvocationID == 0u) {

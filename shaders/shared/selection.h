@@ -87,6 +87,24 @@ struct GpuObjectCost {
 #define RB_RATE_FULL 0u
 #define RB_RATE_HALF 1u
 #define RB_RATE_QUARTER 2u
+// `benefit` chooses each item's rate (SelectPush::walk.w): the multiple-choice knapsack over
+// the items' rate options, greedy on each item's upper convex hull of (cost, value), one
+// candidate per hull segment: candidate ID item * RB_SEGMENT_SLOTS + k for segment k, which
+// may be taken only after segment k - 1 (docs/SELECTION.md).
+#define RB_RATE_AUTO 3u
+#define RB_SEGMENT_SLOTS 4u
+// The share of an item's full-rate benefit a rate keeps: measured with the upsample against
+// full rate (mean display difference, tests/rates_test.cpp's metric), the median over the
+// court and the plaza, static and orbiting cameras, 480x270. Reflections keep 0.91 at 1/2
+// and 0.84 at 1/4, refractions 0.975 and 0.955, shadows 0.44 and 0.03. Each effect's hull
+// over (cost share, kept benefit) from (0, 0): reflections and refractions 1/4, 1/2, full;
+// shadows full alone (1/2 and 1/4 lie under the line to full). The segments' gains:
+#define RB_KEEP_QUARTER_REFLECTIONS 0.84
+#define RB_KEEP_HALF_GAIN_REFLECTIONS 0.07  // 0.91 - 0.84
+#define RB_KEEP_FULL_GAIN_REFLECTIONS 0.09  // 1 - 0.91
+#define RB_KEEP_QUARTER_REFRACTIONS 0.955
+#define RB_KEEP_HALF_GAIN_REFRACTIONS 0.02    // 0.975 - 0.955
+#define RB_KEEP_FULL_GAIN_REFRACTIONS 0.025  // 1 - 0.975
 
 // 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
@@ -138,6 +156,7 @@ struct GpuCandidate {
 struct SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
   uvec4 stage;   // x bitonic k or merge run, y bitonic j or merge pass, z which order (0 main, 1 relevance), w `paper` pointers N
+                 // (`benefit` with RB_RATE_AUTO in select(): the item groups, max ID / RB_SEGMENT_SLOTS + 1)
   vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work), z `benefit`'s probe budget
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects, w `benefit`'s rate (RB_RATE_*)
   uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_WITHOUT_* bits

@@ -32,6 +32,26 @@ inline std::vector<select::Candidate> leveledCandidates(bvh::Rng& rng, size_t n)
   return c;
 }
 
+// Rate segments (PolicyOptions::rateSegments): items of one to three segments, ID item * 4 +
+// k, mostly with falling densities along an item (a convex hull), some not, some with a
+// segment missing (a later one then never goes in); costs and values as randomCandidates'.
+inline std::vector<select::Candidate> randomSegments(bvh::Rng& rng, size_t n) {
+  const std::vector<select::Candidate> base = randomCandidates(rng, n);
+  std::vector<select::Candidate> c;
+  for (size_t i = 0, item = 0; i < n; ++item) {
+    const size_t count = 1 + size_t(rng.next() * 2.999f);
+    const bool gap = rng.next() < 0.1f;
+    for (size_t k = 0; k < count && i < n; ++k, ++i) {
+      if (gap && k == 1) continue;
+      select::Candidate x = base[i];
+      x.id = uint32_t(item * 3 + 1) * 4 + uint32_t(k);
+      if (k > 0 && rng.next() < 0.8f) x.value = std::min(x.value, c.back().value * x.cost / std::max(c.back().cost, 1e-30f));  // falling density
+      c.push_back(x);
+    }
+  }
+  return c;
+}
+
 // 0 one time in ten, else up to 60% of the candidates' total cost.
 inline float randomBudget(bvh::Rng& rng, const std::vector<select::Candidate>& c) {
   double total = 0.0;

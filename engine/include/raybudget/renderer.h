@@ -43,8 +43,9 @@ const char* tracerName(Tracer tracer);
 
 // The share of a selected item's pixels traced each frame: all, a checkerboard alternating
 // each frame (1/2), one pixel of each 2x2 quad rotating each frame (1/4); the others are
-// filled from traced neighbours on the same object, weighted by depth and normal.
-enum class ItemRate { Full, Half, Quarter };
+// filled from traced neighbours on the same object, weighted by depth and normal. Auto:
+// `benefit` chooses per item (the multiple-choice knapsack; the other policies trace at full).
+enum class ItemRate { Full, Half, Quarter, Auto };
 const char* itemRateName(ItemRate rate);
 ItemRate parseItemRate(const std::string& name);  // throws Error naming the choices
 
@@ -65,7 +66,8 @@ struct RayTracingSettings {
   // `benefit` and `classified`: a shadow ray ends a few texels past the nearest blocker the
   // light's shadow map holds around the point instead of at the light (off: at the light).
   bool shortenShadowRays = true;
-  // `benefit`, `all` and `classified`: the rate every selected item is traced at.
+  // `benefit`, `all` and `classified`: the rate every selected item is traced at (Auto:
+  // `benefit` chooses one per item).
   ItemRate rate = ItemRate::Full;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
@@ -198,6 +200,7 @@ struct ObjectMetrics {
   // sRGB channels against the fallback) and its traversal work, counted since the last
   // select pass; and with `benefit` each item's learned benefit per covered pixel.
   uint32_t selectedItems = 0;
+  std::array<ItemRate, 3> itemRate{};  // the rate each selected item is traced at (Full when not selected)
   std::array<float, 3> itemError{};
   std::array<uint32_t, 3> itemWork{};
   std::array<uint64_t, 3> itemTicks{};  // subgroup clock ticks the trace passes spent on the item

@@ -21,6 +21,15 @@ namespace raybudget::select {
 // traces each frame (1, 1/2, 1/4: powers of two, so a cost scaled by it rounds alike on the GPU).
 uint32_t rateCode(ItemRate rate);
 float rateShare(uint32_t code);
+// RB_RATE_AUTO's segments of an item (shared/selection.h; select_common.glsl's rateSegment):
+// how many an effect's item offers, and segment k's share of the item's full-rate cost and
+// value and the rate (RB_RATE_*) taking it reaches.
+struct RateSegment {
+  float costShare = 1.0f, valueShare = 1.0f;
+  uint32_t rate = 0;
+};
+uint32_t rateSegments(uint32_t effect);
+RateSegment rateSegment(uint32_t effect, uint32_t k);
 
 // An object's work per traced pixel after a frame that counted `work` over `pixels`: the
 // mean of what it knew and the observation (the observation alone when it knew nothing,

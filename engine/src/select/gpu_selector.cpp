@@ -109,7 +109,8 @@ struct GpuSelector::Impl {
   void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa, const PolicyOptions& options,
                    const ItemFrame& items) {
     // `benefit` selects among items: up to RB_ITEMS_PER_OBJECT candidates per object.
-    const uint64_t most = uint64_t(objects) * (policy == Policy::Benefit ? RB_ITEMS_PER_OBJECT : 1u);
+    // With rates chosen per item, up to three segments per item.
+    const uint64_t most = uint64_t(objects) * (policy == Policy::Benefit ? RB_ITEMS_PER_OBJECT * (items.rate == RB_RATE_AUTO ? 3u : 1u) : 1u);
     if (most > capacity) throw Error("GPU selection of " + std::to_string(most) + " candidates exceeds its capacity " + std::to_string(capacity));
     if (policy == Policy::Optimal || policy == Policy::All || policy == Policy::None)
       throw Error(std::string("frame selection runs the budgeted policies, not ") + policyName(policy));
@@ -199,8 +200,15 @@ struct GpuSelector::Impl {
     for (uint32_t i : byId) data.push_back({c[i].id, c[i].cost, c[i].value, c[i].distance});
     vk::Buffer staging = vk::createBuffer(ctx, std::max<size_t>(1, data.size()) * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!data.empty()) std::memcpy(staging.mapped, data.data(), data.size() * sizeof(gpu::GpuCandidate));
-    SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers), glm::vec4(budget, 0, 0, 0),
-                    glm::uvec4(options.paperHops, 0, 0, 0), glm::uvec4(0)};
+    // Rate segments: the items' levels live in scratch, one word per item group.
+    const bool segments = policy == Policy::Benefit && options.rateSegments;
+    uint32_t groups = 0;
+    for (const Candidate& x : c) groups = std::max(groups, x.id / RB_SEGMENT_SLOTS + 1);
+    if (segments && groups > capacity)
+      throw Error("GPU selection: rate segment IDs up to " + std::to_string(groups * RB_SEGMENT_SLOTS) + " exceed the capacity's " +
+                  std::to_string(capacity) + " item groups");
+    SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, segments ? groups : options.graphPointers),
+                    glm::vec4(budget, 0, 0, 0), glm::uvec4(options.paperHops, 0, 0, segments ? RB_RATE_AUTO : RB_RATE_FULL), glm::uvec4(0)};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
       if (n > 0) {

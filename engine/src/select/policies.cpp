@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
+#include <unordered_map>
 
 #include "raybudget/error.h"
 #include "select/paper_graph.h"
@@ -26,6 +28,24 @@ std::vector<uint32_t> greedyFit(std::span<const Candidate> c, const std::vector<
   return chosen;
 }
 
+constexpr uint32_t kSegmentSlots = 4;  // shared/selection.h's RB_SEGMENT_SLOTS
+
+// The same over rate segments: one goes in only onto its item's previous segment.
+std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std::vector<uint32_t>& order, float budget) {
+  std::unordered_map<uint32_t, uint32_t> level;  // item -> segments taken
+  std::vector<uint32_t> chosen;
+  float remaining = budget;
+  for (uint32_t i : order) {
+    uint32_t& taken = level[c[i].id / kSegmentSlots];
+    if (c[i].cost <= remaining && taken == c[i].id % kSegmentSlots) {
+      chosen.push_back(i);
+      remaining -= c[i].cost;
+      ++taken;
+    }
+  }
+  return chosen;
+}
+
 std::vector<uint32_t> indices(size_t n) {
   std::vector<uint32_t> v(n);
   std::iota(v.begin(), v.end(), 0u);
@@ -43,7 +63,7 @@ namespace {
 // Greedy by value density with fill-in, then the better of that and the most valuable
 // single candidate that fits: the classic 1/2-approximation of the 0/1 knapsack
 // (Funkhouser and Séquin 1993 use the greedy part for level-of-detail selection).
-std::vector<uint32_t> density(std::span<const Candidate> c, float budget) {
+std::vector<uint32_t> density(std::span<const Candidate> c, float budget, bool segments) {
   std::vector<uint32_t> order = indices(c.size());
   // The key is a float division (zero cost: +inf, first), one total order: key descending,
   // then ID (as every policy's ties: the GPU's sort keys are one word and the ID order);
@@ -52,12 +72,13 @@ std::vector<uint32_t> density(std::span<const Candidate> c, float budget) {
     const float ka = densityKey(c[a]), kb = densityKey(c[b]);
     return ka != kb ? ka > kb : c[a].id < c[b].id;
   });
-  std::vector<uint32_t> greedy = greedyFit(c, order, budget);
+  std::vector<uint32_t> greedy = segments ? greedyFitSegments(c, order, budget) : greedyFit(c, order, budget);
   float greedyValue = 0.0f;
   for (uint32_t i : greedy) greedyValue += c[i].value;
+  // With rate segments a single option is an item's first segment.
   uint32_t best = UINT32_MAX;
   for (uint32_t i = 0; i < c.size(); ++i)
-    if (c[i].cost <= budget && (best == UINT32_MAX || c[i].value > c[best].value || (c[i].value == c[best].value && c[i].id < c[best].id)))
+    if (c[i].cost <= budget && (!segments || c[i].id % kSegmentSlots == 0) && (best == UINT32_MAX || c[i].value > c[best].value || (c[i].value == c[best].value && c[i].id < c[best].id)))
       best = i;
   if (best != UINT32_MAX && c[best].value > greedyValue) return {best};
   return greedy;
@@ -136,7 +157,7 @@ Selection selectObjects(Policy policy, std::span<const Candidate> c, float budge
     case Policy::All: chosen = indices(c.size()); break;
     case Policy::Paper: chosen = walkPaperGraph(buildPaperGraph(c, options.graphPointers), c, budget, options.paperHops); break;
     case Policy::Density:
-    case Policy::Benefit: chosen = density(c, budget); break;
+    case Policy::Benefit: chosen = density(c, budget, policy == Policy::Benefit && options.rateSegments); break;
     case Policy::Optimal: chosen = knapsack(c, budget, options.optimalSteps, true).first; break;
     case Policy::Nearest: {
       std::vector<uint32_t> order = indices(c.size());
@@ -168,9 +189,31 @@ Selection selectObjects(Policy policy, std::span<const Candidate> c, float budge
   return s;
 }
 
-double optimalValueBound(std::span<const Candidate> c, float budget, uint32_t steps) {
+double optimalValueBound(std::span<const Candidate> c, float budget, uint32_t steps, bool segments) {
   validateCandidates(c, budget);
-  return knapsack(c, budget, steps, false).second;
+  if (!segments) return knapsack(c, budget, steps, false).second;
+  // The options: each item's segment prefixes (in segment order), costs rounded down to the
+  // grid; a dynamic programme over items, at most one option each.
+  std::map<uint32_t, std::vector<const Candidate*>> items;
+  for (const Candidate& x : c) items[x.id / kSegmentSlots].push_back(&x);
+  if (steps == 0 || steps > (1u << 20)) throw Error("optimal selection: steps must be within 1..2^20");
+  const size_t w = steps;
+  std::vector<double> best(w + 1, 0.0), next;
+  for (auto& [item, segs] : items) {
+    std::sort(segs.begin(), segs.end(), [](const Candidate* a, const Candidate* b) { return a->id < b->id; });
+    next = best;
+    double cost = 0.0, value = 0.0;
+    for (const Candidate* s : segs) {
+      cost += double(s->cost);
+      value += double(s->value);
+      const double u = budget > 0.0f ? cost / double(budget) * double(w) : (cost > 0.0 ? double(w) + 1.0 : 0.0);
+      const size_t units = size_t(std::min(double(w) + 1.0, std::floor(u)));
+      if (units > w) break;
+      for (size_t b = units; b <= w; ++b) next[b] = std::max(next[b], best[b - units] + value);
+    }
+    best.swap(next);
+  }
+  return best[w];
 }
 
 }  // namespace raybudget::select

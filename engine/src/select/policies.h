@@ -29,6 +29,10 @@ struct PolicyOptions {
   uint32_t seed = 1;           // `random`
   uint32_t paperHops = 1;      // `paper`: pointer hops per pick (0: climb while one fits); docs/SELECTION.md
   uint32_t optimalSteps = 4096;  // `optimal`: the budget's resolution in the dynamic programme
+  // `benefit`: the candidates are rate segments, ID item * 4 + k (shared/selection.h's
+  // RB_SEGMENT_SLOTS), segment k taken only after k - 1 of the same item: the greedy of the
+  // multiple-choice knapsack on each item's convex hull.
+  bool rateSegments = false;
 };
 
 struct Selection {
@@ -48,7 +52,9 @@ void validateCandidates(std::span<const Candidate> candidates, float budget);
 Selection selectObjects(Policy policy, std::span<const Candidate> candidates, float budget, const PolicyOptions& options = {});
 
 // An upper bound on the value any selection within the budget can reach: the 0/1 knapsack
-// with every cost rounded down to the dynamic programme's grid.
-double optimalValueBound(std::span<const Candidate> candidates, float budget, uint32_t steps = 4096);
+// with every cost rounded down to the dynamic programme's grid. With rate segments
+// (`segments`) the multiple-choice knapsack: at most one option per item, an option being a
+// prefix of its segments (their summed cost and value).
+double optimalValueBound(std::span<const Candidate> candidates, float budget, uint32_t steps = 4096, bool segments = false);
 
 }  // namespace raybudget::select

@@ -29,7 +29,9 @@ Policy toSelectPolicy(raybudget::Policy policy) {
 
 namespace {
 
-PolicyOptions policyOptions(const RenderSettings& s) { return {s.graphPointers, s.seed, 1, 4096}; }
+PolicyOptions policyOptions(const RenderSettings& s) {
+  return {s.graphPointers, s.seed, 1, 4096, s.policy == raybudget::Policy::Benefit && s.rayTracing.rate == ItemRate::Auto};
+}
 
 ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget) {
   const RayTracingSettings& rt = s.rayTracing;
@@ -41,12 +43,23 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget)
   return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate)};
 }
 
-// The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each).
-std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items) {
+// The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each), or
+// with rates chosen per item each selected item's segments up to the one its rate ends on.
+std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments) {
   std::vector<uint32_t> ids;
   for (uint32_t i = 0; i < objects; ++i)
-    for (uint32_t e = 0; e < (items ? RB_ITEMS_PER_OBJECT : 1u); ++e)
-      if (items ? (flags[i] >> e) & 1u : flags[i] != 0u) ids.push_back(items ? i * RB_ITEMS_PER_OBJECT + e : i);
+    for (uint32_t e = 0; e < (items ? RB_ITEMS_PER_OBJECT : 1u); ++e) {
+      if (!(items ? (flags[i] >> e) & 1u : flags[i] != 0u)) continue;
+      const uint32_t id = items ? i * RB_ITEMS_PER_OBJECT + e : i;
+      if (!segments) {
+        ids.push_back(id);
+        continue;
+      }
+      const uint32_t rate = (flags[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u;
+      uint32_t last = 0;
+      while (last + 1 < rateSegments(e) && rateSegment(e, last).rate != rate) ++last;
+      for (uint32_t k = 0; k <= last; ++k) ids.push_back(id * RB_SEGMENT_SLOTS + k);
+    }
   return ids;
 }
 
@@ -128,7 +141,8 @@ struct SelectionStage::Impl {
   void ensureSelector(const RenderSettings& s) {
     if (selector || !isBudgeted(s.policy)) return;
     // Room for `benefit`'s items, whichever budgeted policy comes first (restartSelection).
-    selector = std::make_unique<GpuSelector>(ctx, std::max<uint32_t>(1, buffers.objects) * RB_ITEMS_PER_OBJECT);
+    // `benefit` with rates: up to RB_SEGMENT_SLOTS candidate IDs per item.
+    selector = std::make_unique<GpuSelector>(ctx, std::max<uint32_t>(1, buffers.objects) * RB_ITEMS_PER_OBJECT * RB_SEGMENT_SLOTS);
     selector->bindFrame({buffers.objectRecords.buffer, buffers.selection.buffer, buffers.objectParams.buffer, buffers.objectCosts.buffer,
                          buffers.coverage.buffer, buffers.itemCosts.buffer});
   }
@@ -174,7 +188,9 @@ struct SelectionStage::Impl {
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     }
-    selectPass.record(fc, slot.budgeted ? SelectMode::Keep : SelectMode::All, rateCode(s.rayTracing.rate));
+    // The unbudgeted policies trace at the setting's rate; auto is `benefit`'s choice.
+    const uint32_t fixedRate = s.rayTracing.rate == ItemRate::Auto ? RB_RATE_FULL : rateCode(s.rayTracing.rate);
+    selectPass.record(fc, slot.budgeted ? SelectMode::Keep : SelectMode::All, fixedRate);
   }
 
   // Whether the GPU's per-object cost model (select_candidates.comp, select_apply.comp)
@@ -226,10 +242,15 @@ struct SelectionStage::Impl {
       return e == RB_ITEM_REFLECTIONS ? coverage[i].sumYHi.y : coverage[i].sumYHi.z;
     };
     const uint32_t items = buffers.objects * RB_ITEMS_PER_OBJECT;
+    // With rates chosen per item the candidates are the items' rate segments.
+    const bool segments = frame.rate == RB_RATE_AUTO;
+    auto itemOf = [&](uint32_t id) { return segments ? id / RB_SEGMENT_SLOTS : id; };
     const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
     double left = 0.0;
-    for (const gpu::GpuCandidate& c : candidates)
-      if (c.id < items && !((selected[c.id / RB_ITEMS_PER_OBJECT] >> (c.id % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
+    for (const gpu::GpuCandidate& c : candidates) {
+      const uint32_t item = itemOf(c.id);
+      if (item < items && !((selected[item / RB_ITEMS_PER_OBJECT] >> (item % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
+    }
     const uint32_t stride = after[items].pixels;
     if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
     if (after[items].work != 0 || after[items].ticks != 0) return false;  // the totals restart
@@ -242,28 +263,37 @@ struct SelectionStage::Impl {
                               frame.ablation);
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
+      // The rate: the setting's, or the walk's choice (which selectionMatchesCpu checks).
+      const uint32_t rate = (selected[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u;
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
-          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) ||
-          a.pixels != (on && frame.rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
+          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) || a.pixels != (on && rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
         return false;
-      if (((selected[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u) != (on ? frame.rate : 0u)) return false;
+      if (!segments && rate != (on ? frame.rate : 0u)) return false;
+      if (!on && rate != 0u) return false;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
-      if (candidate) ++expected;
+      if (candidate) expected += segments ? rateSegments(e) : 1u;
       const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
       if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
     }
     if (expected != candidates.size()) return false;
     for (const gpu::GpuCandidate& c : candidates) {
-      if (c.id >= items) return false;
-      const uint32_t i = c.id / RB_ITEMS_PER_OBJECT, e = c.id % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
+      const uint32_t item = itemOf(c.id);
+      if (item >= items) return false;
+      const uint32_t i = item / RB_ITEMS_PER_OBJECT, e = item % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
       if (records[i].crCandidatePixels.z < 0.5f || pixels == 0) return false;
-      const float work = predictedItemWork(e, pixels, learned[c.id].workPerPixel, frame.lights) * rateShare(frame.rate);
+      const float work = predictedItemWork(e, pixels, learned[item].workPerPixel, frame.lights) * rateShare(frame.rate);
       const glm::vec4 kqiS = params[i].kqiS;
-      const float value =
-          itemValue(pixels, frame.pixels, records[i].apdv.y, learned[c.id].benefit, before[c.id].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
-      if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost) ||
-          std::bit_cast<uint32_t>(value) != std::bit_cast<uint32_t>(c.value))
+      float cost = predictedCost(float(slot.msPerUnit), work);
+      float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
+      if (segments) {
+        const uint32_t k = c.id % RB_SEGMENT_SLOTS;
+        if (k >= rateSegments(e)) return false;
+        const RateSegment s = rateSegment(e, k);
+        cost *= s.costShare;
+        value *= s.valueShare;
+      }
+      if (std::bit_cast<uint32_t>(cost) != std::bit_cast<uint32_t>(c.cost) || std::bit_cast<uint32_t>(value) != std::bit_cast<uint32_t>(c.value))
         return false;
     }
     return true;
@@ -290,14 +320,14 @@ struct SelectionStage::Impl {
       std::vector<Candidate> c;
       for (const gpu::GpuCandidate& x : g) c.push_back({x.id, x.cost, x.value, x.distance});
       if (s.optimalBound) {
-        t.optimalValueBound = optimalValueBound(c, slot.selectBudgetMs);
+        t.optimalValueBound = optimalValueBound(c, slot.selectBudgetMs, 4096, slot.items.rate == RB_RATE_AUTO);
         if (!c.empty())
           t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
         for (const Candidate& x : c) t.candidatesMs += x.cost;
       }
       if (s.checkSelection) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
-        const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit);
+        const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO);
         t.selectionMatchesCpu = gpuIds == selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s)).ids;
         t.costsMatchCpu = costsMatchCpu(slot, policy, g);
       }
@@ -341,6 +371,10 @@ struct SelectionStage::Impl {
       out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), cov[i].sumYHi.y, cov[i].sumYHi.z, g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w,
                 g.crCandidatePixels.x, g.crCandidatePixels.y, g.crCandidatePixels.z > 0.5f, (selected[i] & RB_ITEMS_ALL) != 0u};
       out[i].selectedItems = selected[i] & RB_ITEMS_ALL;
+      for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
+        const uint32_t rate = (selected[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u;
+        out[i].itemRate[e] = rate == RB_RATE_HALF ? ItemRate::Half : (rate == RB_RATE_QUARTER ? ItemRate::Quarter : ItemRate::Full);
+      }
       for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
         const gpu::GpuItemCost& item = items[i * RB_ITEMS_PER_OBJECT + e];
         out[i].itemError[e] = float(double(item.error) / RB_ERROR_UNITS);
