@@ -26,12 +26,12 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BENCH_SCENES = ROOT.parent / "shared" / "scenes" / "bench"
 GENERATED = [ROOT / "data" / "default" / "court.gltf", ROOT / "data" / "plaza" / "plaza.gltf"]
-POLICIES = ["paper", "density", "nearest", "random", "benefit"]
+POLICIES = ["paper", "density", "nearest", "random", "benefit", "benefit-rates"]
 # `benefit` with one part left out (docs/SELECTION.md), with --ablations.
 ABLATIONS = ["benefit-no-centrality", "benefit-no-hysteresis", "benefit-prior-only", "benefit-no-classifier", "benefit-no-probe"]
 FRACTIONS = [0.10, 0.25, 0.50]  # of `all`'s stage cost
 ADHERENCE_SLACK = 1.05          # the promise: rt_stage_ms <= T + 5%
-COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "benefit": "tab:brown",
+COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "benefit": "tab:brown", "benefit-rates": "black",
           "benefit-no-centrality": "tab:pink", "benefit-no-hysteresis": "tab:cyan", "benefit-prior-only": "gold",
           "benefit-no-classifier": "darkgreen", "benefit-no-probe": "sienna",
           "none": "black", "all": "tab:red", "classified": "tab:olive", "oracle": "tab:gray"}

@@ -134,6 +134,8 @@ TEST(SelectionPolicies, RateSegmentsClimbEachItemsHullInOrder) {
   EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 6.0f, o).ids, (std::vector<uint32_t>{0, 1, 4}));
   // Budget 11: 0, 1, 4 (5 left), 8 (0 left); 9 came before 8 in the order, so it stays out.
   EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 11.0f, o).ids, (std::vector<uint32_t>{0, 1, 4, 8}));
+  // Rates that do not fit select nothing: every first segment costs 1 or more.
+  EXPECT_TRUE(select::selectObjects(Policy::Benefit, c, 0.5f, o).ids.empty());
   // Without segments the same candidates are independent: 9 goes in first (4 left), 0, 1, 2.
   EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 5.0f).ids, (std::vector<uint32_t>{0, 1, 2, 9}));
   // The bound: options per item are the prefixes; brute force over them.

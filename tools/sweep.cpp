@@ -29,7 +29,8 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --order-seed S        shuffles each repeat's configurations (default 1; 0: all, none, budgets ascending)
   --prior-time-scale    never learn the cost model's time scale: selections independent of timing
   --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random,benefit);
-                        benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier, -no-probe: ablations
+                        benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier, -no-probe: ablations;
+                        benefit-rates: benefit choosing a ray rate per item
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -99,7 +100,8 @@ struct Config {
   uint32_t budgetIndex = 0;
   float budgetMs = 0.0f;
   BenefitAblation ablation = BenefitAblation::None;
-  std::string name() const { return SweepPolicy{policy, ablation}.name(); }
+  ItemRate rate = ItemRate::Full;
+  std::string name() const { return SweepPolicy{policy, ablation, rate}.name(); }
   std::string label() const { return name() + (isBudgeted(policy) ? "-b" + std::to_string(budgetIndex) : std::string()); }
 };
 
@@ -124,7 +126,7 @@ class Sweep {
   // model, warm up on the first camera at the configuration's budget, then the recorded
   // frames, each read back when imaged. Returns the recorded frames' timings.
   std::vector<FrameTiming> run(const std::string& pathName, const std::vector<Camera>& path, const Config& cfg, const RunKind& kind) {
-    renderer_.restartSelection(cfg.policy, isBudgeted(cfg.policy) ? cfg.budgetMs : 1.0f, cfg.ablation);
+    renderer_.restartSelection(cfg.policy, isBudgeted(cfg.policy) ? cfg.budgetMs : 1.0f, cfg.ablation, cfg.rate);
     if (isBudgeted(cfg.policy)) renderer_.setCostModel(start_);
     const std::filesystem::path dir = std::filesystem::path(c_.out) / kind.imageDir;
     if (!kind.imageDir.empty()) std::filesystem::create_directories(dir);
@@ -224,6 +226,7 @@ void shuffle(std::vector<T>& v, uint32_t seed) {
 
 SweepPolicy parseSweepPolicy(const std::string& name) {
   const std::string prefix = "benefit-";
+  if (name == "benefit-rates") return {Policy::Benefit, BenefitAblation::None, ItemRate::Auto};
   if (name.rfind(prefix, 0) == 0) return {Policy::Benefit, parseAblation(name.substr(prefix.size()))};
   const Policy policy = parsePolicy(name);
   if (!isBudgeted(policy)) throw Error("--policies takes budgeted policies (paper, density, nearest, random, benefit), got '" + name + "'");
@@ -345,7 +348,7 @@ int runSweep(const SweepCommand& c) {
     std::vector<Config> configs{{Policy::All}, {Policy::None}};
     if (c.classified) configs.push_back({Policy::Classified});
     for (uint32_t b = 0; b < points.size(); ++b)
-      for (const SweepPolicy& p : c.policies) configs.push_back({p.policy, b, points[b], p.ablation});
+      for (const SweepPolicy& p : c.policies) configs.push_back({p.policy, b, points[b], p.ablation, p.rate});
     for (uint32_t r = 0; r < c.repeats; ++r) {
       std::vector<Config> order = configs;
       if (c.orderSeed != 0) shuffle(order, c.orderSeed * 7919u + uint32_t(pathIndex) * 131u + r);

@@ -16,11 +16,16 @@
 
 namespace raybudget::cli {
 
-// A budgeted policy as the sweep runs it: `benefit` may leave one of its parts out (ablations).
+// A budgeted policy as the sweep runs it: `benefit` may leave one of its parts out (ablations)
+// or choose a ray rate per item (benefit-rates).
 struct SweepPolicy {
   Policy policy = Policy::Density;
   BenefitAblation ablation = BenefitAblation::None;
-  std::string name() const { return std::string(policyName(policy)) + (ablation == BenefitAblation::None ? "" : std::string("-") + ablationName(ablation)); }
+  ItemRate rate = ItemRate::Full;
+  std::string name() const {
+    return std::string(policyName(policy)) + (ablation == BenefitAblation::None ? "" : std::string("-") + ablationName(ablation)) +
+           (rate == ItemRate::Auto ? "-rates" : "");
+  }
 };
 
 struct SweepCommand {
@@ -41,9 +46,9 @@ struct SweepCommand {
   bool validation = false;
 };
 
-// Parses a budgeted policy's name: paper, density, nearest, random, benefit, or benefit with a
+// Parses a budgeted policy's name: paper, density, nearest, random, benefit, benefit with a
 // part left out (benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier,
-// -no-probe).
+// -no-probe), or benefit-rates (a ray rate per item).
 SweepPolicy parseSweepPolicy(const std::string& name);
 
 // Parses `sweep` arguments (after the word "sweep"). Throws raybudget::Error.

@@ -499,11 +499,12 @@ struct Renderer::Impl {
 
   // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
   // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
-  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs, BenefitAblation ablation) {
+  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs, BenefitAblation ablation, ItemRate rate) {
     RenderSettings next = settings;
     next.policy = policy;
     next.budgetMs = budgetMs;
     next.benefitAblation = ablation;
+    next.rayTracing.rate = rate;
     validateSettings(next);
     std::vector<FrameTiming> done = finish();
     settings = next;
@@ -539,8 +540,8 @@ std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->
 
 std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
 
-std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs, BenefitAblation ablation) {
-  return impl_->restartSelection(policy, budgetMs, ablation);
+std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs, BenefitAblation ablation, ItemRate rate) {
+  return impl_->restartSelection(policy, budgetMs, ablation, rate);
 }
 
 CostModel Renderer::costModel() const { return impl_->selection.costModel(); }

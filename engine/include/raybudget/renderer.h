@@ -252,9 +252,10 @@ class Renderer {
   // The cost model's time scale (ms per unit of predicted work, a property of the device
   // and scene) is kept per cost unit: the paper's C and our work units each keep what they
   // last learned. With learnTimeScale off the next frames select exactly as a new Renderer
-  // would. Finishes the frames in flight and returns their timings. Throws Error on a bad
-  // budget.
-  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs, BenefitAblation ablation = BenefitAblation::None);
+  // would. `rate`: RayTracingSettings::rate from now on. Finishes the frames in flight and
+  // returns their timings. Throws Error on a bad budget.
+  std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs, BenefitAblation ablation = BenefitAblation::None,
+                                            ItemRate rate = ItemRate::Full);
 
   // The cost model as learned so far (the current policy's unit included), and a way to
   // start from a saved one: a benchmark gives every configuration the same learned state,
