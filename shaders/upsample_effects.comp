@@ -5,6 +5,7 @@
 #include "include/gbuffer.glsl"
 #include "include/env_fallback.glsl"
 #include "include/rates.glsl"
+#define RB_UPSAMPLE_TILES
 #include "include/tile_pixel.glsl"
 #include "include/upsample.glsl"
 
@@ -13,7 +14,7 @@
 // nearby that traced it this frame (rt_effects.comp stored it without the surface's weight,
 // with the frame's stamp), times this pixel's own weight, replaces the path's environment
 // fallback in indirectImage; where no neighbour qualifies the fallback stays. Runs over the
-// tile list, after the effects pass.
+// tiles holding items at a reduced rate (tile_list.comp), after the effects pass.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {

@@ -3,6 +3,7 @@
 #include "include/bindings.glsl"
 #include "include/gbuffer.glsl"
 #include "include/rates.glsl"
+#define RB_UPSAMPLE_TILES
 #include "include/tile_pixel.glsl"
 #include "include/upsample.glsl"
 #include "include/shadows.glsl"
@@ -11,8 +12,9 @@
 // (RB_MASK_PENDING, rt_shadows.comp): the bilateral mean of the light's visibility at the
 // pixels traced or classified certain this frame nearby (include/upsample.glsl), else the
 // shadow map's. Written with RB_MASK_FILLED added, so that no invocation reads a filled value;
-// the lighting pass takes it off. Runs over the tile list, after the shadow pass. Lights go
-// four at a time, each neighbour's weight computed once per four.
+// the lighting pass takes it off. Runs over the tiles holding items at a reduced rate
+// (tile_list.comp), after the shadow pass. Lights go four at a time, each neighbour's weight
+// computed once per four.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {

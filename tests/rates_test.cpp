@@ -114,6 +114,43 @@ TEST(Rates, AFlatMirrorAtAQuarterStaysCloseToFullRate) {
   EXPECT_LT(raysQuarter, raysFull * 35 / 100);
 }
 
+// Rates chosen per item on two mirrors under a sun: more rate segments than three per object
+// (shadows one, reflections three), every frame's segments, costs, values, levels and rates
+// equal to the CPU reference under a budget that binds.
+TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
+  Scene scene = twoMirrors();
+  scene.objects.resize(2);  // the mirrors alone, reflecting the sky
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  scene.lights.push_back(sun);
+  RenderSettings s = test::settingsFor(Policy::Benefit, 256, 192);
+  s.rayTracing.rate = ItemRate::Auto;
+  s.learnTimeScale = false;
+  s.checkSelection = true;
+  s.optimalBound = true;
+  Camera cam;
+  cam.position = {0.0f, 4.0f, 4.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  s.budgetMs = 1e6f;
+  const test::RenderedFrames all = test::renderFrames(scene, s, std::vector<Camera>(4, cam));
+  // A first frame prices the items from priors: a third of that binds (later frames learn
+  // cheaper costs).
+  ASSERT_GT(all.timings.front().candidatesMs, 0.0);
+  s.budgetMs = float(all.timings.front().candidatesMs / 3.0);
+  const test::RenderedFrames part = test::renderFrames(scene, s, {cam});
+  for (const test::RenderedFrames* r : {&all, &part})
+    for (const FrameTiming& t : r->timings) {
+      EXPECT_TRUE(t.selectionMatchesCpu.value_or(false)) << "frame " << t.frame;
+      EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
+      EXPECT_LE(t.selectedValue, t.optimalValueBound * (1.0 + 1e-5)) << "the multiple-choice bound holds, frame " << t.frame;
+    }
+  uint32_t reduced = 0;
+  for (const ObjectMetrics& m : part.metrics)
+    for (int e = 0; e < 3; ++e) reduced += ((m.selectedItems >> e) & 1u) && m.itemRate[size_t(e)] != ItemRate::Full;
+  EXPECT_GT(reduced, 0u) << "under a third of the budget some mirror should be traced at a reduced rate";
+}
+
 TEST(Rates, UnknownRateNamesAreRefusedNamingTheChoices) {
   EXPECT_EQ(parseItemRate("quarter"), ItemRate::Quarter);
   try {

@@ -164,7 +164,8 @@ class Sweep {
          << (budgeted ? cfg.budgetMs : 0.0f) << ',' << kind.repeat << ',' << kind.order << ',' << f << ',' << passCell(t, Pass::Coverage) << ','
          << passCell(t, Pass::Select) << ',' << t.traceMs() << ',' << t.rtStageMs() << ',' << passCell(t, Pass::ShadowMaps) << ','
          << passCell(t, Pass::EnvFallback) << ',' << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
-         << t.selectedObjects << ',' << t.raysTraced << ',' << t.selectedValue << ',' << t.optimalValueBound << ',' << t.selectionChanges << ',';
+         << t.selectedObjects << ',' << t.raysTraced << ',' << t.selectedValue << ',' << t.optimalValueBound << ',' << t.selectionChanges << ','
+         << t.itemOptionChanges << ',';
     if (rmse >= 0.0) {
       const double mse = rmse * rmse;
       csv_ << rmse << ',' << (mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity()) << ','
@@ -292,7 +293,7 @@ int runSweep(const SweepCommand& c) {
   std::filesystem::create_directories(out / "paths");
   std::ofstream csv(out / "frames.csv");
   csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
-         "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,rmse,psnr,image\n";
+         "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
   calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,stage_overhead_ms,trace_fixed_ms,budgets_ms\n";
   const bool paper = std::any_of(c.policies.begin(), c.policies.end(), [](const SweepPolicy& p) { return p.policy == Policy::Paper; });

@@ -456,8 +456,9 @@ struct Renderer::Impl {
     if (traced & RB_RT_SHADOWS) {
       timed(Pass::TraceShadows, [&] { traceShadows.recordOverTiles(fc); });
       computeToCompute(cmd);
-      if (upsample) {
-        timed(Pass::UpsampleShadows, [&] { upsampleShadows.recordOverTiles(fc); });
+      // Rates chosen per item keep shadows at full rate (shared/selection.h): nothing to fill.
+      if (upsample && settings.rayTracing.rate != ItemRate::Auto) {
+        timed(Pass::UpsampleShadows, [&] { upsampleShadows.recordOverTiles(fc, passes::ScreenPass::TileList::Upsample); });
         computeToCompute(cmd);
       }
     }
@@ -471,7 +472,7 @@ struct Renderer::Impl {
       timed(Pass::TraceEffects, [&] { traceEffects.recordOverTiles(fc); });
       if (upsample) {
         computeToCompute(cmd);
-        timed(Pass::UpsampleEffects, [&] { upsampleEffects.recordOverTiles(fc); });
+        timed(Pass::UpsampleEffects, [&] { upsampleEffects.recordOverTiles(fc, passes::ScreenPass::TileList::Upsample); });
       }
     }
     computeToCompute(cmd);

@@ -15,8 +15,9 @@ layout(set = 0, binding = 3, std430) buffer ScratchBlock { uint scratch[]; };   
 layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };  // per candidate: 1 selected
 // Frame mode: x candidates, y predicted cost and z value (float bits), w selected; then
 // x objects whose selection changed since the last frame, y and z the candidates' total cost
-// (allCandidatesFit), w 1 when the selection needed an order (FrameTiming::selectionSorted).
-layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; uvec4 result2; };
+// (allCandidatesFit), w 1 when the selection needed an order (FrameTiming::selectionSorted);
+// then x `benefit`'s items whose option (left out, or a rate) changed since the last frame.
+layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; uvec4 result2; uvec4 result3; };
 // Frame mode: the renderer's per-object records, selection and K/Q/I/S (shared/selection.h).
 layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectRecord records[]; };
 layout(set = 0, binding = 7, std430) buffer SelectedBlock { uint selected[]; };

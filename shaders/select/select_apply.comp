@@ -31,7 +31,10 @@ void main() {
       bool on = (bits & (1u << effect)) != 0u;
       uint pixels = itemPixels(i, effect);
       uint rate = fixedRate == RB_RATE_AUTO ? (chosen >> (RB_RATE_SHIFT + 2u * effect)) & 3u : fixedRate;
-      items[id].selectedLast = on ? 1u : 0u;
+      // S, kept as the item's option: 0 left out, 1 + its rate (the flicker count compares them).
+      uint option = on ? 1u + rate : 0u;
+      if (items[id].selectedLast != option) atomicAdd(result3.x, 1u);
+      items[id].selectedLast = option;
       // A probed item's, or one traced at a reduced rate: counted by the trace passes.
       items[id].pixels = on && rate == RB_RATE_FULL ? pixels : 0u;
       if (!on && probing && pixels > 0u) marks |= 1u << (RB_PROBE_SHIFT + effect);

@@ -89,7 +89,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   float E = A * P * c.benefit;
   vec4 kqiS = params[i].kqiS;
   float I = (push.items.w & RB_BENEFIT_WITHOUT_HYSTERESIS) != 0u ? 0.0 : kqiS.z;
-  value = E * (1.0 + float(c.selectedLast) * I) * kqiS.x;
+  value = E * (1.0 + (c.selectedLast != 0u ? 1.0 : 0.0) * I) * kqiS.x;
   return true;
 }
 

@@ -110,7 +110,7 @@ struct GpuObjectCost {
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
-// 1 once measured, and S (1: selected last frame). One more record after the items holds the
+// 1 once measured, and S as last frame's option (0: left out; 1 + its rate). One more record after the items holds the
 // frame's totals of work and ticks over every item (the ticks' exchange rate to work units),
 // and in `pixels` the frame's probe stride (0: no probe). A probed item's `pixels` start at 0
 // and count the covered pixels the probe traced.

@@ -150,6 +150,8 @@ struct FrameTiming {
   double measuredTraceMs = 0.0;
   uint32_t selectedObjects = 0;
   uint32_t selectionChanges = 0;  // objects selected or dropped since the previous frame
+  // `benefit`: items whose option (left out, or traced at a rate) changed since the previous frame
+  uint32_t itemOptionChanges = 0;
   // false when every candidate fit the budget for certain (their summed cost at most 31/32
   // of T), so the select pass skipped the sort and selected them all
   bool selectionSorted = false;

@@ -82,7 +82,7 @@ struct GpuSelector::Impl {
     walkOrder = vk::createBuffer(c, 2ull * padded * 16, storage, false);  // the walk's records; `paper`'s second order from `padded`
     scratch = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);  // `paper`'s taken flags
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    result = vk::createBuffer(c, 32, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    result = vk::createBuffer(c, 48, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9, 14, 15 until bindFrame
     const std::vector<VkDescriptorType> types(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);

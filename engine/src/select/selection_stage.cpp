@@ -121,9 +121,10 @@ struct SelectionStage::Impl {
     const VkDeviceSize records = std::max<VkDeviceSize>(1, buffers.objects);
     for (Slot& slot : slots) {
       slot.tileHeader = vk::createBuffer(c, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      slot.result = vk::createBuffer(c, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      slot.result = vk::createBuffer(c, 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       if (s.optimalBound || s.checkSelection)
-        slot.candidates = vk::createBuffer(c, records * RB_ITEMS_PER_OBJECT * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        // Up to three rate segments per item (`benefit` with rates chosen per item).
+        slot.candidates = vk::createBuffer(c, records * RB_ITEMS_PER_OBJECT * 3 * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       if (s.checkSelection) {
         slot.selection = vk::createBuffer(c, records * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.costsBefore = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -176,7 +177,7 @@ struct SelectionStage::Impl {
       }
       selector->recordFrame(cmd, buffers.objects, policy, slot.selectBudgetMs, float(slot.msPerUnit), policyOptions(s), slot.items);
       readToTransfer(cmd);
-      const VkBufferCopy result{0, 0, 32};
+      const VkBufferCopy result{0, 0, 48};
       vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.result.buffer, 1, &result);
       if (s.optimalBound || check) copyWhole(cmd, selector->candidateBuffer(), slot.candidates);
       if (check) {
@@ -267,7 +268,8 @@ struct SelectionStage::Impl {
       const uint32_t rate = (selected[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u;
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
-          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u : 0u) || a.pixels != (on && rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
+          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u + rate : 0u) ||
+          a.pixels != (on && rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
         return false;
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
@@ -314,6 +316,7 @@ struct SelectionStage::Impl {
     t.selectedValue = std::bit_cast<float>(r[2]);
     t.selectedObjects = r[3];
     t.selectionChanges = r[4];
+    t.itemOptionChanges = r[8];
     t.selectionSorted = r[7] != 0;
     if (s.optimalBound || s.checkSelection) {
       const std::span<const gpu::GpuCandidate> g(static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped), r[0]);
