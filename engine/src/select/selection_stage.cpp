@@ -43,6 +43,9 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget)
   return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate)};
 }
 
+// An item's rate (RB_RATE_*) in an object's word of the frame's selection (rates.glsl's itemRate).
+uint32_t selectedRate(uint32_t word, uint32_t effect) { return (word >> (RB_RATE_SHIFT + 2 * effect)) & 3u; }
+
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each), or
 // with rates chosen per item each selected item's segments up to the one its rate ends on.
 std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments) {
@@ -55,7 +58,7 @@ std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool 
         ids.push_back(id);
         continue;
       }
-      const uint32_t rate = (flags[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u;
+      const uint32_t rate = selectedRate(flags[i], e);
       uint32_t last = 0;
       while (last + 1 < rateSegments(e) && rateSegment(e, last).rate != rate) ++last;
       for (uint32_t k = 0; k <= last; ++k) ids.push_back(id * RB_SEGMENT_SLOTS + k);
@@ -265,7 +268,7 @@ struct SelectionStage::Impl {
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
       // The rate: the setting's, or the walk's choice (which selectionMatchesCpu checks).
-      const uint32_t rate = (selected[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u;
+      const uint32_t rate = selectedRate(selected[i], e);
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
           a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u + rate : 0u) ||
@@ -375,7 +378,7 @@ struct SelectionStage::Impl {
                 g.crCandidatePixels.x, g.crCandidatePixels.y, g.crCandidatePixels.z > 0.5f, (selected[i] & RB_ITEMS_ALL) != 0u};
       out[i].selectedItems = selected[i] & RB_ITEMS_ALL;
       for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
-        const uint32_t rate = (selected[i] >> (RB_RATE_SHIFT + 2 * e)) & 3u;
+        const uint32_t rate = selectedRate(selected[i], e);
         out[i].itemRate[e] = rate == RB_RATE_HALF ? ItemRate::Half : (rate == RB_RATE_QUARTER ? ItemRate::Quarter : ItemRate::Full);
       }
       for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
