@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "raybudget/camera.h"
+#include "raybudget/scene.h"
 
 namespace raybudget {
 namespace {
@@ -47,6 +48,24 @@ TEST(Camera, ProjectionIsVulkanClipSpace) {
   EXPECT_NEAR(farPoint.z / farPoint.w, 1.0f, 1e-5f);
   const glm::vec4 up = vp * glm::vec4(0, 1, 0, 1);
   EXPECT_LT(up.y / up.w, 0.0f) << "world up maps to the top row (negative y) in Vulkan";
+}
+
+
+// The benchmark's paths start 40% closer than the default camera: their near plane must not
+// cut into the scene, or a single-object scene is rendered with its front clipped away.
+TEST(Camera, PathsFromTheStartCameraClipNothingOfTheScene) {
+  Scene scene;
+  scene.boundsMin = {-1.34f, -0.97f, -0.80f};
+  scene.boundsMax = {1.34f, 0.95f, 0.83f};
+  const Camera start = pathStartCamera(scene, 16.0f / 9.0f);
+  auto distanceToBounds = [&](const glm::vec3& p) { return glm::length(p - glm::clamp(p, scene.boundsMin, scene.boundsMax)); };
+  const float radius = 0.5f * glm::length(scene.boundsMax - scene.boundsMin);
+  for (uint32_t f = 0; f < 16; ++f) {
+    const Camera c = orbitCamera(start, f, 16);
+    EXPECT_LT(c.znear, distanceToBounds(c.position)) << "orbit frame " << f << " clips the scene";
+    EXPECT_GT(c.zfar, glm::length(c.position - c.target) + radius) << "orbit frame " << f;
+  }
+  EXPECT_LE(start.znear, 0.01f * radius) << "the fly-through enters the bounds";
 }
 
 }  // namespace

@@ -41,6 +41,12 @@ Camera pathStartCamera(const Scene& scene, float aspect) {
   const glm::vec3 center = 0.5f * (scene.boundsMin + scene.boundsMax);
   c.position = center + 0.6f * (c.position - center);
   c.target = center;
+  // The default camera's near plane sits just short of the bounds from its own distance;
+  // 40% closer it would cut through the scene (a single object's front clipped away, its
+  // inside shown), and the paths go on into the bounds: a near plane at a hundredth of the
+  // scene's radius clips nothing the paths look at. (D32F depth keeps zfar / znear ~ 500.)
+  const float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-3f);
+  c.znear = std::min(c.znear, 0.01f * radius);
   c.up = glm::vec3(0.0f, 1.0f, 0.0f);
   if (glm::length(glm::cross(c.position - c.target, c.up)) < 1e-6f) c.position.z += 1e-3f;  // straight above: lookAt needs a side
   return c;
