@@ -75,10 +75,8 @@ void main() {
         if (attenuation <= 0.0) continue;
       }
     }
-    // The mask: traced or certain visibility, or upsampled (RB_MASK_FILLED added), or still
-    // pending where no upsample ran: then the map's.
+    // The mask: traced, certain or filled visibility (negative: none, then the map's).
     float masked = rtShadows || probed ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
-    if (masked > 1.0) masked -= RB_MASK_FILLED;
     float mapped = rtShadows && !measure && masked >= 0.0 ? 1.0 : shadowFromLight(light, s.position, N);
     float visibility = masked >= 0.0 ? masked : mapped;
     vec3 unshadowed = shadePbr(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.ior) * light.colorIntensity.rgb * attenuation;

@@ -11,6 +11,7 @@
 #include "include/item_stats.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
+#include "include/tile_fill.glsl"
 
 // Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to the
 // frame's cut-off, RayTracingSettings::maxRoughness) trace a closest-hit reflection ray, shaded with direct light (and
@@ -119,11 +120,61 @@ bool transmittedRay(vec3 p, vec3 ng, vec3 V, vec3 n, float ior, uint materialId,
   return false;
 }
 
-void main() {
-  ivec2 pixel = tilePixel();
-  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
-  Surface s;
-  if (!readSurface(pixel, s) || s.unlit || s.objectId == RB_NO_OBJECT) return;
+// Radiance of each path traced here at a reduced rate, without the surface's weight, for the
+// tile's fill (include/tile_fill.glsl); bit 0 / 1 of fillPaths: which paths it holds.
+shared vec3 fillReflection[RB_TILE_PIXELS];
+shared vec3 fillRefraction[RB_TILE_PIXELS];
+shared uint fillPaths[RB_TILE_PIXELS];
+
+// The pixel's paths their items skip this frame at a reduced rate (rt_effects' own tests).
+bvec2 pendingPaths(Surface s, ivec2 pixel) {
+  uint effects = frame.rayTracing.x;
+  bvec2 pending = bvec2(false);
+  if ((effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() && itemSelected(s.objectId, RB_ITEM_REFLECTIONS))
+    pending.x = !rateTraces(itemRate(s.objectId, RB_ITEM_REFLECTIONS), pixel);
+  if ((effects & RB_RT_REFRACTIONS) != 0u && s.transmission * (1.0 - s.metallic) > 0.0 && itemSelected(s.objectId, RB_ITEM_REFRACTIONS))
+    pending.y = !rateTraces(itemRate(s.objectId, RB_ITEM_REFRACTIONS), pixel);
+  return pending;
+}
+
+// Fills the paths pending at `pixel` from the tile's traced neighbours: their mean radiance
+// times this pixel's own weight replaces the path's environment fallback in indirectImage.
+void fillPending(ivec2 pixel, Surface s, bvec2 pending) {
+  vec3 p, ng, N, V, specularWeight, transmitWeight;
+  readExactSurface(pixel, p, ng);
+  FillCentre c = fillCentre(s.objectId, p, s.normal);
+  // Both paths' items may run at different rates: a neighbour counts where either traced.
+  uint rates[2] = uint[2](pending.x ? itemRate(s.objectId, RB_ITEM_REFLECTIONS) : RB_RATE_QUARTER,
+                          pending.y ? itemRate(s.objectId, RB_ITEM_REFRACTIONS) : RB_RATE_QUARTER);
+  uint rate = min(rates[0], rates[1]);  // the denser of the two (RB_RATE_HALF < RB_RATE_QUARTER)
+  vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0));
+  vec2 weights = vec2(0.0);
+  for (int y = -RB_FILL_RADIUS; y <= RB_FILL_RADIUS; ++y)
+    for (int x = -RB_FILL_RADIUS; x <= RB_FILL_RADIUS; ++x) {
+      uint slot;
+      float w = fillWeight(c, rate, pixel, ivec2(x, y), slot);
+      if (w <= 0.0) continue;
+      uint paths = fillPaths[slot];
+      if (pending.x && (paths & 1u) != 0u) {
+        sum[0] += w * fillReflection[slot];
+        weights.x += w;
+      }
+      if (pending.y && (paths & 2u) != 0u) {
+        sum[1] += w * fillRefraction[slot];
+        weights.y += w;
+      }
+    }
+  if (all(lessThan(weights, vec2(RB_FILL_MIN_WEIGHT)))) return;
+  tracedPathWeights(s, p, ng, N, V, specularWeight, transmitWeight);
+  vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
+  vec3 indirect = imageLoad(indirectImage, pixel).rgb;
+  if (weights.x >= RB_FILL_MIN_WEIGHT) indirect += sum[0] / weights.x * specularWeight - envReflection(s, rasterV);
+  if (weights.y >= RB_FILL_MIN_WEIGHT) indirect += sum[1] / weights.y * transmitWeight - envTransmission(s, rasterV);
+  imageStore(indirectImage, pixel, vec4(indirect, 1.0));
+}
+
+void traceEffects(ivec2 pixel, bool lit, Surface s) {
+  if (!lit) return;
   uint effects = frame.rayTracing.x;
   float transmission = s.transmission * (1.0 - s.metallic);
   // Per path: whether its item is probed here rather than selected.
@@ -163,11 +214,15 @@ void main() {
     pathTicks[path] = clockNow() - pathStart;
   }
   imageStore(indirectImage, pixel, vec4((probed[0] ? fallback[0] : color[0]) + (probed[1] ? fallback[1] : color[1]), 1.0));
-  // For the upsample: the paths traced here at a reduced rate, and the frame they were traced in.
-  bool stored[2] = bool[2](reflects && !probed[0] && rates[0] != RB_RATE_FULL, refracts && !probed[1] && rates[1] != RB_RATE_FULL);
-  if (stored[0]) imageStore(reflectionRadiance, pixel, vec4(radiance[0], 1.0));
-  if (stored[1]) imageStore(refractionRadiance, pixel, vec4(radiance[1], 1.0));
-  if (stored[0] || stored[1]) imageStore(tracedStamp, pixel, uvec4(tracedStampOf(stored[0], stored[1])));
+  // For the tile's fill: the paths traced here at a reduced rate.
+  bool shared0 = reflects && !probed[0] && rates[0] != RB_RATE_FULL, shared1 = refracts && !probed[1] && rates[1] != RB_RATE_FULL;
+  if (shared0 || shared1) {
+    uint i = fillIndex(pixel);
+    shareFillSource(pixel, s.objectId, p, s.normal);
+    fillPaths[i] = (shared0 ? 1u : 0u) | (shared1 ? 2u : 0u);
+    fillReflection[i] = radiance[0];
+    fillRefraction[i] = radiance[1];
+  }
   addObjectWork(s.objectId, (probed[0] ? 0u : work[0]) + (probed[1] ? 0u : work[1]));
   if (measuringItems()) {
     vec3 direct = imageLoad(directImage, pixel).rgb, untraced = direct + fallback[0] + fallback[1];
@@ -183,4 +238,18 @@ void main() {
     uvec3 counted = uvec3(0u, reflects && (probed[0] || rates[0] != RB_RATE_FULL) ? 1u : 0u, refracts && (probed[1] || rates[1] != RB_RATE_FULL) ? 1u : 0u);
     addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError), counted);
   }
+}
+
+void main() {
+  ivec2 pixel = tilePixel();
+  bool fills = fillsInPass();
+  if (fills) clearFillSlot(pixel);
+  Surface s;
+  bool lit = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) && readSurface(pixel, s) && !s.unlit && s.objectId != RB_NO_OBJECT;
+  traceEffects(pixel, lit, s);
+  if (!fills) return;
+  barrier();
+  if (!lit) return;
+  bvec2 pending = pendingPaths(s, pixel);
+  if (any(pending)) fillPending(pixel, s, pending);
 }

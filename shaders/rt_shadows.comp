@@ -10,6 +10,7 @@
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
+#include "include/tile_fill.glsl"
 
 // Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
 // the geometric normal), alpha masks respected, for the pixels of objects whose shadow item
@@ -22,15 +23,24 @@
 // written for the lighting pass to measure, which still shows the shadow maps there.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
-void main() {
-  ivec2 pixel = tilePixel();
-  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
+// Each light's visibility at each pixel of the tile for the fill (include/tile_fill.glsl), a
+// byte per light: 0..254 the value written to the mask, 255 none (pending, or nothing there).
+#define RB_FILL_NONE 255u
+shared uint fillLights[RB_TILE_PIXELS * (RB_MAX_LIGHTS / 4)];
+
+uint lightByte(float visible) { return visible < 0.0 ? RB_FILL_NONE : uint(round(clamp(visible, 0.0, 1.0) * 254.0)); }
+
+uint fillLight(uint slot, uint light) { return (fillLights[slot * (RB_MAX_LIGHTS / 4) + light / 4u] >> (8u * (light & 3u))) & 0xFFu; }
+
+// Traces the pixel's shadow rays; true when a reduced rate left some light pending here.
+bool traceShadows(ivec2 pixel, bool fills) {
+  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return false;
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit) return;
+  if (!readSurface(pixel, s) || s.unlit) return false;
   bool probe = !itemSelected(s.objectId, RB_ITEM_SHADOWS);
-  if (probe && !itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
-  // A reduced rate traces some pixels this frame and leaves the rest pending for the upsample;
-  // lights the classifier finds certain need no ray and are written anyway.
+  if (probe && !itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel)) return false;  // the lighting pass reads no mask there
+  // A reduced rate traces some pixels this frame and leaves the rest pending for the tile's
+  // fill; lights the classifier finds certain need no ray and are written anyway.
   uint rate = probe ? RB_RATE_FULL : itemRate(s.objectId, RB_ITEM_SHADOWS);
   bool traces = rateTraces(rate, pixel);
   uint start = clockNow();
@@ -39,7 +49,8 @@ void main() {
   vec3 origin = offsetRay(p, ng);
   bool classify = (frame.rayTracing.w & RB_RT_CLASSIFY_SHADOWS) != 0u;
   bool shorten = (frame.rayTracing.w & RB_RT_SHORTEN_SHADOW_RAYS) != 0u;
-  uint work = 0u;
+  bool share = fills && rate != RB_RATE_FULL;
+  uint work = 0u, word = 0u;
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
     float dist, scale;
@@ -51,10 +62,52 @@ void main() {
       else visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
+    if (share) {
+      word |= lightByte(visible) << (8u * (i & 3u));
+      if ((i & 3u) == 3u || i + 1u == frame.sizeLightsFrame.z) {
+        fillLights[fillIndex(pixel) * (RB_MAX_LIGHTS / 4) + i / 4u] = word;
+        word = 0u;
+      }
+    }
   }
+  if (share) shareFillSource(pixel, s.objectId, p, s.normal);
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
   // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
   bool counted = probe || (rate != RB_RATE_FULL && traces);
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
+  return share && !traces;
+}
+
+// Fills the lights left pending at `pixel`: the weighted mean of the light's visibility at
+// the tile's pixels that traced it or found the map certain, else the shadow map's.
+void fillPending(ivec2 pixel) {
+  uint self = fillIndex(pixel);
+  FillCentre c = fillCentre(fillObject[self], fillPosition[self], fillNormal[self]);
+  float weights[9];
+  uint slots[9];
+  for (int k = 0; k < 9; ++k) weights[k] = fillWeight(c, RB_RATE_FULL, pixel, ivec2(k % 3 - 1, k / 3 - 1), slots[k]);
+  for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
+    if (fillLight(self, i) != RB_FILL_NONE) continue;
+    float sum = 0.0, weight = 0.0;
+    for (int k = 0; k < 9; ++k) {
+      if (weights[k] <= 0.0) continue;
+      uint v = fillLight(slots[k], i);
+      if (v == RB_FILL_NONE) continue;
+      sum += weights[k] * float(v) / 254.0;
+      weight += weights[k];
+    }
+    float visible = weight >= RB_FILL_MIN_WEIGHT ? sum / weight : shadowFromLight(lights[i], worldFromDepth(pixel, texelFetch(gDepth, pixel, 0).r), c.normal);
+    imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
+  }
+}
+
+void main() {
+  ivec2 pixel = tilePixel();
+  bool fills = fillsInPass();
+  if (fills) clearFillSlot(pixel);
+  bool pending = traceShadows(pixel, fills);
+  if (!fills) return;
+  barrier();
+  if (pending) fillPending(pixel);
 }

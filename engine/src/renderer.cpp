@@ -13,8 +13,6 @@
 #include "rt_effects_comp.h"
 #include "rt_effects_comp_native.h"
 #include "rt_shadows_comp.h"
-#include "upsample_effects_comp.h"
-#include "upsample_shadows_comp.h"
 #include "rt_shadows_comp_native.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
@@ -24,6 +22,7 @@
 #include "passes/gbuffer.h"
 #include "passes/scene_gpu.h"
 #include "passes/screen_pass.h"
+#include "passes/trace_pass.h"
 #include "passes/shadow_maps.h"
 #include "select/selection_stage.h"
 #include "shared/config.h"
@@ -93,8 +92,6 @@ const char* passName(Pass pass) {
     case Pass::Environment: return "environment";
     case Pass::TraceShadows: return "trace_shadows";
     case Pass::TraceEffects: return "trace_effects";
-    case Pass::UpsampleShadows: return "upsample_shadows";
-    case Pass::UpsampleEffects: return "upsample_effects";
     case Pass::EnvFallback: return "env_fallback";
     case Pass::Lighting: return "lighting";
     case Pass::Compose: return "compose";
@@ -111,7 +108,7 @@ double FrameTiming::totalMs() const {
 
 double FrameTiming::traceMs() const {
   double ms = 0.0;
-  for (Pass p : {Pass::TraceShadows, Pass::UpsampleShadows, Pass::TraceEffects, Pass::UpsampleEffects}) ms += passMs[size_t(p)].value_or(0.0);
+  for (Pass p : {Pass::TraceShadows, Pass::TraceEffects}) ms += passMs[size_t(p)].value_or(0.0);
   return ms;
 }
 
@@ -179,10 +176,8 @@ struct Renderer::Impl {
   passes::ScreenPass lighting;
   passes::ScreenPass envFallback;
   passes::ScreenPass compose;
-  passes::ScreenPass traceShadows;
-  passes::ScreenPass traceEffects;
-  passes::ScreenPass upsampleShadows;
-  passes::ScreenPass upsampleEffects;
+  passes::TracePass traceShadows;
+  passes::TracePass traceEffects;
   Slot slots[kFramesInFlight];
   uint64_t frameIndex = 0;
   bool environmentReady = false;
@@ -208,9 +203,7 @@ struct Renderer::Impl {
         envFallback(ctx, pipelineLayout, kSpirv_env_fallback_comp),
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
         traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
-        traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)),
-        upsampleShadows(ctx, pipelineLayout, kSpirv_upsample_shadows_comp),
-        upsampleEffects(ctx, pipelineLayout, kSpirv_upsample_effects_comp) {
+        traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
@@ -220,18 +213,9 @@ struct Renderer::Impl {
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask, &targets.reflectionRadiance,
-                                   &targets.refractionRadiance})
+      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask})
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-      // No pixel starts with a traced path: stamps of frame 0 with no path bit.
-      vk::imageBarrier(cmd, targets.tracedStamp, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-      const VkClearColorValue zero{};
-      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      vkCmdClearColorImage(cmd, targets.tracedStamp.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       passes::ShadowMapPass::initialize(cmd, targets);
     });
   }
@@ -451,16 +435,10 @@ struct Renderer::Impl {
       timed(Pass::Environment, [&] { environment.record(fc); });
       environmentReady = true;
     }
-    // Items at a reduced ray rate leave pixels for the upsample passes.
-    const bool upsample = reducedRates();
+    // Items at a reduced ray rate are filled inside the trace passes (shaders/include/tile_fill.glsl).
     if (traced & RB_RT_SHADOWS) {
-      timed(Pass::TraceShadows, [&] { traceShadows.recordOverTiles(fc); });
+      timed(Pass::TraceShadows, [&] { traceShadows.recordOverTiles(fc, reducedRates()); });
       computeToCompute(cmd);
-      // Rates chosen per item keep shadows at full rate (shared/selection.h): nothing to fill.
-      if (upsample && settings.rayTracing.rate != ItemRate::Auto) {
-        timed(Pass::UpsampleShadows, [&] { upsampleShadows.recordOverTiles(fc, passes::ScreenPass::TileList::Upsample); });
-        computeToCompute(cmd);
-      }
     }
     // The environment fallback first: the lighting pass reads it to measure the display error
     // of the traced shadows (RB_RT_MEASURE_ITEMS).
@@ -469,11 +447,7 @@ struct Renderer::Impl {
     timed(Pass::Lighting, [&] { lighting.record(fc); });
     if (traced & (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS)) {
       computeToCompute(cmd);
-      timed(Pass::TraceEffects, [&] { traceEffects.recordOverTiles(fc); });
-      if (upsample) {
-        computeToCompute(cmd);
-        timed(Pass::UpsampleEffects, [&] { upsampleEffects.recordOverTiles(fc, passes::ScreenPass::TileList::Upsample); });
-      }
+      timed(Pass::TraceEffects, [&] { traceEffects.recordOverTiles(fc, reducedRates()); });
     }
     computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });

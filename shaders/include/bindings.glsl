@@ -57,7 +57,7 @@ layout(set = 0, binding = 32, std430) buffer ObjectRecordBlock { GpuObjectRecord
 layout(set = 0, binding = 33, std430) buffer SelectionBlock { uint selected[]; };
 layout(set = 0, binding = 34, std430) buffer TileListBlock {
   uvec4 tileDispatch;  // x tile count (= groups in x), y 1, z 1, w rays the trace passes traced
-  uint tiles[];        // tile x | tile y << 16; then the upsample passes' list (upsampleListBase)
+  uint tiles[];        // tile x | tile y << 16
 };
 
 layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost objectCosts[]; };
@@ -70,20 +70,12 @@ uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
 // The shadow maps of bindings 13 and 14 read as depths (no compare, nearest).
 layout(set = 0, binding = 38) uniform sampler2DArray shadowMapDepths;
 layout(set = 0, binding = 39) uniform samplerCubeArray pointShadowDepths;
-// Items at a reduced ray rate (include/rates.glsl): each path's traced radiance without the
-// surface's weight, and the frame and paths traced per pixel, for the upsample.
-layout(set = 0, binding = 40, rgba16f) uniform image2D reflectionRadiance;
-layout(set = 0, binding = 41, rgba16f) uniform image2D refractionRadiance;
-layout(set = 0, binding = 42, r32ui) uniform uimage2D tracedStamp;
 
 // The 8x8 tiles covering the screen.
 uint screenTileCount() {
   uvec2 size = frame.sizeLightsFrame.xy;
   return ((size.x + RB_TILE_SIZE - 1u) / RB_TILE_SIZE) * ((size.y + RB_TILE_SIZE - 1u) / RB_TILE_SIZE);
 }
-// Where in tiles[] the upsample passes' list starts: its dispatch header (4 words, x the tile
-// count), then its tiles (those holding items at a reduced ray rate).
-uint upsampleListBase() { return screenTileCount(); }
 
 // The 8x8 tile of a pass with one invocation per tile (coverage, tile list): its pixels
 // [first, last); false past the last tile.

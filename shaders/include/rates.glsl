@@ -25,18 +25,9 @@ bool rateTraces(uint rate, ivec2 pixel) {
   return true;
 }
 
-// The shadow mask where a reduced rate left a light's ray to the upsample
-// (shaders/upsample_shadows.comp), and the offset the upsample adds to what it fills in: it
-// reads only the values traced this frame while it writes, and the lighting pass takes the
-// offset off.
+// The shadow mask where a reduced rate left a light's ray to the tile's fill
+// (include/tile_fill.glsl), which overwrites it in the same pass.
 #define RB_MASK_PENDING -1.0
-#define RB_MASK_FILLED 2.0
-
-// The traced-path stamp of rt_effects.comp: the frame (30 bits) and which paths it traced at
-// a reduced rate (bit 0 reflection, bit 1 refraction).
-uint tracedStampOf(bool reflection, bool refraction) {
-  return (frame.sizeLightsFrame.w << 2) | (reflection ? 1u : 0u) | (refraction ? 2u : 0u);
-}
 
 // Whether the pixel's selected item `effect` is traced here this frame.
 bool itemTracedHere(uint objectId, uint effect, ivec2 pixel) { return rateTraces(itemRate(objectId, effect), pixel); }

@@ -1,4 +1,4 @@
-// Compute passes dispatched over the tile list (the trace passes, the upsample). The includer
+// Compute passes dispatched over the tile list (the trace passes). The includer
 // includes bindings.glsl.
 #ifndef RB_TILE_PIXEL_GLSL
 #define RB_TILE_PIXEL_GLSL
@@ -10,14 +10,8 @@
 // of those 1/2 traces, 32-63 the others. A SIMD batch or warp holding only pixels its items
 // skip then has nothing to do, where in row order every one would hold some pixels to trace
 // (a checkerboard leaves half of each row).
-// The upsample passes define RB_UPSAMPLE_TILES: their list of tiles holding items at a
-// reduced rate.
 ivec2 tilePixel() {
-#ifdef RB_UPSAMPLE_TILES
-  uint t = tiles[upsampleListBase() + 4u + gl_WorkGroupID.x];
-#else
   uint t = tiles[gl_WorkGroupID.x];
-#endif
   ivec2 origin = ivec2(t & 0xFFFFu, t >> 16) * RB_TILE_SIZE;
   if ((frame.rayTracing.w & RB_RT_RATES) == 0u) return origin + ivec2(gl_LocalInvocationID.xy);
   uint i = gl_LocalInvocationIndex, group = i >> 4u, k = i & 15u;

@@ -2,8 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Appends each 8x8 tile holding at least one selected pixel, or a probed one where the probe
 // traces this frame (include/probe.glsl), to the tile list, whose count is also the x of the
-// trace passes' indirect dispatch: no selected pixel, no work. A tile holding an item at a
-// reduced ray rate goes to the upsample passes' list too (bindings.glsl's upsampleListBase).
+// trace passes' indirect dispatch: no selected pixel, no work.
 // One invocation per tile: it checks the few objects the coverage pass noted for the tile,
 // and scans the tile's pixels only when the tile shows more (fetching every pixel cost
 // ~0.35 ms at 640x360 on lavapipe, most of the select pass for a small scene). No shared
@@ -24,25 +23,18 @@ void main() {
   // The selection bits that make a pixel of this tile traced: its items', and its probed
   // items' where the probe traces this tile.
   uint traced = RB_ITEMS_ALL | (probeTile(tile) ? RB_ITEMS_ALL << RB_PROBE_SHIFT : 0u);
-  const uint reducedRates = 0x3Fu << RB_RATE_SHIFT;  // any item's rate bits: not full
-  bool any = false, reduced = false;
-  bool seekReduced = (frame.rayTracing.w & RB_RT_RATES) != 0u;  // no rates in the frame: none to seek
+  bool any = false;
   if (tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] == 0u) {
     for (uint s = 0u; s + 1u < RB_TILE_OBJECT_WORDS; ++s) {
       uint v = tileObjects[base + s];
       any = any || (v != 0u && (selected[v - 1u] & traced) != 0u);
-      reduced = reduced || (v != 0u && (selected[v - 1u] & reducedRates) != 0u);
     }
   } else {
-    for (uint y = first.y; y < last.y && !(any && (reduced || !seekReduced)); ++y)
-      for (uint x = first.x; x < last.x && !(any && (reduced || !seekReduced)); ++x) {
+    for (uint y = first.y; y < last.y && !any; ++y)
+      for (uint x = first.x; x < last.x && !any; ++x) {
         uint id = texelFetch(gObjectId, ivec2(x, y), 0).r;
         any = any || (id != RB_NO_OBJECT && (selected[id] & traced) != 0u);
-        reduced = reduced || (id != RB_NO_OBJECT && (selected[id] & reducedRates) != 0u);
       }
   }
-  uint packed = tile.x | (tile.y << 16);
-  if (any) tiles[atomicAdd(tileDispatch.x, 1u)] = packed;
-  uint list = upsampleListBase();
-  if (reduced) tiles[list + 4u + atomicAdd(tiles[list], 1u)] = packed;
+  if (any) tiles[atomicAdd(tileDispatch.x, 1u)] = tile.x | (tile.y << 16);
 }

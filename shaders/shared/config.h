@@ -34,6 +34,8 @@
 #define RB_RT_MEASURE_ITEMS 2u
 #define RB_RT_SHORTEN_SHADOW_RAYS 4u
 #define RB_RT_RATES 8u  // some items may be traced at a reduced rate (include/tile_pixel.glsl)
+// The trace passes' specialization constant: they fill what reduced rates left (include/tile_fill.glsl).
+#define RB_FILL_CONSTANT_ID 0
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 

@@ -115,7 +115,7 @@ struct RenderSettings {
 };
 
 // Passes in frame order. Each is bracketed by timestamps; a skipped pass has no time.
-// The upsample passes fill what reduced ray rates did not trace (RayTracingSettings::rate).
+// The trace passes also fill what reduced ray rates did not trace (RayTracingSettings::rate).
 enum class Pass : uint32_t {
   GBuffer,
   Coverage,
@@ -123,11 +123,9 @@ enum class Pass : uint32_t {
   ShadowMaps,
   Environment,
   TraceShadows,
-  UpsampleShadows,
   EnvFallback,
   Lighting,
   TraceEffects,
-  UpsampleEffects,
   Compose,
   Count
 };
@@ -168,7 +166,7 @@ struct FrameTiming {
   std::optional<bool> costsMatchCpu;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   double totalMs() const;
-  double traceMs() const;    // the trace passes (shadows, effects) and their upsample
+  double traceMs() const;    // the trace passes (shadows, effects), their fill included
   double rtStageMs() const;  // the ray-tracing stage T bounds: coverage + select + trace
 };
 

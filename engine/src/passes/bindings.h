@@ -46,10 +46,7 @@ enum Binding : uint32_t {
   kItemCosts = 37,
   kShadowMapDepths = 38,
   kPointShadowDepths = 39,
-  kReflectionRadiance = 40,
-  kRefractionRadiance = 41,
-  kTracedStamp = 42,
-  kBindingCount = 43,
+  kBindingCount = 40,
 };
 
 }  // namespace raybudget::passes

@@ -175,9 +175,6 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   const VkDescriptorImageInfo depths[] = {{samplers.nearest, t.shadowMaps.view, ro}, {samplers.nearest, t.pointShadows.view, ro}};
   write(kShadowMapDepths, 1, nullptr, &depths[0]);
   write(kPointShadowDepths, 1, nullptr, &depths[1]);
-  const VkDescriptorImageInfo upsample[] = {{VK_NULL_HANDLE, t.reflectionRadiance.view, g}, {VK_NULL_HANDLE, t.refractionRadiance.view, g},
-                                            {VK_NULL_HANDLE, t.tracedStamp.view, g}};
-  for (uint32_t b = kReflectionRadiance; b <= kTracedStamp; ++b) write(b, 1, nullptr, &upsample[b - kReflectionRadiance]);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 

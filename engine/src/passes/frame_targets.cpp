@@ -48,9 +48,6 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.direct = image2d(ctx, kHdrFormat, width, height, storage);
   t.indirect = image2d(ctx, kHdrFormat, width, height, storage);
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage);
-  t.reflectionRadiance = image2d(ctx, kHdrFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
-  t.refractionRadiance = image2d(ctx, kHdrFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
-  t.tracedStamp = image2d(ctx, kIdFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));

@@ -38,9 +38,6 @@ struct FrameTargets {
   vk::Image envSource;                             // equirectangular HDR image, or 1x1 black
   vk::Image shadowMask;                            // ray-traced light visibility, a layer per light
   vk::Owned<VkImageView> shadowMaskArray;          // 2D-array view (also for one light)
-  // Ray rates: traced path radiance (without the surface's weight) and the frame and paths
-  // traced per pixel, which the upsample fills untraced pixels from.
-  vk::Image reflectionRadiance, refractionRadiance, tracedStamp;
   bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;
 

@@ -14,10 +14,4 @@ void ScreenPass::record(const FrameContext& fc) const {
   vkCmdDispatch(fc.cmd, (fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE, (fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE, 1);
 }
 
-void ScreenPass::recordOverTiles(const FrameContext& fc, TileList list) const {
-  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatchIndirect(fc.cmd, fc.selection.tileList.buffer, list == TileList::Upsample ? fc.selection.upsampleListOffset() : 0);
-}
-
 }  // namespace raybudget::passes

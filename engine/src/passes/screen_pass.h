@@ -13,11 +13,6 @@ class ScreenPass {
   ScreenPass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader);
   // Dispatches over every tile; the caller places the barriers between passes.
   void record(const FrameContext& fc) const;
-  // Dispatches over a tile list (SelectionBuffers::tileList): the trace passes' tiles, or the
-  // upsample passes' (tiles holding items at a reduced ray rate); its first word is the
-  // group count.
-  enum class TileList { Trace, Upsample };
-  void recordOverTiles(const FrameContext& fc, TileList list = TileList::Trace) const;
 
  private:
   vk::Owned<VkPipeline> pipeline_;

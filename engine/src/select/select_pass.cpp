@@ -16,7 +16,6 @@ void SelectPass::record(const passes::FrameContext& fc, SelectMode mode, uint32_
   const VkCommandBuffer cmd = fc.cmd;
   const uint32_t emptyDispatch[4] = {0, 1, 1, 0};  // no tiles yet: x = 0 groups
   vkCmdUpdateBuffer(cmd, fc.selection.tileList.buffer, 0, sizeof(emptyDispatch), emptyDispatch);
-  vkCmdUpdateBuffer(cmd, fc.selection.tileList.buffer, fc.selection.upsampleListOffset(), sizeof(emptyDispatch), emptyDispatch);
   const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};
   push.objectMaterial = glm::uvec4(objects, uint32_t(mode), rate, 0);

@@ -14,8 +14,6 @@ namespace raybudget::select {
 struct SelectionBuffers {
   uint32_t objects = 0;  // the scene's objects (each buffer holds at least one record)
   uint32_t tiles = 0;    // 8x8 tiles of the frame
-  // Where the upsample passes' tile list starts in tileList (bytes).
-  VkDeviceSize upsampleListOffset() const { return 16 + 4ull * tiles; }
   vk::Buffer coverage;       // GpuCoverage per object
   vk::Buffer objectParams;   // GpuObjectParams per object: K, Q, I and S, the items' priors
   vk::Buffer objectRecords;  // GpuObjectRecord per object: A, P, D, V, C, R
@@ -23,8 +21,7 @@ struct SelectionBuffers {
   vk::Buffer objectCosts;    // GpuObjectCost per object: learned work per pixel, this frame's work
   vk::Buffer itemCosts;      // GpuItemCost per item (RB_ITEMS_PER_OBJECT per object), then the frame's totals: what `benefit` learns
   vk::Buffer tileObjects;    // RB_TILE_OBJECT_WORDS per tile (shaders/select/coverage.comp)
-  // uvec4 dispatch (x = tiles, w = rays traced), then the tiles to trace; after them, at
-  // upsampleListOffset(), the same for the tiles holding items at a reduced ray rate.
+  // uvec4 dispatch (x = tiles, w = rays traced), then the tiles to trace.
   vk::Buffer tileList;
 };
 

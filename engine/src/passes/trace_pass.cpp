@@ -1,0 +1,27 @@
+#include "passes/trace_pass.h"
+
+#include "shared/config.h"
+
+namespace raybudget::passes {
+namespace {
+
+vk::Owned<VkPipeline> tracePipeline(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader, bool fill) {
+  const VkBool32 value = fill ? VK_TRUE : VK_FALSE;
+  const VkSpecializationMapEntry entry{RB_FILL_CONSTANT_ID, 0, sizeof(value)};
+  const VkSpecializationInfo info{1, &entry, sizeof(value), &value};
+  return vk::createComputePipeline(ctx, layout, shader, &info);
+}
+
+}  // namespace
+
+TracePass::TracePass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader)
+    : ctx_(ctx), layout_(layout), shader_(shader), plain_(tracePipeline(ctx, layout, shader, false)) {}
+
+void TracePass::recordOverTiles(const FrameContext& fc, bool fill) {
+  if (fill && !filling_) filling_ = tracePipeline(ctx_, layout_, shader_, true);
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fill ? filling_ : plain_);
+  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  vkCmdDispatchIndirect(fc.cmd, fc.selection.tileList.buffer, 0);
+}
+
+}  // namespace raybudget::passes

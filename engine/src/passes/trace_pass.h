@@ -1,0 +1,27 @@
+// A trace pass (shadows, or reflections and refractions) over the tile list, in two pipelines
+// from one shader: without and with the fill of reduced ray rates inside the pass
+// (shaders/include/tile_fill.glsl, specialized by its constant rbFill). The filling one is
+// built on first use; full-rate frames keep the plain one, whose shader has no barrier and no
+// shared memory (with them, tracing at full rate measured ~7% slower on lavapipe).
+#pragma once
+#include "passes/frame_context.h"
+#include "vk/context.h"
+#include "vk/owned.h"
+#include "vk/pipelines.h"
+
+namespace raybudget::passes {
+
+class TracePass {
+ public:
+  TracePass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader);
+  // Dispatches over the trace passes' tile list; `fill`: reduced ray rates are in the frame.
+  void recordOverTiles(const FrameContext& fc, bool fill);
+
+ private:
+  const vk::Context& ctx_;
+  VkPipelineLayout layout_;
+  vk::Spirv shader_;
+  vk::Owned<VkPipeline> plain_, filling_;
+};
+
+}  // namespace raybudget::passes
