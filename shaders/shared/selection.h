@@ -97,15 +97,23 @@ struct GpuObjectCost {
 // tile edges (the in-tile fill that replaced it differs by 0.002 on the court's mirror) against
 // full rate (mean display difference, tests/rates_test.cpp's metric), the median over the
 // court and the plaza, static and orbiting cameras, 480x270. Reflections keep 0.91 at 1/2
-// and 0.84 at 1/4, refractions 0.975 and 0.955, shadows 0.44 and 0.03. Each effect's hull
-// over (cost share, kept benefit) from (0, 0): reflections and refractions 1/4, 1/2, full;
-// shadows full alone (1/2 and 1/4 lie under the line to full). The segments' gains:
+// and 0.84 at 1/4, refractions 0.975 and 0.955, shadows 0.44 and 0.03 (shadows keep full rate
+// alone: at any cost share below, 1/2 and 1/4 lie under the line to full).
 #define RB_KEEP_QUARTER_REFLECTIONS 0.84
-#define RB_KEEP_HALF_GAIN_REFLECTIONS 0.07  // 0.91 - 0.84
-#define RB_KEEP_FULL_GAIN_REFLECTIONS 0.09  // 1 - 0.91
 #define RB_KEEP_QUARTER_REFRACTIONS 0.955
-#define RB_KEEP_HALF_GAIN_REFRACTIONS 0.02    // 0.975 - 0.955
-#define RB_KEEP_FULL_GAIN_REFRACTIONS 0.025  // 1 - 0.975
+#define RB_KEEP_FULL_GAIN_REFLECTIONS 0.16   // 1 - 0.84, a literal: glslang folds 1.0 - x in
+#define RB_KEEP_FULL_GAIN_REFRACTIONS 0.045  // double, C++ in float, and the two must round alike
+// The share of an item's full-rate cost a rate costs: not the share of its rays, as every
+// pixel of the item still reads its surface and the skipped ones are filled (include/
+// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, trace passes at 1/2 and 1/4 over
+// full, 0.79 and 0.62 on the WaterBottle orbit, 0.79 and 0.62 on the court (one run each).
+#define RB_COST_HALF 0.8
+#define RB_COST_QUARTER 0.6
+#define RB_COST_QUARTER_TO_FULL 0.4  // 1 - RB_COST_QUARTER
+// At these costs 1/2 lies under the line from 1/4 to full for both effects (reflections
+// 0.91 < 0.84 + 0.16 / 2, refractions 0.975 < 0.955 + 0.045 / 2): each hull is 1/4, full, two
+// segments: skip -> 1/4 (cost RB_COST_QUARTER, value RB_KEEP_QUARTER_*) and 1/4 -> full (the
+// rest of both).
 
 // 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /

@@ -35,19 +35,18 @@ uint32_t rateCode(ItemRate rate) {
   return RB_RATE_FULL;
 }
 
-float rateShare(uint32_t code) { return code == RB_RATE_HALF ? 0.5f : (code == RB_RATE_QUARTER ? 0.25f : 1.0f); }
+float rateShare(uint32_t code) { return code == RB_RATE_HALF ? float(RB_COST_HALF) : (code == RB_RATE_QUARTER ? float(RB_COST_QUARTER) : 1.0f); }
 
-uint32_t rateSegments(uint32_t effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
+uint32_t rateSegments(uint32_t effect) { return effect == RB_ITEM_SHADOWS ? 1u : 2u; }
 
 RateSegment rateSegment(uint32_t effect, uint32_t k) {
   if (effect == RB_ITEM_SHADOWS) return {1.0f, 1.0f, RB_RATE_FULL};
   const bool reflections = effect == RB_ITEM_REFLECTIONS;
   RateSegment s;
-  s.costShare = k == 2 ? 0.5f : 0.25f;
-  s.rate = k == 0 ? RB_RATE_QUARTER : (k == 1 ? RB_RATE_HALF : RB_RATE_FULL);
+  s.costShare = float(k == 0 ? RB_COST_QUARTER : RB_COST_QUARTER_TO_FULL);
   if (k == 0) s.valueShare = float(reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS);
-  else if (k == 1) s.valueShare = float(reflections ? RB_KEEP_HALF_GAIN_REFLECTIONS : RB_KEEP_HALF_GAIN_REFRACTIONS);
   else s.valueShare = float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS);
+  s.rate = k == 0 ? RB_RATE_QUARTER : RB_RATE_FULL;
   return s;
 }
 

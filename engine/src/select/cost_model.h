@@ -17,8 +17,8 @@
 
 namespace raybudget::select {
 
-// A ray rate's code in the frame's selection (RB_RATE_*), and the share of an item's pixels it
-// traces each frame (1, 1/2, 1/4: powers of two, so a cost scaled by it rounds alike on the GPU).
+// A ray rate's code in the frame's selection (RB_RATE_*), and the share of an item's full-rate
+// cost it costs (RB_COST_*: a single rounded multiply, alike on the GPU).
 uint32_t rateCode(ItemRate rate);
 float rateShare(uint32_t code);
 // RB_RATE_AUTO's segments of an item (shared/selection.h; select_common.glsl's rateSegment):
