@@ -126,15 +126,19 @@ shared vec3 fillReflection[RB_TILE_PIXELS];
 shared vec3 fillRefraction[RB_TILE_PIXELS];
 shared uint fillPaths[RB_TILE_PIXELS];
 
-// The pixel's paths their items skip this frame at a reduced rate (rt_effects' own tests).
-bvec2 pendingPaths(Surface s, ivec2 pixel) {
+// Whether the frame traces the surface's reflection (transmission) path where its item is
+// traced: the effect is on, and the surface is smooth enough (transmissive).
+bvec2 surfacePaths(Surface s) {
   uint effects = frame.rayTracing.x;
-  bvec2 pending = bvec2(false);
-  if ((effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() && itemSelected(s.objectId, RB_ITEM_REFLECTIONS))
-    pending.x = !rateTraces(itemRate(s.objectId, RB_ITEM_REFLECTIONS), pixel);
-  if ((effects & RB_RT_REFRACTIONS) != 0u && s.transmission * (1.0 - s.metallic) > 0.0 && itemSelected(s.objectId, RB_ITEM_REFRACTIONS))
-    pending.y = !rateTraces(itemRate(s.objectId, RB_ITEM_REFRACTIONS), pixel);
-  return pending;
+  return bvec2((effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness(),
+               (effects & RB_RT_REFRACTIONS) != 0u && s.transmission * (1.0 - s.metallic) > 0.0);
+}
+
+// The pixel's paths their selected items skip this frame at a reduced rate.
+bvec2 pendingPaths(Surface s, ivec2 pixel) {
+  bvec2 paths = surfacePaths(s);
+  return bvec2(paths.x && itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && !rateTraces(itemRate(s.objectId, RB_ITEM_REFLECTIONS), pixel),
+               paths.y && itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && !rateTraces(itemRate(s.objectId, RB_ITEM_REFRACTIONS), pixel));
 }
 
 // Fills the paths pending at `pixel` from the tile's traced neighbours: their mean radiance
@@ -175,16 +179,13 @@ void fillPending(ivec2 pixel, Surface s, bvec2 pending) {
 
 void traceEffects(ivec2 pixel, bool lit, Surface s) {
   if (!lit) return;
-  uint effects = frame.rayTracing.x;
-  float transmission = s.transmission * (1.0 - s.metallic);
   // Per path: whether its item is probed here rather than selected.
   bool probed[2] = bool[2](!itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && itemProbed(s.objectId, RB_ITEM_REFLECTIONS, pixel),
                            !itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && itemProbed(s.objectId, RB_ITEM_REFRACTIONS, pixel));
   uint rates[2] = uint[2](itemRate(s.objectId, RB_ITEM_REFLECTIONS), itemRate(s.objectId, RB_ITEM_REFRACTIONS));
-  bool reflects = (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness() &&
-                  ((itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && rateTraces(rates[0], pixel)) || probed[0]);
-  bool refracts = (effects & RB_RT_REFRACTIONS) != 0u && transmission > 0.0 &&
-                  ((itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && rateTraces(rates[1], pixel)) || probed[1]);
+  bvec2 paths = surfacePaths(s);
+  bool reflects = paths.x && ((itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && rateTraces(rates[0], pixel)) || probed[0]);
+  bool refracts = paths.y && ((itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && rateTraces(rates[1], pixel)) || probed[1]);
   if (!reflects && !refracts) return;  // the environment fallback stands
   uint start = clockNow();
   vec3 p, ng;

@@ -86,6 +86,7 @@ void fillPending(ivec2 pixel) {
   FillCentre c = fillCentre(fillObject[self], fillPosition[self], fillNormal[self]);
   float weights[9];
   uint slots[9];
+  // No rate test (RB_RATE_FULL): a skipped neighbour's lights the classifier found certain count too.
   for (int k = 0; k < 9; ++k) weights[k] = fillWeight(c, RB_RATE_FULL, pixel, ivec2(k % 3 - 1, k / 3 - 1), slots[k]);
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     if (fillLight(self, i) != RB_FILL_NONE) continue;
