@@ -4,9 +4,10 @@
 // every candidate accepted. Used by the oracle tests and the throughput benchmark.
 #define RB_BVH_SET 0
 #define RB_BVH_BINDING 0
+#include "shared/config.h"
 #include "include/rayquery.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 layout(set = 0, binding = 3, std430) readonly buffer RayBlock { GpuRay rays[]; };
 layout(set = 0, binding = 4, std430) writeonly buffer HitBlock { GpuHit hits[]; };
 layout(push_constant) uniform PushBlock {

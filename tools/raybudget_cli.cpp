@@ -8,7 +8,6 @@
 #include "cli_options.h"
 #include "sweep.h"
 #include "raybudget/raybudget.h"
-#include "vk/context.h"
 
 namespace {
 
@@ -82,7 +81,10 @@ int main(int argc, char** argv) {
       return args.empty() ? 2 : 0;
     }
     if (args[0] == "devices") {
-      for (const std::string& d : raybudget::vk::listDevices()) std::cout << d << '\n';
+      for (const raybudget::core::DeviceReport& d : raybudget::core::availableDevices()) {
+        std::cout << d.description << (d.missing.empty() ? ": can run raybudget" : ": cannot run raybudget") << '\n';
+        for (const std::string& m : d.missing) std::cout << "  " << m << '\n';
+      }
       return 0;
     }
     if (args[0] == "render") return render(raybudget::cli::parseRender({args.begin() + 1, args.end()}));

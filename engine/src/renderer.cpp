@@ -159,7 +159,8 @@ struct Renderer::Impl {
 
   RenderSettings settings;
   glm::vec3 sunDirection;
-  vk::Context ctx;
+  std::unique_ptr<vk::Context> context;  // the renderer's own device, or the host's borrowed
+  vk::Context& ctx;
   passes::SceneGpu scene;
   passes::FrameTargets targets;
   passes::Samplers samplers;
@@ -183,10 +184,11 @@ struct Renderer::Impl {
   bool environmentReady = false;
   bool objectsMoved = false;
 
-  Impl(const Scene& s, const RenderSettings& rs)
+  Impl(const Scene& s, const RenderSettings& rs, std::unique_ptr<vk::Context> device)
       : settings(rs),
         sunDirection(sunOf(s)),
-        ctx(vk::ContextOptions{rs.validation, rs.device}),
+        context(std::move(device)),
+        ctx(*context),
         scene(passes::uploadScene(ctx, s, rs)),
         targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount)),
         samplers(passes::createSamplers(ctx)),
@@ -493,6 +495,15 @@ struct Renderer::Impl {
     selection.setCostModel(m);
   }
 
+  // Waits for the frames in flight without reading them (teardown).
+  void waitForFrames() {
+    for (Slot& slot : slots)
+      if (slot.inFlight) {
+        VkFence fence = slot.fence;
+        vkWaitForFences(ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX);  // no throw in a destructor
+      }
+  }
+
   std::vector<FrameTiming> finish() {
     std::vector<FrameTiming> done;
     // Oldest first: the slot after the last-used one holds the older frame.
@@ -504,11 +515,19 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings) {
   validateSettings(settings);
-  impl_ = std::make_unique<Impl>(scene, settings);
+  const vk::DescriptorNeeds needs = passes::descriptorNeeds(uint32_t(scene.textures.size()), false);
+  impl_ = std::make_unique<Impl>(scene, settings, std::make_unique<vk::Context>(vk::ContextOptions{settings.validation, settings.device, needs}));
+}
+
+Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const core::HostDevice& host) {
+  validateSettings(settings);
+  if (settings.validation || !settings.device.empty())
+    throw Error("RenderSettings::validation and ::device choose the renderer's own device; on a host's device the host's instance decides them");
+  impl_ = std::make_unique<Impl>(scene, settings, std::make_unique<vk::Context>(host));
 }
 
 Renderer::~Renderer() {
-  if (impl_) vkDeviceWaitIdle(impl_->ctx.device());
+  if (impl_) impl_->waitForFrames();
 }
 
 std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->render(camera); }

@@ -9,7 +9,7 @@
 // records. The 64-bit coordinate sums are kept as lo/hi words with an explicit carry.
 #include "include/bindings.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 // A specialization: classify the pixels too. A pipeline of its own, used only when asked
 // for: its four gathers per quad took the pass from 1.0 to 2.3 ms on the court at 640x360 on
 // lavapipe, and even skipped at run time the code cost 0.15 ms.

@@ -5,7 +5,7 @@
 // tests check this against.
 #include "include/bindings.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
 
 float wide(uint lo, uint hi) {

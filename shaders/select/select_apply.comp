@@ -5,9 +5,10 @@
 // pixel count noted; with `benefit` each item's S and traced pixels too, the candidate items
 // the walk left out are marked for the probe when it runs, and the selected ones get their
 // ray rate (shared/selection.h).
+#include "shared/config.h"
 #include "include/select_common.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

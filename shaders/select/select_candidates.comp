@@ -10,9 +10,10 @@
 // work per pixel and its benefit (below).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#include "shared/config.h"
 #include "include/select_common.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 
 // Appends a candidate and adds its cost to the candidates' total for allCandidatesFit
 // (select_common.glsl): in units of 2^-20 budget rounded up, one candidate at most 2^21

@@ -9,9 +9,10 @@
 //   position (cost, slot, pointer window, value): the window is where the node's
 //   higher-relevance pointers end, the first position of its group of equal relevance
 //   (found by binary search in the relevance order), and they start N before it.
+#include "shared/config.h"
 #include "include/select_common.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 
 // The first position in the relevance order whose key's first word is `word` (sorted
 // ascending: most relevant first, equal relevance together).

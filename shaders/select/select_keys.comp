@@ -3,9 +3,10 @@
 // The bitonic sort's keys: each candidate's (select_common.glsl's candidateKey), and
 // padding (all ones, sorted last) up to the power-of-two size the sort needs. The merge
 // sort computes its keys itself (select_block_sort.comp).
+#include "shared/config.h"
 #include "include/select_common.glsl"
 
-layout(local_size_x = 256) in;
+layout(local_size_x = RB_KEYS_GROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

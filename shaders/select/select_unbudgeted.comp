@@ -5,7 +5,7 @@
 // shaders/select/ (engine/src/select/gpu_selector.h), then the tile list follows.
 #include "include/bindings.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
 
 void main() {

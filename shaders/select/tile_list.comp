@@ -11,7 +11,7 @@
 #include "include/bindings.glsl"
 #include "include/probe.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = RB_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
 
 void main() {

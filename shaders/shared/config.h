@@ -4,6 +4,10 @@
 
 // Compute passes over the screen run 8x8 tiles: the later trace passes dispatch per tile.
 #define RB_TILE_SIZE 8
+// Lanes of the one-dimensional passes (one invocation per object, tile, candidate or ray),
+// and of the selection's key pass; the host dispatches groupsFor(n, ...) (vk/pipelines.h).
+#define RB_GROUP_SIZE 64
+#define RB_KEYS_GROUP_SIZE 256
 
 // Object-ID value of pixels that show no object (the G-buffer clear value).
 #define RB_NO_OBJECT 0xFFFFFFFFu

@@ -78,6 +78,16 @@ inline void expectRefusedNaming(const Scene& scene, const RenderSettings& settin
   }
 }
 
+// The same on a host's device.
+inline void expectRefusedNamingWith(const Scene& scene, const RenderSettings& settings, const core::HostDevice& host, const std::string& what) {
+  try {
+    Renderer r(scene, settings, host);
+    ADD_FAILURE() << "accepted, though " << what << " is wrong";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
 // The objects each 8x8 tile of an object-ID image shows (tiles row by row; pixels showing
 // no object left out).
 inline std::vector<std::set<uint32_t>> objectsPerTile(const std::vector<uint32_t>& ids, uint32_t width, uint32_t height) {

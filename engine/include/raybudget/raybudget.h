@@ -1,6 +1,7 @@
 // raybudget: the one header an integrating engine includes.
 #pragma once
 #include "raybudget/camera.h"
+#include "raybudget/core.h"
 #include "raybudget/error.h"
 #include "raybudget/image_io.h"
 #include "raybudget/renderer.h"

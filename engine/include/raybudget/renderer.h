@@ -10,6 +10,7 @@
 
 #include "raybudget/bvh_options.h"
 #include "raybudget/camera.h"
+#include "raybudget/core.h"
 #include "raybudget/scene.h"
 
 namespace raybudget {
@@ -235,7 +236,11 @@ struct AccelStats {
 
 class Renderer {
  public:
+  // On a device of its own (RenderSettings::device, ::validation).
   Renderer(const Scene& scene, const RenderSettings& settings);
+  // On the host's device (raybudget/core.h): frames are submitted to host.queue from the
+  // thread calling render(), readback() and finish().
+  Renderer(const Scene& scene, const RenderSettings& settings, const core::HostDevice& host);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

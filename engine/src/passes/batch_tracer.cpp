@@ -6,6 +6,7 @@
 #include "bvh/ray_binning.h"
 #include "passes/bvh_buffers.h"
 #include "passes/native_accel.h"
+#include "shared/config.h"
 #include "trace_rays_comp.h"
 #include "trace_rays_comp_native.h"
 #include "vk/check.h"
@@ -18,7 +19,6 @@ namespace {
 
 // Bindings of trace_rays.comp: the tracer's three (rayquery.glsl), then rays and hits.
 constexpr uint32_t kRays = 3, kHits = 4;
-constexpr uint32_t kGroupSize = 64;
 
 struct Push {
   uint32_t count;
@@ -171,7 +171,7 @@ struct BatchTracer::Impl {
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
       vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       timestamps.begin(cmd, 0, 0);
-      vkCmdDispatch(cmd, (push.count + kGroupSize - 1) / kGroupSize, 1, 1);
+      vkCmdDispatch(cmd, vk::groupsFor(push.count, RB_GROUP_SIZE), 1, 1);
       timestamps.end(cmd, 0, 0);
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                         VK_ACCESS_2_TRANSFER_READ_BIT);

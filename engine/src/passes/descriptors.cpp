@@ -33,6 +33,25 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
 
 }  // namespace
 
+vk::DescriptorNeeds descriptorNeeds(uint32_t textureCount, bool nativeTracer) {
+  vk::DescriptorNeeds n;
+  for (uint32_t b = 0; b < kBindingCount; ++b) {
+    const BindingInfo info = bindingInfo(b, textureCount, nativeTracer);
+    switch (info.type) {
+      case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: n.storageBuffers += info.count; break;
+      case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: n.uniformBuffers += info.count; break;
+      case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: n.storageImages += info.count; break;
+      case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER: n.sampledImages += info.count; break;  // counted as sampled images
+      case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+        n.sampledImages += info.count;
+        n.samplers += info.count;
+        break;
+      default: break;  // the acceleration structure has a limit of its own (at least 16)
+    }
+  }
+  return n;
+}
+
 Samplers createSamplers(const vk::Context& ctx) {
   Samplers s;
   VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};

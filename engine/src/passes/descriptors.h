@@ -7,6 +7,7 @@
 #include "passes/scene_gpu.h"
 #include "select/selection_buffers.h"
 #include "vk/context.h"
+#include "vk/device_requirements.h"
 #include "vk/owned.h"
 #include "vk/resources.h"
 
@@ -20,6 +21,9 @@ struct Samplers {
 };
 
 Samplers createSamplers(const vk::Context& ctx);
+
+// The descriptors every stage sees through the set's layout (the device's per-stage limits).
+vk::DescriptorNeeds descriptorNeeds(uint32_t textureCount, bool nativeTracer);
 
 vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount, bool nativeTracer);
 vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount, bool nativeTracer);

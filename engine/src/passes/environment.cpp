@@ -13,7 +13,7 @@ EnvironmentPass::EnvironmentPass(const vk::Context& ctx, VkPipelineLayout layout
 
 void EnvironmentPass::record(const FrameContext& fc) const {
   const FrameTargets& t = fc.targets;
-  const uint32_t groups = (RB_ENV_SIZE + RB_TILE_SIZE - 1) / RB_TILE_SIZE;
+  const uint32_t groups = vk::groupsFor(RB_ENV_SIZE, RB_TILE_SIZE);
   // 1. Sky radiance into mip 0, then a blitted mip chain for filtered sampling.
   vk::imageBarrier(fc.cmd, t.sky, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
@@ -37,7 +37,7 @@ void EnvironmentPass::record(const FrameContext& fc) const {
     push.objectMaterial.x = mip;
     vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
     const uint32_t size = std::max(RB_ENV_SIZE >> mip, 1);
-    const uint32_t g = (size + RB_TILE_SIZE - 1) / RB_TILE_SIZE;
+    const uint32_t g = vk::groupsFor(size, RB_TILE_SIZE);
     vkCmdDispatch(fc.cmd, g, g, 6);
   }
   vk::imageBarrier(fc.cmd, t.env, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

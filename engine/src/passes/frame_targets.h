@@ -5,6 +5,7 @@
 
 #include "passes/scene_gpu.h"
 #include "shared/config.h"
+#include "vk/pipelines.h"
 #include "vk/resources.h"
 
 namespace raybudget::passes {
@@ -22,7 +23,7 @@ inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 struct FrameTargets {
   uint32_t width = 0, height = 0;
   // 8x8 tiles covering the frame (the tile list, the per-tile passes).
-  uint32_t tileCount() const { return ((width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((height + RB_TILE_SIZE - 1) / RB_TILE_SIZE); }
+  uint32_t tileCount() const { return vk::groupsFor(width, RB_TILE_SIZE) * vk::groupsFor(height, RB_TILE_SIZE); }
   // G-buffer (color attachments in this order, then depth).
   vk::Image depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position;
   // Compute outputs, kept in GENERAL layout.

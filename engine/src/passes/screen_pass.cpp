@@ -2,6 +2,7 @@
 
 #include "passes/frame_targets.h"
 #include "shared/config.h"
+#include "vk/pipelines.h"
 
 namespace raybudget::passes {
 
@@ -11,7 +12,7 @@ ScreenPass::ScreenPass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spir
 void ScreenPass::record(const FrameContext& fc) const {
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatch(fc.cmd, (fc.targets.width + RB_TILE_SIZE - 1) / RB_TILE_SIZE, (fc.targets.height + RB_TILE_SIZE - 1) / RB_TILE_SIZE, 1);
+  vkCmdDispatch(fc.cmd, vk::groupsFor(fc.targets.width, RB_TILE_SIZE), vk::groupsFor(fc.targets.height, RB_TILE_SIZE), 1);
 }
 
 }  // namespace raybudget::passes

@@ -33,7 +33,7 @@ void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify ? classifying_ : coverage_);
   passes::bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatch(cmd, (fc.selection.tiles + 63) / 64, 1, 1);  // one invocation per tile
+  vkCmdDispatch(cmd, vk::groupsFor(fc.selection.tiles, RB_GROUP_SIZE), 1, 1);  // one invocation per tile
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   const uint32_t objects = fc.selection.objects;
@@ -41,7 +41,7 @@ void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
   push.objectMaterial.x = objects;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, metrics_);
   vkCmdPushConstants(cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
-  vkCmdDispatch(cmd, (objects + 63) / 64, 1, 1);
+  vkCmdDispatch(cmd, vk::groupsFor(objects, RB_GROUP_SIZE), 1, 1);
 }
 
 }  // namespace raybudget::select

@@ -13,6 +13,7 @@
 #include "select_merge_comp.h"
 #include "select_walk_comp.h"
 #include "shared/selection.h"
+#include "shared/config.h"
 #include "vk/check.h"
 #include "vk/compute_set.h"
 #include "vk/pipelines.h"
@@ -122,10 +123,10 @@ struct GpuSelector::Impl {
                       VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
-    dispatch(cmd, candidatesFromObjects, push, (objects + 63) / 64);
+    dispatch(cmd, candidatesFromObjects, push, vk::groupsFor(objects, RB_GROUP_SIZE));
     orderForWalk(cmd, push, policy, uint32_t(most));
     dispatch(cmd, walk, push, 1);
-    dispatch(cmd, apply, push, (objects + 63) / 64);
+    dispatch(cmd, apply, push, vk::groupsFor(objects, RB_GROUP_SIZE));
   }
 
   // Binds `pipeline` with `push`, records the dispatch, then a barrier for the next step.
@@ -146,7 +147,7 @@ struct GpuSelector::Impl {
   void orderForWalk(VkCommandBuffer cmd, const SelectPush& push, Policy policy, uint32_t most) {
     sortOrder(cmd, push, 0, most);
     if (policy == Policy::Paper) sortOrder(cmd, push, 1, most);
-    dispatch(cmd, gather, push, (most + 63) / 64);
+    dispatch(cmd, gather, push, vk::groupsFor(most, RB_GROUP_SIZE));
   }
 
   // A sort of one order (0: the policy's, 1: `paper`'s relevance order) of up to `most`
@@ -159,7 +160,7 @@ struct GpuSelector::Impl {
       // frame mode only the GPU knows how many there are); the block sort writes each merge
       // pass's indirect dispatch, empty where the candidates need no such pass (on lavapipe
       // a dispatch costs ~0.07 ms even when all its invocations exit at once).
-      dispatch(cmd, blockSort, push, (most + RB_MERGE_BLOCK - 1) / RB_MERGE_BLOCK);
+      dispatch(cmd, blockSort, push, vk::groupsFor(most, RB_MERGE_BLOCK));
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                         VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
       uint32_t pass = 0;
@@ -170,7 +171,7 @@ struct GpuSelector::Impl {
       }
       return;
     }
-    dispatch(cmd, keys, push, (push.sizes.y + 255) / 256);
+    dispatch(cmd, keys, push, vk::groupsFor(push.sizes.y, RB_KEYS_GROUP_SIZE));
     push.stage.x = 0;  // every stage up to the block size in one dispatch
     push.stage.y = 0;
     dispatch(cmd, bitonic, push, push.sizes.y / kBlock);

@@ -5,6 +5,7 @@
 #include "select/object_params.h"
 #include "shared/config.h"
 #include "vk/check.h"
+#include "vk/pipelines.h"
 
 namespace raybudget::select {
 
@@ -24,7 +25,7 @@ SelectionBuffers createSelectionBuffers(const vk::Context& ctx, uint32_t objects
   constexpr VkBufferUsageFlags kCopy = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   SelectionBuffers b;
   b.objects = objects;
-  b.tiles = ((width + RB_TILE_SIZE - 1) / RB_TILE_SIZE) * ((height + RB_TILE_SIZE - 1) / RB_TILE_SIZE);
+  b.tiles = vk::groupsFor(width, RB_TILE_SIZE) * vk::groupsFor(height, RB_TILE_SIZE);
   const VkDeviceSize records = std::max<VkDeviceSize>(1, b.objects);
   b.coverage = vk::createBuffer(ctx, records * sizeof(gpu::GpuCoverage), kStorage | kCopy, false);
   b.objectParams = vk::createDeviceBuffer(ctx, params, kStorage | kCopy);

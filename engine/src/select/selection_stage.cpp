@@ -237,13 +237,13 @@ struct SelectionStage::Impl {
     const auto* after = static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped);
     const auto* records = static_cast<const gpu::GpuObjectRecord*>(slot.records.mapped);
     const auto* params = static_cast<const gpu::GpuObjectParams*>(slot.params.mapped);
-    const auto* coverage = static_cast<const gpu::GpuCoverage*>(slot.coverage.mapped);
+    const auto* counts = static_cast<const gpu::GpuCoverage*>(slot.coverage.mapped);
     const auto* selected = static_cast<const uint32_t*>(slot.selection.mapped);
     const ItemFrame frame = slot.items;
     auto pixelsOf = [&](uint32_t i, uint32_t e) -> uint32_t {
       if (!(frame.effects & (1u << e))) return 0;
       if (e == RB_ITEM_SHADOWS) return frame.lights > 0 ? std::bit_cast<uint32_t>(records[i].crCandidatePixels.w) : 0u;
-      return e == RB_ITEM_REFLECTIONS ? coverage[i].sumYHi.y : coverage[i].sumYHi.z;
+      return e == RB_ITEM_REFLECTIONS ? counts[i].sumYHi.y : counts[i].sumYHi.z;
     };
     const uint32_t items = buffers.objects * RB_ITEMS_PER_OBJECT;
     // With rates chosen per item the candidates are the items' rate segments.

@@ -14,6 +14,6 @@ struct AccelFunctions {
 };
 
 // Loads every entry point; throws naming the first one the device does not return.
-AccelFunctions loadAccelFunctions(VkDevice device);
+AccelFunctions loadAccelFunctions(PFN_vkGetDeviceProcAddr getProcAddr, VkDevice device);
 
 }  // namespace raybudget::vk

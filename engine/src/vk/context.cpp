@@ -17,14 +17,6 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBit
   return VK_FALSE;
 }
 
-bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
-  uint32_t n = 0;
-  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, nullptr));
-  std::vector<VkExtensionProperties> exts(n);
-  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, exts.data()));
-  return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
-}
-
 bool hasLayer(const char* name) {
   uint32_t n = 0;
   VK_CHECK(vkEnumerateInstanceLayerProperties(&n, nullptr));
@@ -110,134 +102,96 @@ Owned<VkInstance> createInstance(bool validation, Context* self, Owned<VkDebugUt
 }  // namespace
 
 Context::Context(const ContextOptions& options) : validation_(options.validation) {
-  instance_ = createInstance(options.validation, this, messenger_);
+  ownedInstance_ = createInstance(options.validation, this, messenger_);
+  instance_ = ownedInstance_;
 
-  // Device choice: the named one, else the best type (discrete > integrated > virtual > CPU).
+  // Device choice: the named one, else the best type (discrete > integrated > virtual > CPU)
+  // among those that meet the requirements.
   std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
   if (devices.empty()) throw Error("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
   std::vector<std::pair<int, VkPhysicalDevice>> ranked;
-  std::string names;
+  std::string names, reasons;
   for (VkPhysicalDevice d : devices) {
+    const DeviceCapabilities caps = queryCapabilities(d);
+    names += (names.empty() ? "" : ", ") + caps.name;
+    if (!options.deviceName.empty() && caps.name.find(options.deviceName) == std::string::npos) continue;
+    const std::vector<std::string> missing = missingRequirements(caps, options.descriptorNeeds);
+    for (const std::string& m : missing) reasons += "\n  " + m;
+    if (!missing.empty()) continue;
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(d, &p);
-    names += std::string(names.empty() ? "" : ", ") + p.deviceName;
-    if (!options.deviceName.empty() && std::string(p.deviceName).find(options.deviceName) == std::string::npos) continue;
-    if (p.apiVersion < VK_API_VERSION_1_3) continue;
     ranked.push_back({typeRank(p.deviceType), d});
   }
   if (ranked.empty())
-    throw Error("no Vulkan 1.3 device" + (options.deviceName.empty() ? std::string() : " matching '" + options.deviceName + "'") +
-                " among: " + names);
+    throw Error("no Vulkan device" + (options.deviceName.empty() ? std::string() : " matching '" + options.deviceName + "'") +
+                " can run raybudget (devices: " + names + ")" + reasons);
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   physical_ = ranked.front().second;
-  vkGetPhysicalDeviceProperties(physical_, &properties_);
-  vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 
-  uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, families.data());
-  const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-  auto family = std::find_if(families.begin(), families.end(),
-                             [&](const VkQueueFamilyProperties& f) { return (f.queueFlags & need) == need && f.timestampValidBits > 0; });
-  if (family == families.end()) throw Error(std::string(properties_.deviceName) + ": no graphics+compute queue with timestamps");
-  queueFamily_ = uint32_t(family - families.begin());
-
-  // Features we rely on: dynamic rendering and sync2 (1.3), bindless textures (1.2).
-  VkPhysicalDeviceRayQueryFeaturesKHR fRq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR fAs{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  const std::vector<const char*> rayQueryExtensions = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, VK_KHR_RAY_QUERY_EXTENSION_NAME,
-                                                       VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
-  const bool rayQueryExts = std::all_of(rayQueryExtensions.begin(), rayQueryExtensions.end(),
-                                        [&](const char* e) { return hasDeviceExtension(physical_, e); });
-  fAs.pNext = &fRq;
-  // The trace passes time each pixel's work with the subgroup clock (VK_KHR_shader_clock): what
-  // the `benefit` policy learns each item's cost from (shaders/include/item_stats.glsl).
-  if (!hasDeviceExtension(physical_, VK_KHR_SHADER_CLOCK_EXTENSION_NAME))
-    throw Error(std::string(properties_.deviceName) + " lacks the required extension " VK_KHR_SHADER_CLOCK_EXTENSION_NAME);
-  VkPhysicalDeviceShaderClockFeaturesKHR fClock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
-  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  f13.pNext = &fClock;
-  if (rayQueryExts) fClock.pNext = &fAs;
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  f12.pNext = &f13;
-  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  f2.pNext = &f12;
-  vkGetPhysicalDeviceFeatures2(physical_, &f2);
-  auto require = [&](VkBool32 have, const char* name) {
-    if (!have) throw Error(std::string(properties_.deviceName) + " lacks the required feature " + name);
-  };
-  require(f13.dynamicRendering, "dynamicRendering");
-  require(f13.synchronization2, "synchronization2");
-  require(f13.maintenance4, "maintenance4");  // glslang's SPIR-V 1.6 uses LocalSizeId
-  require(f12.runtimeDescriptorArray, "runtimeDescriptorArray");
-  require(f12.shaderSampledImageArrayNonUniformIndexing, "shaderSampledImageArrayNonUniformIndexing");
-  require(f2.features.imageCubeArray, "imageCubeArray");
-  require(fClock.shaderSubgroupClock, "shaderSubgroupClock");
-  rayQuery_ = rayQueryExts && fRq.rayQuery && fAs.accelerationStructure && f12.bufferDeviceAddress;
-  VkPhysicalDeviceRayQueryFeaturesKHR eRq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
-  eRq.rayQuery = VK_TRUE;
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR eAs{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  eAs.accelerationStructure = VK_TRUE;
-  eAs.pNext = &eRq;
-  VkPhysicalDeviceShaderClockFeaturesKHR eClock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
-  eClock.shaderSubgroupClock = VK_TRUE;
-  if (rayQuery_) eClock.pNext = &eAs;
-  VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  e13.pNext = &eClock;
-  e13.dynamicRendering = VK_TRUE;
-  e13.synchronization2 = VK_TRUE;
-  e13.maintenance4 = VK_TRUE;
-  VkPhysicalDeviceVulkan12Features e12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  e12.pNext = &e13;
-  e12.runtimeDescriptorArray = VK_TRUE;
-  e12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
-  e12.hostQueryReset = f12.hostQueryReset;
-  e12.bufferDeviceAddress = rayQuery_ ? VK_TRUE : VK_FALSE;
-  VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  e2.pNext = &e12;
-  e2.features.imageCubeArray = VK_TRUE;
-  e2.features.samplerAnisotropy = f2.features.samplerAnisotropy;
-  e2.features.shaderStorageImageWriteWithoutFormat = f2.features.shaderStorageImageWriteWithoutFormat;
-  shaderFloat64_ = f2.features.shaderFloat64 == VK_TRUE;
-  e2.features.shaderFloat64 = f2.features.shaderFloat64;
-
+  core::DeviceSetup setup = deviceSetup(queryCapabilities(physical_));
+  queueFamily_ = setup.queueFamily;
+  rayQuery_ = setup.rayQueryEnabled;
+  shaderFloat64_ = setup.shaderFloat64Enabled;
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   qci.queueFamilyIndex = queueFamily_;
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  dci.pNext = &e2;
+  dci.pNext = setup.chain();
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
-  std::vector<const char*> extensions{VK_KHR_SHADER_CLOCK_EXTENSION_NAME};
-  if (rayQuery_) extensions.insert(extensions.end(), rayQueryExtensions.begin(), rayQueryExtensions.end());
-  dci.enabledExtensionCount = uint32_t(extensions.size());
-  dci.ppEnabledExtensionNames = extensions.data();
+  dci.enabledExtensionCount = uint32_t(setup.extensions.size());
+  dci.ppEnabledExtensionNames = setup.extensions.data();
   VkDevice device = VK_NULL_HANDLE;
   VK_CHECK(vkCreateDevice(physical_, &dci, nullptr, &device));
-  device_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+  ownedDevice_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+  device_ = device;
   vkGetDeviceQueue(device, queueFamily_, 0, &queue_);
+  finishSetup();
+}
+
+Context::Context(const core::HostDevice& host)
+    : rayQuery_(host.rayQueryEnabled),
+      shaderFloat64_(host.shaderFloat64Enabled),
+      instance_(host.instance),
+      physical_(host.physicalDevice),
+      queueFamily_(host.queueFamily),
+      device_(host.device),
+      queue_(host.queue) {
+  if (!host.instance || !host.physicalDevice || !host.device || !host.queue || !host.getDeviceProcAddr)
+    throw Error("HostDevice: instance, physicalDevice, device, queue and getDeviceProcAddr must all be set");
+  getDeviceProcAddr_ = host.getDeviceProcAddr;
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, nullptr);
+  if (host.queueFamily >= familyCount)
+    throw Error("HostDevice: queue family " + std::to_string(host.queueFamily) + " does not exist (the device has " + std::to_string(familyCount) + ")");
+  finishSetup();
+}
+
+void Context::finishSetup() {
+  vkGetPhysicalDeviceProperties(physical_, &properties_);
+  vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
   if (rayQuery_) {
-    accel_ = loadAccelFunctions(device);
+    accel_ = loadAccelFunctions(getDeviceProcAddr_, device_);
     VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
     VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     p2.pNext = &asProps;
     vkGetPhysicalDeviceProperties2(physical_, &p2);
     accelScratchAlignment_ = std::max<VkDeviceSize>(1, asProps.minAccelerationStructureScratchOffsetAlignment);
   }
-
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
   pci.queueFamilyIndex = queueFamily_;
   VkCommandPool pool = VK_NULL_HANDLE;
+  const VkDevice device = device_;
   VK_CHECK(vkCreateCommandPool(device, &pci, nullptr, &pool));
   uploadPool_ = Owned<VkCommandPool>(pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
 }
 
 Context::~Context() {
-  if (device_) vkDeviceWaitIdle(device_);
+  // A borrowed device's host waits for its own work; ours waits before it is destroyed.
+  if (ownedDevice_) vkDeviceWaitIdle(device_);
 }
 
 uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const {
@@ -282,15 +236,16 @@ void Context::recordValidationMessage(std::string message) {
   messages_.push_back(std::move(message));
 }
 
-std::vector<std::string> listDevices() {
+std::vector<DeviceListing> listDevices(const DescriptorNeeds& needs) {
   Owned<VkDebugUtilsMessengerEXT> unused;
   Owned<VkInstance> instance = createInstance(false, nullptr, unused);
-  std::vector<std::string> out;
+  std::vector<DeviceListing> out;
   for (VkPhysicalDevice d : physicalDevices(instance)) {
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(d, &p);
-    out.push_back(std::string(p.deviceName) + " (" + typeName(p.deviceType) + ", Vulkan " + std::to_string(VK_API_VERSION_MAJOR(p.apiVersion)) +
-                  "." + std::to_string(VK_API_VERSION_MINOR(p.apiVersion)) + ")");
+    out.push_back({std::string(p.deviceName) + " (" + typeName(p.deviceType) + ", Vulkan " + std::to_string(VK_API_VERSION_MAJOR(p.apiVersion)) +
+                       "." + std::to_string(VK_API_VERSION_MINOR(p.apiVersion)) + ")",
+                   missingRequirements(queryCapabilities(d), needs)});
   }
   return out;
 }

@@ -1,5 +1,6 @@
-// The Vulkan instance, device and queue raybudget renders with, the validation messenger
-// that records every warning and error, and one-shot command submission for uploads.
+// The Vulkan instance, device and queue raybudget renders with: its own (with the validation
+// messenger that records every warning and error) or a host's, borrowed; and one-shot
+// command submission for uploads.
 #pragma once
 #include <functional>
 #include <mutex>
@@ -8,7 +9,9 @@
 
 #include <vulkan/vulkan.h>
 
+#include "raybudget/core.h"
 #include "vk/accel_functions.h"
+#include "vk/device_requirements.h"
 #include "vk/owned.h"
 
 namespace raybudget::vk {
@@ -16,11 +19,16 @@ namespace raybudget::vk {
 struct ContextOptions {
   bool validation = false;  // VK_LAYER_KHRONOS_validation with synchronization validation
   std::string deviceName;   // substring of the device name; empty: discrete > integrated > CPU
+  DescriptorNeeds descriptorNeeds;  // per-stage descriptors the device must allow
 };
 
 class Context {
  public:
+  // Creates an instance and a device of its own.
   explicit Context(const ContextOptions& options);
+  // Borrows the host's; destroys nothing of it and records no validation messages (the host's
+  // instance has its own messenger).
+  explicit Context(const core::HostDevice& host);
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
   ~Context();
@@ -32,6 +40,7 @@ class Context {
   uint32_t queueFamily() const { return queueFamily_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   bool validationEnabled() const { return validation_; }
+  bool ownsDevice() const { return bool(ownedDevice_); }
 
   // VK_KHR_ray_query with acceleration structures and buffer device addresses: enabled
   // whenever the device offers them (lavapipe from Mesa 24+, current GPUs).
@@ -53,25 +62,34 @@ class Context {
   void recordValidationMessage(std::string message);
 
  private:
+  void finishSetup();  // properties, extension entry points, the upload pool
+
   bool validation_ = false;
   bool rayQuery_ = false;
   bool shaderFloat64_ = false;
   AccelFunctions accel_;
   VkDeviceSize accelScratchAlignment_ = 1;
-  Owned<VkInstance> instance_;
+  PFN_vkGetDeviceProcAddr getDeviceProcAddr_ = vkGetDeviceProcAddr;
+  Owned<VkInstance> ownedInstance_;
   Owned<VkDebugUtilsMessengerEXT> messenger_;
+  VkInstance instance_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   uint32_t queueFamily_ = 0;
-  Owned<VkDevice> device_;
+  Owned<VkDevice> ownedDevice_;
+  VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   Owned<VkCommandPool> uploadPool_;
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;
 };
 
-// Lists the Vulkan devices this machine offers (name and type), for --help and errors.
-std::vector<std::string> listDevices();
+// The Vulkan devices this machine offers (name, type, version) and what each lacks.
+struct DeviceListing {
+  std::string description;
+  std::vector<std::string> missing;
+};
+std::vector<DeviceListing> listDevices(const DescriptorNeeds& needs);
 
 }  // namespace raybudget::vk

@@ -13,6 +13,10 @@ namespace raybudget::vk {
 
 using Spirv = std::span<const uint32_t>;
 
+// Workgroups of `groupSize` lanes covering `items` invocations (the last one partial): the
+// one place a dispatch size is derived from a shader's local size.
+constexpr uint32_t groupsFor(uint32_t items, uint32_t groupSize) { return (items + groupSize - 1) / groupSize; }
+
 Owned<VkPipeline> createComputePipeline(const Context& ctx, VkPipelineLayout layout, Spirv code,
                                         const VkSpecializationInfo* specialization = nullptr);
 
