@@ -62,3 +62,82 @@ TEST(FrameTiming, BadSettingsAreRejected) {
 
 }  // namespace
 }  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+bool built(const Renderer& r, const std::string& pipeline) {
+  const std::vector<std::string> p = r.builtPipelines();
+  return std::find(p.begin(), p.end(), pipeline) != p.end();
+}
+
+// Two frames of `scene` under `policy`; the renderer stays for its pipelines.
+std::vector<FrameTiming> twoFrames(Renderer& r, const Scene& scene) {
+  std::vector<FrameTiming> t = r.render(defaultCamera(scene, r.aspect()));
+  for (const FrameTiming& f : r.render(defaultCamera(scene, r.aspect()))) t.push_back(f);
+  for (const FrameTiming& f : r.finish()) t.push_back(f);
+  return t;
+}
+
+void expectLeftOut(const FrameTiming& t, Pass p, PassSkip why) {
+  EXPECT_FALSE(t.passMs[size_t(p)].has_value()) << passName(p) << " has a time";
+  EXPECT_EQ(t.skipped[size_t(p)], why) << passName(p) << ": " << passSkipText(t.skipped[size_t(p)]);
+}
+
+// The triangles' default material is rough and opaque: full RT traces their shadows and
+// builds no reflection or refraction pipeline.
+TEST(PassPlan, ARoughOpaqueSceneRunsNoEffectsPass) {
+  const Scene scene = twoTriangles();
+  Renderer r(scene, test::settingsFor(Policy::All, 96, 64));
+  const SceneEffects e = r.sceneEffects();
+  EXPECT_TRUE(e.shadows && !e.reflections && !e.refractions);
+  for (const FrameTiming& t : twoFrames(r, scene)) {
+    expectLeftOut(t, Pass::TraceEffects, PassSkip::NoSmoothOrTransmissiveMaterial);
+    expectLeftOut(t, Pass::ShadowMaps, PassSkip::EveryPixelTracesShadows);
+    EXPECT_TRUE(t.passMs[size_t(Pass::TraceShadows)].has_value());
+  }
+  EXPECT_TRUE(built(r, "trace_shadows"));
+  EXPECT_FALSE(built(r, "trace_effects"));
+  test::expectValidationClean(r.validationMessages());
+}
+
+TEST(PassPlan, ASceneWithoutLightsRunsNoShadowWork) {
+  Scene scene = twoTriangles();
+  scene.lights.clear();
+  Renderer r(scene, test::settingsFor(Policy::All, 96, 64));
+  for (const FrameTiming& t : twoFrames(r, scene)) {
+    expectLeftOut(t, Pass::TraceShadows, PassSkip::NoLights);
+    expectLeftOut(t, Pass::ShadowMaps, PassSkip::NoLights);
+    expectLeftOut(t, Pass::Coverage, PassSkip::NoEffectInScene);
+    expectLeftOut(t, Pass::Select, PassSkip::NoEffectInScene);
+  }
+  EXPECT_FALSE(built(r, "trace_shadows"));
+  EXPECT_FALSE(built(r, "shadow_maps"));
+  test::expectValidationClean(r.validationMessages());
+}
+
+TEST(PassPlan, PolicyNoneTracesNothingAndBuildsNoTracePipeline) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  Renderer r(scene, test::settingsFor(Policy::None, 96, 64));
+  const SceneEffects e = r.sceneEffects();
+  EXPECT_TRUE(e.shadows && e.reflections && e.refractions) << "the court has mirrors and glass";
+  const std::vector<FrameTiming> frames = twoFrames(r, scene);
+  ASSERT_EQ(frames.size(), 2u);
+  for (const FrameTiming& t : frames) {
+    for (Pass p : {Pass::Coverage, Pass::Select, Pass::TraceShadows, Pass::TraceEffects}) expectLeftOut(t, p, PassSkip::PolicyTracesNothing);
+    EXPECT_TRUE(t.passMs[size_t(Pass::ShadowMaps)].has_value());
+  }
+  expectLeftOut(frames[1], Pass::Environment, PassSkip::EnvironmentReady);
+  EXPECT_FALSE(built(r, "trace_shadows") || built(r, "trace_effects"));
+  // Switching the effects off leaves their pass out for that reason.
+  RenderSettings off = test::settingsFor(Policy::All, 96, 64);
+  off.rayTracing.reflections = off.rayTracing.refractions = false;
+  Renderer noEffects(scene, off);
+  for (const FrameTiming& t : twoFrames(noEffects, scene)) expectLeftOut(t, Pass::TraceEffects, PassSkip::EffectsOff);
+  EXPECT_FALSE(built(noEffects, "trace_effects"));
+  test::expectValidationClean(r.validationMessages());
+  test::expectValidationClean(noEffects.validationMessages());
+}
+
+}  // namespace
+}  // namespace raybudget

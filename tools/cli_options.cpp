@@ -61,6 +61,11 @@ render options:
                         pixels, a checkerboard or one pixel per 2x2 quad each frame, and fill
                         the others from traced neighbours on the same object (default full);
                         auto: benefit chooses a rate per item
+  --explain[=frames]    print the pass plan: per pass the frames it ran in and its median
+                        time, the frames it was left out of and why; the effects the scene can
+                        show, the pipelines built, the pixels per effect that could take rays
+                        and those traced; =frames also prints each frame's selected items
+                        (adds the per-object metrics pass to coverage)
   --item-stats          write items.csv: per object and effect (item) in the last frame, its
                         pixels, whether traced, and with benefit or classified the display
                         error its tracing removed, its clock ticks and traversal work, and
@@ -176,6 +181,11 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--item-stats") {
       c.itemStats = true;
       c.settings.objectMetrics = true;
+    } else if (a == "--explain" || a == "--explain=frames") {
+      c.explain = a == "--explain" ? RenderCommand::Explain::Plan : RenderCommand::Explain::Frames;
+      c.settings.objectMetrics = true;  // the per-effect pixel counts and the selected items
+    } else if (a.rfind("--explain=", 0) == 0) {
+      throw Error("--explain takes no value or =frames, got '" + a + "'");
     } else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--full-shadow-rays") c.settings.rayTracing.shortenShadowRays = false;
     else if (a == "--rate") c.settings.rayTracing.rate = parseItemRate(value());

@@ -16,6 +16,8 @@ struct RenderCommand {
   std::string out = "out";
   std::string camera = "static";  // static | orbit | flythrough
   bool itemStats = false;         // write items.csv: per object and effect, what its tracing cost and removed
+  // --explain: print the pass plan; --explain=frames: also each frame's selected items
+  enum class Explain { Off, Plan, Frames } explain = Explain::Off;
   RenderSettings settings;
 };
 

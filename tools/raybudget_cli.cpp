@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli_options.h"
+#include "explain.h"
 #include "sweep.h"
 #include "raybudget/raybudget.h"
 
@@ -52,7 +53,11 @@ int render(const raybudget::cli::RenderCommand& c) {
       all.push_back(t);
     }
   };
-  for (uint32_t f = 0; f < c.frames; ++f) collect(renderer.render(cli::cameraOnPath(c.camera, start, f, c.frames)));
+  for (uint32_t f = 0; f < c.frames; ++f) {
+    collect(renderer.render(cli::cameraOnPath(c.camera, start, f, c.frames)));
+    // Waits for the frame: explaining each frame serialises the frames in flight.
+    if (c.explain == cli::RenderCommand::Explain::Frames) cli::printFrameSelection(std::cout, f, renderer.objectMetrics());
+  }
   collect(renderer.finish());
   const FrameImages images = renderer.readback();
   writePng(std::filesystem::path(c.out) / "frame.png", images.width, images.height, images.ldrRgba8);
@@ -65,6 +70,10 @@ int render(const raybudget::cli::RenderCommand& c) {
     if (s.frames[p] > 0) std::printf("  %-14s %8.3f ms  (%zu frames)\n", passName(Pass(p)), s.medianMs[p], s.frames[p]);
     else std::printf("  %-14s  skipped\n", passName(Pass(p)));
   std::printf("  %-14s %8.3f ms\n", "total", s.medianTotalMs);
+  if (c.explain != cli::RenderCommand::Explain::Off) {
+    std::cout << "(--explain adds the per-object metrics pass to coverage's time)\n";
+    cli::printPassPlan(std::cout, renderer, all, renderer.objectMetrics());
+  }
   std::cout << "wrote " << c.out << "/frame.png, frame.exr, stats.csv\n";
   const auto messages = renderer.validationMessages();
   for (const std::string& m : messages) std::cerr << m << '\n';

@@ -10,10 +10,6 @@
 #include <memory>
 
 #include "compose_comp.h"
-#include "rt_effects_comp.h"
-#include "rt_effects_comp_native.h"
-#include "rt_shadows_comp.h"
-#include "rt_shadows_comp_native.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
 #include "passes/descriptors.h"
@@ -81,6 +77,20 @@ ItemRate parseItemRate(const std::string& name) {
   for (ItemRate r : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter, ItemRate::Auto})
     if (name == itemRateName(r)) return r;
   throw Error("unknown ray rate '" + name + "' (full, half, quarter, auto)");
+}
+
+const char* passSkipText(PassSkip skip) {
+  switch (skip) {
+    case PassSkip::None: return "";
+    case PassSkip::PolicyTracesNothing: return "the policy traces nothing";
+    case PassSkip::NoEffectInScene: return "the scene has nothing the switched-on effects could trace";
+    case PassSkip::EffectsOff: return "its effects are switched off";
+    case PassSkip::NoLights: return "no light (with a shadow map) in the scene";
+    case PassSkip::NoSmoothOrTransmissiveMaterial: return "no material smooth enough to reflect or transmissive";
+    case PassSkip::EveryPixelTracesShadows: return "every pixel traces its shadows";
+    case PassSkip::EnvironmentReady: return "the static environment is built";
+  }
+  return "?";
 }
 
 const char* passName(Pass pass) {
@@ -153,11 +163,13 @@ struct Renderer::Impl {
     VkDescriptorSet set = VK_NULL_HANDLE;
     bool inFlight = false;
     uint64_t frame = 0;
+    std::array<PassSkip, kPassCount> skipped{};  // why each pass not recorded was left out
     double tlasRebuildMs = 0.0;
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
   };
 
   RenderSettings settings;
+  SceneEffects effects;  // what the scene can show at all: no pass, no pipeline for the rest
   glm::vec3 sunDirection;
   std::unique_ptr<vk::Context> context;  // the renderer's own device, or the host's borrowed
   vk::Context& ctx;
@@ -172,7 +184,7 @@ struct Renderer::Impl {
   // Coverage, select, the tile list and the cost model: the selection half of the stage.
   select::SelectionStage selection;
   passes::GBufferPass gbuffer;
-  passes::ShadowMapPass shadowMaps;
+  std::optional<passes::ShadowMapPass> shadowMaps;  // only when a light has a shadow map
   passes::EnvironmentPass environment;
   passes::ScreenPass lighting;
   passes::ScreenPass envFallback;
@@ -186,6 +198,7 @@ struct Renderer::Impl {
 
   Impl(const Scene& s, const RenderSettings& rs, std::unique_ptr<vk::Context> device)
       : settings(rs),
+        effects(raybudget::sceneEffects(s, rs.rayTracing.maxRoughness)),
         sunDirection(sunOf(s)),
         context(std::move(device)),
         ctx(*context),
@@ -199,13 +212,13 @@ struct Renderer::Impl {
         timestamps(ctx, kFramesInFlight, kPassCount),
         selection(ctx, pipelineLayout, s, rs, kFramesInFlight),
         gbuffer(ctx, pipelineLayout),
-        shadowMaps(ctx, pipelineLayout),
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
         envFallback(ctx, pipelineLayout, kSpirv_env_fallback_comp),
         compose(ctx, pipelineLayout, kSpirv_compose_comp),
-        traceShadows(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_shadows_comp)),
-        traceEffects(ctx, pipelineLayout, native() ? vk::Spirv(kSpirv_rt_effects_comp_native) : vk::Spirv(kSpirv_rt_effects_comp)) {
+        traceShadows(ctx, pipelineLayout, scene.tracer->shader(passes::TraceShader::Shadows)),
+        traceEffects(ctx, pipelineLayout, scene.tracer->shader(passes::TraceShader::Effects)) {
+    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, pipelineLayout);
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
@@ -284,6 +297,7 @@ struct Renderer::Impl {
     FrameTiming t;
     t.frame = slot.frame;
     t.tlasRebuildMs = slot.tlasRebuildMs;
+    t.skipped = slot.skipped;
     const uint32_t s = uint32_t(&slot - slots);
     const auto ms = timestamps.read(s);
     for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
@@ -307,11 +321,21 @@ struct Renderer::Impl {
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 
-  // RB_RT_* bits of the effects traced this frame: with policy none, nothing.
+  // RB_RT_* bits of the effects traced this frame: those switched on that the scene can show;
+  // with policy none, nothing.
   uint32_t tracedEffects() const {
     if (settings.policy == Policy::None) return 0u;
     const RayTracingSettings& rt = settings.rayTracing;
-    return (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
+    return (rt.shadows && effects.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections && effects.reflections ? RB_RT_REFLECTIONS : 0u) |
+           (rt.refractions && effects.refractions ? RB_RT_REFRACTIONS : 0u);
+  }
+
+  // Why a trace pass for `bits` (RB_RT_*) is left out of the frame (PassSkip::None: it runs).
+  PassSkip traceSkip(uint32_t bits, bool sceneHasIt) const {
+    if (tracedEffects() & bits) return PassSkip::None;
+    if (settings.policy == Policy::None) return PassSkip::PolicyTracesNothing;
+    if (!sceneHasIt) return bits == RB_RT_SHADOWS ? PassSkip::NoLights : PassSkip::NoSmoothOrTransmissiveMaterial;
+    return PassSkip::EffectsOff;
   }
 
   // RB_RT_CLASSIFY_SHADOWS / RB_RT_MEASURE_ITEMS / RB_RT_SHORTEN_SHADOW_RAYS for the item-aware
@@ -337,7 +361,7 @@ struct Renderer::Impl {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
 
-  bool native() const { return scene.native != nullptr; }
+  bool native() const { return scene.tracer->kind() == Tracer::Native; }
 
   // The object records for the moved objects' new transforms (and their culling spheres).
   std::vector<gpu::GpuObject> refreshObjectRecords() {
@@ -345,46 +369,6 @@ struct Renderer::Impl {
     for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
     for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
     return objects;
-  }
-
-  // Rebuilds the TLAS for moved objects on the CPU and stages it with the new object records
-  // in the slot's staging buffer; record() copies them at the start of the frame, after
-  // the previous frame's reads (the frame-start barrier orders them).
-  std::vector<VkBufferCopy> stageMovedObjects(Slot& slot) {
-    if (!objectsMoved) return {};
-    objectsMoved = false;
-    if (native()) return stageMovedInstances(slot);
-    const auto start = std::chrono::steady_clock::now();
-    bvh::SceneBvh& b = scene.bvh;
-    bvh::rebuildTlas(b, scene.shell.objects);
-    const std::vector<gpu::GpuObject> objects = refreshObjectRecords();
-    slot.tlasRebuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const VkDeviceSize nodeBytes = sizeof(gpu::GpuBvhNode), tlasBytes = b.tlasNodeCount * nodeBytes;
-    const VkDeviceSize instBytes = b.instances.size() * sizeof(gpu::GpuInstance), objBytes = objects.size() * sizeof(gpu::GpuObject);
-    const VkDeviceSize total = nodeBytes + tlasBytes + instBytes + objBytes;
-    if (slot.updateStaging.size < total) slot.updateStaging = vk::createBuffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
-    auto* dst = static_cast<uint8_t*>(slot.updateStaging.mapped);
-    std::memcpy(dst, &b.nodes[RB_BVH_TLAS_ROOT_NODE], nodeBytes);
-    std::memcpy(dst + nodeBytes, &b.nodes[b.tlasRoot], tlasBytes);
-    std::memcpy(dst + nodeBytes + tlasBytes, b.instances.data(), instBytes);
-    std::memcpy(dst + nodeBytes + tlasBytes + instBytes, objects.data(), objBytes);
-    return {{0, 0, nodeBytes}, {nodeBytes, b.tlasRoot * nodeBytes, tlasBytes}, {nodeBytes + tlasBytes, 0, instBytes},
-            {nodeBytes + tlasBytes + instBytes, 0, objBytes}};
-  }
-
-  // The native tracer's version: object records and Vulkan instance records; the TLAS is
-  // rebuilt on the device (recordTlasBuild) in the frame.
-  std::vector<VkBufferCopy> stageMovedInstances(Slot& slot) {
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<gpu::GpuObject> objects = refreshObjectRecords();
-    const VkDeviceSize instBytes = scene.native->instanceBytes(), objBytes = objects.size() * sizeof(gpu::GpuObject);
-    if (slot.updateStaging.size < instBytes + objBytes)
-      slot.updateStaging = vk::createBuffer(ctx, instBytes + objBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
-    auto* dst = static_cast<uint8_t*>(slot.updateStaging.mapped);
-    scene.native->writeInstances(scene.shell.objects, dst);
-    std::memcpy(dst + instBytes, objects.data(), objBytes);
-    slot.tlasRebuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return {{instBytes, 0, objBytes}};
   }
 
   void record(Slot& slot, const glm::mat4& viewProj) {
@@ -398,24 +382,24 @@ struct Renderer::Impl {
     // Frames share their images: order this frame after everything the previous one did.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
-    const std::vector<VkBufferCopy> moved = stageMovedObjects(slot);
-    if (!moved.empty() && native()) {
-      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.objects.buffer, 1, &moved[0]);
-      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                        VK_ACCESS_2_MEMORY_READ_BIT);
-      scene.native->recordTlasBuild(cmd, slot.updateStaging.buffer, 0);
-    } else if (!moved.empty()) {
-      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhBuffers.nodes.buffer, 2, moved.data());
-      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.bvhBuffers.instances.buffer, 1, &moved[2]);
-      vkCmdCopyBuffer(cmd, slot.updateStaging.buffer, scene.objects.buffer, 1, &moved[3]);
-      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                        VK_ACCESS_2_MEMORY_READ_BIT);
+    // Moved objects: the tracer's structures and the object records follow, uploaded from the
+    // slot's staging buffer after the previous frame's reads (the frame-start barrier).
+    slot.tlasRebuildMs = 0.0;
+    if (objectsMoved) {
+      objectsMoved = false;
+      const std::vector<gpu::GpuObject> records = refreshObjectRecords();
+      slot.tlasRebuildMs = scene.tracer->recordMovedObjects(cmd, scene.shell, records, slot.updateStaging, scene.objects);
     }
     const passes::FrameContext fc{cmd, pipelineLayout, slot.set, scene, targets, selection.buffers(), viewProj};
     auto timed = [&](Pass pass, auto&& body) {
       timestamps.begin(cmd, s, uint32_t(pass));
       body();
       timestamps.end(cmd, s, uint32_t(pass));
+    };
+    // Each pass either runs (timed) or is left out with its reason.
+    auto run = [&](Pass pass, PassSkip skip, auto&& body) {
+      slot.skipped[size_t(pass)] = skip;
+      if (skip == PassSkip::None) timed(pass, body);
     };
     // Skip what the frame does not need: no shadow maps when every pixel traces its
     // shadows, no trace work when nothing is traced, and the trace passes run only over the
@@ -425,32 +409,28 @@ struct Renderer::Impl {
     timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
     // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
     const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
-    if (settings.objectMetrics || traced) timed(Pass::Coverage, [&] { selection.recordCoverage(fc, classify); });
-    if (traced) {
-      computeToCompute(cmd);
-      timed(Pass::Select, [&] { selection.recordSelect(fc, s, settings); });
-    }
+    const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing : PassSkip::NoEffectInScene;
+    run(Pass::Coverage, settings.objectMetrics || traced ? PassSkip::None : nothingTraced,
+        [&] { selection.recordCoverage(fc, classify); });
+    if (traced) computeToCompute(cmd);
+    run(Pass::Select, traced ? PassSkip::None : nothingTraced, [&] { selection.recordSelect(fc, s, settings); });
     // With a budgeted policy unselected objects keep the shadow maps.
     const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All;
-    if (shadowMaps.needed(scene) && !everyPixelTracesShadows) timed(Pass::ShadowMaps, [&] { shadowMaps.record(fc); });
-    if (!environmentReady) {
-      timed(Pass::Environment, [&] { environment.record(fc); });
-      environmentReady = true;
-    }
+    run(Pass::ShadowMaps, !shadowMaps ? PassSkip::NoLights : everyPixelTracesShadows ? PassSkip::EveryPixelTracesShadows : PassSkip::None,
+        [&] { shadowMaps->record(fc); });
+    run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
+    environmentReady = true;
     // Items at a reduced ray rate are filled inside the trace passes (shaders/include/tile_fill.glsl).
-    if (traced & RB_RT_SHADOWS) {
-      timed(Pass::TraceShadows, [&] { traceShadows.recordOverTiles(fc, reducedRates()); });
-      computeToCompute(cmd);
-    }
+    run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc, reducedRates()); });
+    if (traced & RB_RT_SHADOWS) computeToCompute(cmd);
     // The environment fallback first: the lighting pass reads it to measure the display error
     // of the traced shadows (RB_RT_MEASURE_ITEMS).
     timed(Pass::EnvFallback, [&] { envFallback.record(fc); });
     computeToCompute(cmd);
     timed(Pass::Lighting, [&] { lighting.record(fc); });
-    if (traced & (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS)) {
-      computeToCompute(cmd);
-      timed(Pass::TraceEffects, [&] { traceEffects.recordOverTiles(fc, reducedRates()); });
-    }
+    const PassSkip effectsSkip = traceSkip(RB_RT_REFLECTIONS | RB_RT_REFRACTIONS, effects.reflections || effects.refractions);
+    if (effectsSkip == PassSkip::None) computeToCompute(cmd);
+    run(Pass::TraceEffects, effectsSkip, [&] { traceEffects.recordOverTiles(fc, reducedRates()); });
     computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });
     selection.recordStats(cmd, s);
@@ -614,7 +594,20 @@ FrameImages Renderer::readback(bool gbufferDetail) {
   return out;
 }
 
-AccelStats Renderer::accelStats() const { return impl_->scene.accel; }
+AccelStats Renderer::accelStats() const { return impl_->scene.tracer->stats(); }
+
+SceneEffects Renderer::sceneEffects() const { return impl_->effects; }
+
+std::vector<std::string> Renderer::builtPipelines() const {
+  const Impl& r = *impl_;
+  std::vector<std::string> out = {"gbuffer", "coverage", "select", "environment", "env_fallback", "lighting", "compose"};
+  if (r.shadowMaps) out.push_back("shadow_maps");
+  if (r.traceShadows.builtPlain()) out.push_back("trace_shadows");
+  if (r.traceShadows.builtFilling()) out.push_back("trace_shadows+fill");
+  if (r.traceEffects.builtPlain()) out.push_back("trace_effects");
+  if (r.traceEffects.builtFilling()) out.push_back("trace_effects+fill");
+  return out;
+}
 
 std::string Renderer::deviceName() const { return impl_->ctx.properties().deviceName; }
 

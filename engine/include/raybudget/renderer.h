@@ -133,6 +133,20 @@ enum class Pass : uint32_t {
 inline constexpr size_t kPassCount = size_t(Pass::Count);
 const char* passName(Pass pass);
 
+// Why a pass was left out of a frame (None: it ran). A pass the scene can never need is
+// left out of every frame, and its pipelines are never built (Renderer::builtPipelines).
+enum class PassSkip : uint8_t {
+  None,
+  PolicyTracesNothing,             // coverage, select, trace: policy none
+  NoEffectInScene,                 // coverage, select: no switched-on effect the scene can show
+  EffectsOff,                      // a trace pass: its effects switched off (RayTracingSettings)
+  NoLights,                        // shadow maps, trace shadows: no light (with a shadow map)
+  NoSmoothOrTransmissiveMaterial,  // trace effects: nothing to reflect or refract (SceneEffects)
+  EveryPixelTracesShadows,         // shadow maps under `all`
+  EnvironmentReady,                // the static environment after the first frame
+};
+const char* passSkipText(PassSkip skip);
+
 struct FrameTiming {
   uint64_t frame = 0;
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
@@ -166,6 +180,7 @@ struct FrameTiming {
   // reference (engine/src/select/cost_model.h) bit for bit.
   std::optional<bool> costsMatchCpu;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
+  std::array<PassSkip, kPassCount> skipped{};               // why each pass without a time was left out
   double totalMs() const;
   double traceMs() const;    // the trace passes (shadows, effects), their fill included
   double rtStageMs() const;  // the ray-tracing stage T bounds: coverage + select + trace
@@ -283,6 +298,11 @@ class Renderer {
   std::vector<ObjectMetrics> objectMetrics();
 
   AccelStats accelStats() const;
+  // The effects the scene can show at all (RayTracingSettings::maxRoughness applied).
+  SceneEffects sceneEffects() const;
+  // The passes whose pipelines exist so far ("trace_effects+fill": the filling variant of
+  // reduced ray rates): pipelines are built when a frame first needs them.
+  std::vector<std::string> builtPipelines() const;
   std::string deviceName() const;
   std::vector<std::string> validationMessages() const;
   float aspect() const;

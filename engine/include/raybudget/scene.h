@@ -160,6 +160,15 @@ Camera defaultCamera(const Scene& scene, float aspect);
 // leave an enclosed scene).
 Camera pathStartCamera(const Scene& scene, float aspect);
 
+// The ray-traced effects a scene can show at all: shadows when it has a light; reflections
+// when some object's material can be smooth enough (roughness at most maxRoughness, the
+// least value of its roughness texture counted); refractions when one is transmissive.
+// Unlit materials show none. The renderer builds no pipeline and runs no pass for the others.
+struct SceneEffects {
+  bool shadows = false, reflections = false, refractions = false;
+};
+SceneEffects sceneEffects(const Scene& scene, float maxRoughness);
+
 // Writes `params` of each object back into the glTF file as node extras.raybudget,
 // keeping everything else as loaded. Used by the editor and the round-trip test.
 void saveRayBudgetParams(const std::filesystem::path& source, const std::filesystem::path& destination,

@@ -137,7 +137,7 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   std::vector<VkDescriptorImageInfo> envMips;
   for (const auto& v : t.envMipViews) envMips.push_back({VK_NULL_HANDLE, v, g});
 
-  const bool native = scene.native != nullptr;
+  const bool native = scene.tracer->kind() == Tracer::Native;
   std::vector<VkWriteDescriptorSet> writes;
   auto write = [&](uint32_t binding, uint32_t count, const VkDescriptorBufferInfo* b, const VkDescriptorImageInfo* i,
                    const VkBufferView* texels = nullptr) {
@@ -158,25 +158,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   write(kEnvStorage, uint32_t(envMips.size()), nullptr, envMips.data());
   const VkDescriptorImageInfo envSource{samplers.equirect, t.envSource.view, ro};
   write(kEnvSource, 1, nullptr, &envSource);
-  const VkBufferView bvhTexels[] = {scene.bvhBuffers.nodeTexels, scene.bvhBuffers.triangleTexels};
-  const VkAccelerationStructureKHR tlas = native ? scene.native->tlas() : VK_NULL_HANDLE;
-  VkWriteDescriptorSetAccelerationStructureKHR tlasWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
-  tlasWrite.accelerationStructureCount = 1;
-  tlasWrite.pAccelerationStructures = &tlas;
-  const VkDescriptorBufferInfo rtBuffers[] = {{scene.bvhBuffers.instances.buffer, 0, VK_WHOLE_SIZE},
-                                              {scene.indices.buffer, 0, VK_WHOLE_SIZE},
-                                              {native ? VkBuffer(scene.native->geometryTable().buffer) : VK_NULL_HANDLE, 0, VK_WHOLE_SIZE}};
-  if (native) {
-    write(kBvhNodes, 1, nullptr, nullptr);
-    writes.back().pNext = &tlasWrite;
-    write(kBvhTriangles, 1, &rtBuffers[2], nullptr);
-    write(kBvhInstances, 1, &rtBuffers[2], nullptr);
-  } else {
-    write(kBvhNodes, 1, nullptr, nullptr, &bvhTexels[0]);
-    write(kBvhTriangles, 1, nullptr, nullptr, &bvhTexels[1]);
-    write(kBvhInstances, 1, &rtBuffers[0], nullptr);
-  }
-  write(kIndices, 1, &rtBuffers[1], nullptr);
+  const VkDescriptorBufferInfo indices{scene.indices.buffer, 0, VK_WHOLE_SIZE};
+  write(kIndices, 1, &indices, nullptr);
   const VkDescriptorImageInfo mask{VK_NULL_HANDLE, t.shadowMaskArray, g};
   write(kShadowMask, 1, nullptr, &mask);
   const VkDescriptorImageInfo position{samplers.nearest, t.position.view, ro};
@@ -195,6 +178,7 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   write(kShadowMapDepths, 1, nullptr, &depths[0]);
   write(kPointShadowDepths, 1, nullptr, &depths[1]);
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
+  scene.tracer->writeBindings(ctx.device(), set);  // kBvhNodes, kBvhTriangles, kBvhInstances
 }
 
 }  // namespace raybudget::passes

@@ -186,30 +186,8 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   }
   gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 
-  // The acceleration structure for the ray-traced effects (static scenes: built once, here):
-  // the device's for the native tracer, else our BVH.
-  if (settings.rayTracing.tracer == Tracer::Native) {
-    gpu.native = std::make_unique<NativeAccel>(ctx, scene);
-  } else {
-    gpu.bvh = bvh::buildSceneBvh(scene, {settings.rayTracing.spatialSplits});
-  }
-  // (Native: empty one-element buffers keep the descriptor set's shape.)
-  gpu.bvhBuffers = uploadBvh(ctx, gpu.bvh, true);
-  if (gpu.native) {
-    for (const Mesh& m : scene.meshes) gpu.accel.triangles += m.indices.size() / 3;
-    gpu.accel.buildMs = gpu.native->buildMs();
-    gpu.accel.references = gpu.accel.triangles;
-    gpu.accel.bytes = gpu.native->memoryBytes();
-  } else {
-    gpu.accel.buildMs = gpu.bvh.stats.blasMs + gpu.bvh.stats.tlasMs;
-    gpu.accel.triangles = gpu.bvh.stats.triangles;
-    gpu.accel.references = gpu.bvh.stats.references;
-    gpu.accel.splitMeshes = gpu.bvh.stats.splitMeshes;
-    gpu.accel.sharedMeshes = gpu.bvh.stats.sharedMeshes;
-    gpu.accel.bytes = gpu.bvhBuffers.bytes();
-  }
-  gpu.bvh.triangles.clear();  // on the GPU now; TLAS updates need only nodes and instances
-  gpu.bvh.triangles.shrink_to_fit();
+  // The acceleration structure for the ray-traced effects (static scenes: built once, here).
+  gpu.tracer = createSceneTracer(ctx, scene, settings);
   gpu.shell = scene;
   for (Mesh& m : gpu.shell.meshes) {
     m.vertices = {};

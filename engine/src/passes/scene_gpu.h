@@ -3,9 +3,7 @@
 #pragma once
 #include <vector>
 
-#include "bvh/scene_bvh.h"
-#include "passes/bvh_buffers.h"
-#include "passes/native_accel.h"
+#include "passes/scene_tracer.h"
 #include "raybudget/renderer.h"
 #include "raybudget/scene.h"
 #include "shared/types.h"
@@ -35,15 +33,11 @@ struct ShadowViews {
 };
 
 struct SceneGpu {
-  // CPU copies for updates when objects move: the scene without vertex data, the BVH, and
-  // where each mesh starts in the shared index and vertex buffers.
+  // CPU copies for updates when objects move: the scene without vertex data, and where
+  // each mesh starts in the shared index and vertex buffers.
   Scene shell;
-  bvh::SceneBvh bvh;
   std::vector<uint32_t> meshFirstIndex, meshVertexOffset;
-  BvhBuffers bvhBuffers;
-  // With Tracer::Native, the Vulkan acceleration structures instead of the compute BVH.
-  std::unique_ptr<NativeAccel> native;
-  AccelStats accel;  // whichever of the two was built
+  std::unique_ptr<SceneTracer> tracer;  // the trace passes' acceleration structure
   vk::Buffer vertices;
   vk::Buffer indices;
   vk::Buffer objects;

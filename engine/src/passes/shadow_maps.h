@@ -11,7 +11,7 @@ class ShadowMapPass {
  public:
   ShadowMapPass(const vk::Context& ctx, VkPipelineLayout layout);
   // False when the scene has no light with a shadow map (nothing recorded).
-  bool needed(const SceneGpu& scene) const { return scene.shadows.mapLayers + scene.shadows.pointCubes > 0; }
+  static bool needed(const SceneGpu& scene) { return scene.shadows.mapLayers + scene.shadows.pointCubes > 0; }
   void record(const FrameContext& fc) const;
   // Before the first frame: every layer into SHADER_READ_ONLY, so unused ones are valid.
   static void initialize(VkCommandBuffer cmd, const FrameTargets& t);

@@ -1,8 +1,9 @@
 // A trace pass (shadows, or reflections and refractions) over the tile list, in two pipelines
 // from one shader: without and with the fill of reduced ray rates inside the pass
-// (shaders/include/tile_fill.glsl, specialized by its constant rbFill). The filling one is
-// built on first use; full-rate frames keep the plain one, whose shader has no barrier and no
-// shared memory (with them, tracing at full rate measured ~7% slower on lavapipe).
+// (shaders/include/tile_fill.glsl, specialized by its constant rbFill). Each is built on
+// first use, so a scene or policy that never traces the pass's effects builds neither;
+// full-rate frames keep the plain one, whose shader has no barrier and no shared memory
+// (with them, tracing at full rate measured ~7% slower on lavapipe).
 #pragma once
 #include "passes/frame_context.h"
 #include "vk/context.h"
@@ -16,6 +17,8 @@ class TracePass {
   TracePass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader);
   // Dispatches over the trace passes' tile list; `fill`: reduced ray rates are in the frame.
   void recordOverTiles(const FrameContext& fc, bool fill);
+  bool builtPlain() const { return bool(plain_); }
+  bool builtFilling() const { return bool(filling_); }
 
  private:
   const vk::Context& ctx_;

@@ -1,0 +1,15 @@
+#include "passes/scene_tracer.h"
+
+namespace raybudget::passes {
+
+std::unique_ptr<SceneTracer> createSceneTracer(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings) {
+  if (settings.rayTracing.tracer == Tracer::Native) return createNativeTracer(ctx, scene);  // throws where the device has none
+  return createComputeTracer(ctx, scene, settings.rayTracing.spatialSplits);
+}
+
+uint8_t* stagingOf(const vk::Context& ctx, vk::Buffer& staging, VkDeviceSize bytes) {
+  if (staging.size < bytes) staging = vk::createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+  return static_cast<uint8_t*>(staging.mapped);
+}
+
+}  // namespace raybudget::passes
