@@ -123,9 +123,8 @@ TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
     s.benefitAblation = ablation;
     s.rayTracing.rate = rate;
     s.learnTimeScale = false;
-    s.checkSelection = true;
     s.objectMetrics = true;
-    Renderer renderer(scene, s);
+    Renderer renderer(scene, s, test::kCheckSelection);
     const Camera start = defaultCamera(scene, renderer.aspect());
     std::vector<FrameTiming> t;
     for (uint32_t f = 0; f < 6; ++f)

@@ -27,21 +27,20 @@ TEST(Probe, MeasuresLeftOutItemsAndShowsNothing) {
   const Scene scene = loadScene(test::defaultScenePath());
   RenderSettings s = test::settingsFor(Policy::Benefit, 320, 192);
   s.learnTimeScale = false;
-  s.checkSelection = true;
   const Camera cam = defaultCamera(scene, 320.0f / 192.0f);
   // A budget that leaves most items out: a tenth of what the frame's candidates cost.
   s.probeShare = 0.0f;
   s.optimalBound = true;
-  const test::RenderedFrames sized = test::renderFrames(scene, s, {cam});
+  const test::RenderedFrames sized = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
   ASSERT_GT(sized.timings.at(0).candidatesMs, 0.0);
   s.optimalBound = false;
   const float budget = float(sized.timings[0].candidatesMs / 10.0);
   s.probeShare = 0.25f;
   s.budgetMs = budget;
-  const test::RenderedFrames probed = test::renderFrames(scene, s, {cam});
+  const test::RenderedFrames probed = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
   s.probeShare = 0.0f;
   s.budgetMs = budget - budget * 0.25f;  // the selection budget of the probed frame, as it computes it
-  const test::RenderedFrames plain = test::renderFrames(scene, s, {cam});
+  const test::RenderedFrames plain = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
   const FrameTiming &p = probed.timings.at(0), &q = plain.timings.at(0);
   EXPECT_TRUE(p.selectionMatchesCpu.value_or(false));
   EXPECT_TRUE(p.costsMatchCpu.value_or(false)) << "the probe marks what the walk left out, at the reference's stride";

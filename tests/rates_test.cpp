@@ -159,18 +159,17 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   RenderSettings s = test::settingsFor(Policy::Benefit, 256, 192);
   s.rayTracing.rate = ItemRate::Auto;
   s.learnTimeScale = false;
-  s.checkSelection = true;
   s.optimalBound = true;
   Camera cam;
   cam.position = {0.0f, 4.0f, 4.0f};
   cam.target = {0.0f, 0.0f, 0.0f};
   s.budgetMs = 1e6f;
-  const test::RenderedFrames all = test::renderFrames(scene, s, std::vector<Camera>(4, cam));
+  const test::RenderedFrames all = test::renderFrames(scene, s, std::vector<Camera>(4, cam), test::kCheckSelection);
   // A first frame prices the items from priors: a third of that binds (later frames learn
   // cheaper costs).
   ASSERT_GT(all.timings.front().candidatesMs, 0.0);
   s.budgetMs = float(all.timings.front().candidatesMs / 3.0);
-  const test::RenderedFrames part = test::renderFrames(scene, s, {cam});
+  const test::RenderedFrames part = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
   for (const test::RenderedFrames* r : {&all, &part})
     for (const FrameTiming& t : r->timings) {
       EXPECT_TRUE(t.selectionMatchesCpu.value_or(false)) << "frame " << t.frame;

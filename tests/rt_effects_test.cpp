@@ -376,8 +376,8 @@ RenderSettings budgetedSettings(Policy policy, float budgetMs, uint32_t width, u
 }
 
 // One validated frame from the default camera; its stats.
-FrameTiming oneFrame(const Scene& scene, const RenderSettings& s) {
-  Renderer renderer(scene, s);
+FrameTiming oneFrame(const Scene& scene, const RenderSettings& s, const testing::Checks& checks = {}) {
+  Renderer renderer(scene, s, checks);
   std::vector<FrameTiming> t = renderer.render(defaultCamera(scene, renderer.aspect()));
   for (const FrameTiming& f : renderer.finish()) t.push_back(f);
   test::expectValidationClean(renderer.validationMessages());
@@ -404,8 +404,7 @@ TEST(RtBudget, FrameSelectionEqualsTheCpuReference) {
       auto orbit = [&](float budgetMs) {
         RenderSettings s = budgetedSettings(p, budgetMs, 320, 192);
         s.learnTimeScale = false;
-        s.checkSelection = true;
-        Renderer renderer(*sc, s);
+        Renderer renderer(*sc, s, test::kCheckSelection);
         const std::vector<FrameTiming> t = renderOrbit(renderer, defaultCamera(*sc, 320.0f / 192.0f), 6);
         test::expectValidationClean(renderer.validationMessages());
         for (const FrameTiming& f : t) {
@@ -445,8 +444,7 @@ TEST(RtBudget, SkipsTheSortOnlyWhenEveryCandidateFitsForCertain) {
   for (Policy p : {Policy::Paper, Policy::Density, Policy::Nearest}) {
     auto frame = [&](float budgetMs) {
       RenderSettings s = budgetedSettings(p, budgetMs, 200, 120);
-      s.checkSelection = true;
-      const FrameTiming f = oneFrame(scene, s);
+      const FrameTiming f = oneFrame(scene, s, test::kCheckSelection);
       EXPECT_TRUE(f.selectionMatchesCpu.value_or(false)) << policyName(p) << ", T " << budgetMs;
       return f;
     };

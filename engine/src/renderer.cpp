@@ -1,6 +1,7 @@
 // The frame: G-buffer -> shadow maps -> (environment, once) -> lighting + environment
 // fallback -> compose, two frames in flight, every pass bracketed by timestamps.
 #include "raybudget/renderer.h"
+#include "raybudget/testing.h"
 
 #include <algorithm>
 #include <bit>
@@ -196,7 +197,7 @@ struct Renderer::Impl {
   bool environmentReady = false;
   bool objectsMoved = false;
 
-  Impl(const Scene& s, const RenderSettings& rs, std::unique_ptr<vk::Context> device)
+  Impl(const Scene& s, const RenderSettings& rs, std::unique_ptr<vk::Context> device, const testing::Checks& checks = {})
       : settings(rs),
         effects(raybudget::sceneEffects(s, rs.rayTracing.maxRoughness)),
         sunDirection(sunOf(s)),
@@ -210,7 +211,7 @@ struct Renderer::Impl {
         pool(passes::createPool(ctx, kFramesInFlight, uint32_t(scene.textures.size()), native())),
         commandPool(makeCommandPool()),
         timestamps(ctx, kFramesInFlight, kPassCount),
-        selection(ctx, pipelineLayout, s, rs, kFramesInFlight),
+        selection(ctx, pipelineLayout, s, rs, kFramesInFlight, checks.selectionAgainstCpu),
         gbuffer(ctx, pipelineLayout),
         environment(ctx, pipelineLayout),
         lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
@@ -493,10 +494,13 @@ struct Renderer::Impl {
   }
 };
 
-Renderer::Renderer(const Scene& scene, const RenderSettings& settings) {
+Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : Renderer(scene, settings, testing::Checks{}) {}
+
+Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const testing::Checks& checks) {
   validateSettings(settings);
   const vk::DescriptorNeeds needs = passes::descriptorNeeds(uint32_t(scene.textures.size()), false);
-  impl_ = std::make_unique<Impl>(scene, settings, std::make_unique<vk::Context>(vk::ContextOptions{settings.validation, settings.device, needs}));
+  impl_ = std::make_unique<Impl>(scene, settings, std::make_unique<vk::Context>(vk::ContextOptions{settings.validation, settings.device, needs}),
+                                 checks);
 }
 
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings, const core::HostDevice& host) {

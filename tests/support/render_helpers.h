@@ -8,9 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "raybudget/raybudget.h"
+#include "raybudget/testing.h"
 #include "vk/context.h"
 
 namespace raybudget::test {
+
+// The CPU references checked every frame (raybudget/testing.h).
+inline const testing::Checks kCheckSelection{true};
 
 struct RenderResult {
   FrameImages images;
@@ -54,10 +58,11 @@ struct RenderedFrames {
   std::vector<FrameTiming> timings;
 };
 void expectValidationClean(const std::vector<std::string>& messages);
-inline RenderedFrames renderFrames(const Scene& scene, const RenderSettings& s, const std::vector<Camera>& cameras) {
+inline RenderedFrames renderFrames(const Scene& scene, const RenderSettings& s, const std::vector<Camera>& cameras,
+                                   const testing::Checks& checks = {}) {
   RenderSettings settings = s;
   settings.objectMetrics = true;
-  Renderer renderer(scene, settings);
+  Renderer renderer(scene, settings, checks);
   RenderedFrames r;
   for (const Camera& c : cameras)
     for (const FrameTiming& t : renderer.render(c)) r.timings.push_back(t);

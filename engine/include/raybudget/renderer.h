@@ -106,9 +106,6 @@ struct RenderSettings {
   // Benchmarks: read each frame's candidates back and compute the 0/1-knapsack bound on the
   // value any selection within T could reach (FrameTiming::optimalValueBound).
   bool optimalBound = false;
-  // Tests: read each frame's candidates and selection back and run the CPU reference policy
-  // on the same candidates (FrameTiming::selectionMatchesCpu).
-  bool checkSelection = false;
   RayTracingSettings rayTracing;
   // Run the heuristic's per-object pass every frame (coverage, then A, P, D, V, C, R on the
   // GPU), readable with Renderer::objectMetrics().
@@ -172,10 +169,10 @@ struct FrameTiming {
   double cheapestCandidateMs = 0.0;  // with RenderSettings::optimalBound: the least predicted cost of a candidate (0: none)
   double candidatesMs = 0.0;         // with RenderSettings::optimalBound: the candidates' summed predicted cost
   double selectedValue = 0.0;
-  // With RenderSettings::checkSelection: whether the GPU selected exactly the objects the
-  // CPU reference (engine/src/select/policies.h) selects from the frame's candidates.
+  // With testing::Checks::selectionAgainstCpu (raybudget/testing.h): whether the GPU selected
+  // exactly the objects the CPU reference selects from the frame's candidates.
   std::optional<bool> selectionMatchesCpu;
-  // With RenderSettings::checkSelection: whether the GPU's per-object cost model (each
+  // With testing::Checks::selectionAgainstCpu: whether the GPU's per-object cost model (each
   // object's learned work per pixel, each candidate's predicted cost) equals its CPU
   // reference (engine/src/select/cost_model.h) bit for bit.
   std::optional<bool> costsMatchCpu;
@@ -249,6 +246,10 @@ struct AccelStats {
   size_t bytes = 0;         // device memory
 };
 
+namespace testing {
+struct Checks;
+}
+
 class Renderer {
  public:
   // On a device of its own (RenderSettings::device, ::validation).
@@ -256,6 +257,8 @@ class Renderer {
   // On the host's device (raybudget/core.h): frames are submitted to host.queue from the
   // thread calling render(), readback() and finish().
   Renderer(const Scene& scene, const RenderSettings& settings, const core::HostDevice& host);
+  // On its own device with the checks of raybudget/testing.h (tests).
+  Renderer(const Scene& scene, const RenderSettings& settings, const testing::Checks& checks);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

@@ -83,9 +83,9 @@ struct SelectionStage::Impl {
   struct Slot {
     vk::Buffer tileHeader;    // the tile list's header: tiles, rays traced
     vk::Buffer result;        // the GPU selection's result (gpu_selector.h)
-    vk::Buffer candidates;    // with optimalBound or checkSelection: the candidates
-    vk::Buffer selection;     // with checkSelection: the selection flags
-    // With checkSelection, for the cost model's CPU reference: per-object costs before and
+    vk::Buffer candidates;    // with optimalBound or checkCpu: the candidates
+    vk::Buffer selection;     // with checkCpu: the selection flags
+    // With checkCpu, for the cost model's CPU reference: per-object costs before and
     // after the select pass, the records and K/Q/I/S it read; for `benefit` the items' state
     // before and after and the coverage counts.
     vk::Buffer costsBefore, costsAfter, records, params, itemsBefore, itemsAfter, coverage;
@@ -110,8 +110,9 @@ struct SelectionStage::Impl {
   std::unique_ptr<GpuSelector> selector;
   TimeScale timeScale;
   std::vector<Slot> slots;
+  bool checkCpu = false;  // compare every frame with the CPU references (tests)
 
-  Impl(const vk::Context& c, VkPipelineLayout layout, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight)
+  Impl(const vk::Context& c, VkPipelineLayout layout, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight, bool check)
       : ctx(c),
         initialParams(initialObjectParams(scene, s.rayTracing.maxRoughness)),
         lights(uint32_t(scene.lights.size())),
@@ -119,16 +120,17 @@ struct SelectionStage::Impl {
         coverage(c, layout),
         selectPass(c, layout),
         timeScale(s.width, s.height),
-        slots(framesInFlight) {
+        slots(framesInFlight),
+        checkCpu(check) {
     ensureSelector(s);
     const VkDeviceSize records = std::max<VkDeviceSize>(1, buffers.objects);
     for (Slot& slot : slots) {
       slot.tileHeader = vk::createBuffer(c, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.result = vk::createBuffer(c, 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      if (s.optimalBound || s.checkSelection)
+      if (s.optimalBound || checkCpu)
         // Up to three rate segments per item (`benefit` with rates chosen per item).
         slot.candidates = vk::createBuffer(c, records * RB_ITEMS_PER_OBJECT * 3 * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      if (s.checkSelection) {
+      if (checkCpu) {
         slot.selection = vk::createBuffer(c, records * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.costsBefore = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot.costsAfter = vk::createBuffer(c, records * sizeof(gpu::GpuObjectCost), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -167,7 +169,7 @@ struct SelectionStage::Impl {
     slot.selectBudgetMs = slot.traceBudgetMs - probeBudgetMs;
     slot.items = itemFrame(s, lights, probeBudgetMs);
     if (slot.budgeted) {
-      const bool check = s.checkSelection;
+      const bool check = checkCpu;
       if (check) {  // what the cost model starts from
         readToTransfer(cmd);
         copyWhole(cmd, buffers.objectCosts.buffer, slot.costsBefore);
@@ -321,7 +323,7 @@ struct SelectionStage::Impl {
     t.selectionChanges = r[4];
     t.itemOptionChanges = r[8];
     t.selectionSorted = r[7] != 0;
-    if (s.optimalBound || s.checkSelection) {
+    if (s.optimalBound || checkCpu) {
       const std::span<const gpu::GpuCandidate> g(static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped), r[0]);
       std::vector<Candidate> c;
       for (const gpu::GpuCandidate& x : g) c.push_back({x.id, x.cost, x.value, x.distance});
@@ -331,7 +333,7 @@ struct SelectionStage::Impl {
           t.cheapestCandidateMs = std::min_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.cost < b.cost; })->cost;
         for (const Candidate& x : c) t.candidatesMs += x.cost;
       }
-      if (s.checkSelection) {
+      if (checkCpu) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
         const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO);
         t.selectionMatchesCpu = gpuIds == selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s)).ids;
@@ -395,8 +397,8 @@ struct SelectionStage::Impl {
 };
 
 SelectionStage::SelectionStage(const vk::Context& ctx, VkPipelineLayout layout, const Scene& scene, const RenderSettings& settings,
-                               uint32_t framesInFlight)
-    : impl_(std::make_unique<Impl>(ctx, layout, scene, settings, framesInFlight)) {}
+                               uint32_t framesInFlight, bool checkAgainstCpu)
+    : impl_(std::make_unique<Impl>(ctx, layout, scene, settings, framesInFlight, checkAgainstCpu)) {}
 SelectionStage::~SelectionStage() = default;
 
 const SelectionBuffers& SelectionStage::buffers() const { return impl_->buffers; }

@@ -19,7 +19,10 @@ select::Policy toSelectPolicy(raybudget::Policy policy);
 
 class SelectionStage {
  public:
-  SelectionStage(const vk::Context& ctx, VkPipelineLayout layout, const Scene& scene, const RenderSettings& settings, uint32_t framesInFlight);
+  // `checkAgainstCpu` (tests, raybudget/testing.h): read each frame's candidates, selection
+  // and costs back and compare them with the CPU references (FrameTiming::selectionMatchesCpu).
+  SelectionStage(const vk::Context& ctx, VkPipelineLayout layout, const Scene& scene, const RenderSettings& settings, uint32_t framesInFlight,
+                 bool checkAgainstCpu = false);
   ~SelectionStage();
   SelectionStage(const SelectionStage&) = delete;
   SelectionStage& operator=(const SelectionStage&) = delete;

@@ -1,0 +1,15 @@
+// Checks for tests: the renderer reads GPU state back every frame and compares it with its
+// CPU references. They cost time every frame and are not meant for an engine's frames.
+#pragma once
+#include "raybudget/renderer.h"
+
+namespace raybudget::testing {
+
+struct Checks {
+  // Each frame's candidates, selection and per-object costs read back and compared with the
+  // CPU reference policy and cost model on the same candidates
+  // (FrameTiming::selectionMatchesCpu, ::costsMatchCpu).
+  bool selectionAgainstCpu = false;
+};
+
+}  // namespace raybudget::testing
