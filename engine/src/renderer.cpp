@@ -161,7 +161,6 @@ struct Renderer::Impl {
     vk::Owned<VkCommandBuffer> cmd;
     vk::Owned<VkFence> fence;
     vk::Buffer uniforms;
-    VkDescriptorSet set = VK_NULL_HANDLE;
     bool inFlight = false;
     uint64_t frame = 0;
     std::array<PassSkip, kPassCount> skipped{};  // why each pass not recorded was left out
@@ -177,9 +176,7 @@ struct Renderer::Impl {
   passes::SceneGpu scene;
   passes::FrameTargets targets;
   passes::Samplers samplers;
-  vk::Owned<VkDescriptorSetLayout> setLayout;
-  vk::Owned<VkPipelineLayout> pipelineLayout;
-  vk::Owned<VkDescriptorPool> pool;
+  passes::PassLayouts layouts;  // each pass's descriptor set layout and per-slot sets
   vk::Owned<VkCommandPool> commandPool;
   vk::TimestampPool timestamps;
   // Coverage, select, the tile list and the cost model: the selection half of the stage.
@@ -206,26 +203,25 @@ struct Renderer::Impl {
         scene(passes::uploadScene(ctx, s, rs)),
         targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount)),
         samplers(passes::createSamplers(ctx)),
-        setLayout(passes::createSetLayout(ctx, uint32_t(scene.textures.size()), native())),
-        pipelineLayout(makePipelineLayout()),
-        pool(passes::createPool(ctx, kFramesInFlight, uint32_t(scene.textures.size()), native())),
+        layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
         commandPool(makeCommandPool()),
         timestamps(ctx, kFramesInFlight, kPassCount),
-        selection(ctx, pipelineLayout, s, rs, kFramesInFlight, checks.selectionAgainstCpu),
-        gbuffer(ctx, pipelineLayout),
-        environment(ctx, pipelineLayout),
-        lighting(ctx, pipelineLayout, kSpirv_lighting_comp),
-        envFallback(ctx, pipelineLayout, kSpirv_env_fallback_comp),
-        compose(ctx, pipelineLayout, kSpirv_compose_comp),
-        traceShadows(ctx, pipelineLayout, scene.tracer->shader(passes::TraceShader::Shadows)),
-        traceEffects(ctx, pipelineLayout, scene.tracer->shader(passes::TraceShader::Effects)) {
-    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, pipelineLayout);
+        selection(ctx, layouts, s, rs, kFramesInFlight, checks.selectionAgainstCpu),
+        gbuffer(ctx, layouts),
+        environment(ctx, layouts),
+        lighting(ctx, layouts, kSpirv_lighting_comp),
+        envFallback(ctx, layouts, kSpirv_env_fallback_comp),
+        compose(ctx, layouts, kSpirv_compose_comp),
+        traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows)),
+        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects)) {
+    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts);
     for (Slot& slot : slots) {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-      slot.set = passes::allocateSet(ctx, pool, setLayout);
-      passes::writeSet(ctx, slot.set, slot.uniforms, scene, targets, selection.buffers(), samplers);
+      layouts.writeAll(uint32_t(&slot - slots), [&](VkDescriptorSet set, std::span<const uint32_t> bindings) {
+        passes::writeSet(ctx, set, bindings, slot.uniforms, scene, targets, selection.buffers(), samplers);
+      });
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -241,20 +237,6 @@ struct Renderer::Impl {
     for (const Light& l : s.lights)
       if (l.type == LightType::Directional) return -l.direction;
     return glm::normalize(glm::vec3(0.3f, 1.0f, 0.4f));
-  }
-
-  vk::Owned<VkPipelineLayout> makePipelineLayout() {
-    VkPushConstantRange range{VK_SHADER_STAGE_ALL, 0, sizeof(gpu::DrawPush)};
-    VkDescriptorSetLayout l = setLayout;
-    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    ci.setLayoutCount = 1;
-    ci.pSetLayouts = &l;
-    ci.pushConstantRangeCount = 1;
-    ci.pPushConstantRanges = &range;
-    const VkDevice device = ctx.device();
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    VK_CHECK(vkCreatePipelineLayout(device, &ci, nullptr, &layout));
-    return vk::Owned<VkPipelineLayout>(layout, [device](VkPipelineLayout p) { vkDestroyPipelineLayout(device, p, nullptr); });
   }
 
   vk::Owned<VkCommandPool> makeCommandPool() {
@@ -391,7 +373,7 @@ struct Renderer::Impl {
       const std::vector<gpu::GpuObject> records = refreshObjectRecords();
       slot.tlasRebuildMs = scene.tracer->recordMovedObjects(cmd, scene.shell, records, slot.updateStaging, scene.objects);
     }
-    const passes::FrameContext fc{cmd, pipelineLayout, slot.set, scene, targets, selection.buffers(), viewProj};
+    const passes::FrameContext fc{cmd, s, scene, targets, selection.buffers(), viewProj};
     auto timed = [&](Pass pass, auto&& body) {
       timestamps.begin(cmd, s, uint32_t(pass));
       body();

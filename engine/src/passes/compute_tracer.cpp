@@ -1,7 +1,9 @@
 // Our compute BVH as the scene's tracer: BLAS per mesh and a TLAS built on the CPU
 // (bvh/scene_bvh.h), read by the shaders from two texel buffers and an instance buffer.
 // Moved objects rebuild the TLAS on the CPU; the frame copies its nodes and instances.
+#include <algorithm>
 #include <chrono>
+#include <vector>
 #include <cstring>
 
 #include "bvh/scene_bvh.h"
@@ -36,7 +38,7 @@ class ComputeTracer final : public SceneTracer {
     return which == TraceShader::Shadows ? vk::Spirv(kSpirv_rt_shadows_comp) : vk::Spirv(kSpirv_rt_effects_comp);
   }
 
-  void writeBindings(VkDevice device, VkDescriptorSet set) const override {
+  void writeBindings(VkDevice device, VkDescriptorSet set, std::span<const uint32_t> only) const override {
     const VkBufferView texels[] = {buffers_.nodeTexels, buffers_.triangleTexels};
     const VkDescriptorBufferInfo instances{buffers_.instances.buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet w[3];
@@ -50,7 +52,10 @@ class ComputeTracer final : public SceneTracer {
     w[0].pTexelBufferView = &texels[0];
     w[1].pTexelBufferView = &texels[1];
     w[2].pBufferInfo = &instances;
-    vkUpdateDescriptorSets(device, 3, w, 0, nullptr);
+    std::vector<VkWriteDescriptorSet> wanted;
+    for (const VkWriteDescriptorSet& x : w)
+      if (std::binary_search(only.begin(), only.end(), x.dstBinding)) wanted.push_back(x);
+    vkUpdateDescriptorSets(device, uint32_t(wanted.size()), wanted.data(), 0, nullptr);
   }
 
   double recordMovedObjects(VkCommandBuffer cmd, const Scene& shell, std::span<const gpu::GpuObject> records, vk::Buffer& staging,

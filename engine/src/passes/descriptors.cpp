@@ -1,5 +1,7 @@
 #include "passes/descriptors.h"
 
+#include <algorithm>
+
 #include "passes/bindings.h"
 #include "shared/config.h"
 #include "vk/check.h"
@@ -32,6 +34,11 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
 }
 
 }  // namespace
+
+std::pair<VkDescriptorType, uint32_t> bindingType(uint32_t binding, uint32_t textureCount, bool nativeTracer) {
+  const BindingInfo info = bindingInfo(binding, textureCount, nativeTracer);
+  return {info.type, info.count};
+}
 
 vk::DescriptorNeeds descriptorNeeds(uint32_t textureCount, bool nativeTracer) {
   vk::DescriptorNeeds n;
@@ -76,49 +83,8 @@ Samplers createSamplers(const vk::Context& ctx) {
   return s;
 }
 
-vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount, bool nativeTracer) {
-  std::vector<VkDescriptorSetLayoutBinding> bindings;
-  for (uint32_t b = 0; b < kBindingCount; ++b) {
-    const BindingInfo info = bindingInfo(b, textureCount, nativeTracer);
-    bindings.push_back({b, info.type, info.count, VK_SHADER_STAGE_ALL, nullptr});
-  }
-  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  ci.bindingCount = uint32_t(bindings.size());
-  ci.pBindings = bindings.data();
-  const VkDevice device = ctx.device();
-  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorSetLayout(device, &ci, nullptr, &layout));
-  return vk::Owned<VkDescriptorSetLayout>(layout, [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
-}
-
-vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount, bool nativeTracer) {
-  std::vector<VkDescriptorPoolSize> sizes;
-  for (uint32_t b = 0; b < kBindingCount; ++b) {
-    const BindingInfo info = bindingInfo(b, textureCount, nativeTracer);
-    sizes.push_back({info.type, info.count * sets});
-  }
-  VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  ci.maxSets = sets;
-  ci.poolSizeCount = uint32_t(sizes.size());
-  ci.pPoolSizes = sizes.data();
-  const VkDevice device = ctx.device();
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorPool(device, &ci, nullptr, &pool));
-  return vk::Owned<VkDescriptorPool>(pool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
-}
-
-VkDescriptorSet allocateSet(const vk::Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = pool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &layout;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &ai, &set));
-  return set;  // freed with the pool
-}
-
-void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uniforms, const SceneGpu& scene, const FrameTargets& t,
-              const select::SelectionBuffers& selection, const Samplers& samplers) {
+void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint32_t> only, const vk::Buffer& uniforms, const SceneGpu& scene,
+              const FrameTargets& t, const select::SelectionBuffers& selection, const Samplers& samplers) {
   std::vector<VkDescriptorBufferInfo> buffers = {
       {uniforms.buffer, 0, VK_WHOLE_SIZE}, {scene.objects.buffer, 0, VK_WHOLE_SIZE}, {scene.materials.buffer, 0, VK_WHOLE_SIZE},
       {scene.lights.buffer, 0, VK_WHOLE_SIZE}, {scene.vertices.buffer, 0, VK_WHOLE_SIZE}};
@@ -177,8 +143,10 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uni
   const VkDescriptorImageInfo depths[] = {{samplers.nearest, t.shadowMaps.view, ro}, {samplers.nearest, t.pointShadows.view, ro}};
   write(kShadowMapDepths, 1, nullptr, &depths[0]);
   write(kPointShadowDepths, 1, nullptr, &depths[1]);
+  // Only the set's own bindings: a pass's layout holds those its shaders use.
+  std::erase_if(writes, [&](const VkWriteDescriptorSet& w) { return !std::binary_search(only.begin(), only.end(), w.dstBinding); });
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
-  scene.tracer->writeBindings(ctx.device(), set);  // kBvhNodes, kBvhTriangles, kBvhInstances
+  scene.tracer->writeBindings(ctx.device(), set, only);  // kBvhNodes, kBvhTriangles, kBvhInstances
 }
 
 }  // namespace raybudget::passes

@@ -1,6 +1,8 @@
-// The shared descriptor set layout (see bindings.h), its pool, and the writes that point
-// each binding at the scene's buffers and the frame's images.
+// The descriptor bindings (bindings.h): each one's type, and the writes that point them at
+// the scene's buffers and the frame's images (each pass's set holds some: pass_layouts.h).
 #pragma once
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "passes/frame_targets.h"
@@ -25,12 +27,12 @@ Samplers createSamplers(const vk::Context& ctx);
 // The descriptors every stage sees through the set's layout (the device's per-stage limits).
 vk::DescriptorNeeds descriptorNeeds(uint32_t textureCount, bool nativeTracer);
 
-vk::Owned<VkDescriptorSetLayout> createSetLayout(const vk::Context& ctx, uint32_t textureCount, bool nativeTracer);
-vk::Owned<VkDescriptorPool> createPool(const vk::Context& ctx, uint32_t sets, uint32_t textureCount, bool nativeTracer);
-VkDescriptorSet allocateSet(const vk::Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+// The descriptor type and count of `binding` (bindings.h).
+std::pair<VkDescriptorType, uint32_t> bindingType(uint32_t binding, uint32_t textureCount, bool nativeTracer);
 
-// Points every binding of `set` at its resource; `uniforms` is the slot's FrameUniforms.
-void writeSet(const vk::Context& ctx, VkDescriptorSet set, const vk::Buffer& uniforms, const SceneGpu& scene, const FrameTargets& targets,
-              const select::SelectionBuffers& selection, const Samplers& samplers);
+// Points the bindings `only` (sorted) of `set` at their resources; `uniforms` is the slot's
+// FrameUniforms.
+void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint32_t> only, const vk::Buffer& uniforms, const SceneGpu& scene,
+              const FrameTargets& targets, const select::SelectionBuffers& selection, const Samplers& samplers);
 
 }  // namespace raybudget::passes

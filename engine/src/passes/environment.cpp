@@ -8,8 +8,10 @@
 
 namespace raybudget::passes {
 
-EnvironmentPass::EnvironmentPass(const vk::Context& ctx, VkPipelineLayout layout)
-    : sky_(vk::createComputePipeline(ctx, layout, kSpirv_sky_comp)), prefilter_(vk::createComputePipeline(ctx, layout, kSpirv_env_prefilter_comp)) {}
+EnvironmentPass::EnvironmentPass(const vk::Context& ctx, PassLayouts& layouts)
+    : layout_(layouts.create({kSpirv_sky_comp, kSpirv_env_prefilter_comp})),
+      sky_(vk::createComputePipeline(ctx, layout_.pipelineLayout, kSpirv_sky_comp)),
+      prefilter_(vk::createComputePipeline(ctx, layout_.pipelineLayout, kSpirv_env_prefilter_comp)) {}
 
 void EnvironmentPass::record(const FrameContext& fc) const {
   const FrameTargets& t = fc.targets;
@@ -18,10 +20,10 @@ void EnvironmentPass::record(const FrameContext& fc) const {
   vk::imageBarrier(fc.cmd, t.sky, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sky_);
-  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   gpu::DrawPush skyPush{};
   skyPush.objectMaterial.x = t.hasEnvSource ? 1u : 0u;
-  vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(skyPush), &skyPush);
+  layout_.push(fc, skyPush);
   vkCmdDispatch(fc.cmd, groups, groups, 6);
   vk::imageBarrier(fc.cmd, t.sky, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,
@@ -35,7 +37,7 @@ void EnvironmentPass::record(const FrameContext& fc) const {
   for (uint32_t mip = 0; mip < RB_ENV_MIPS; ++mip) {
     gpu::DrawPush push{};
     push.objectMaterial.x = mip;
-    vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    layout_.push(fc, push);
     const uint32_t size = std::max(RB_ENV_SIZE >> mip, 1);
     const uint32_t g = vk::groupsFor(size, RB_TILE_SIZE);
     vkCmdDispatch(fc.cmd, g, g, 6);

@@ -2,6 +2,7 @@
 // map and GGX-prefiltered into RB_ENV_MIPS roughness levels. Static, so it runs once.
 #pragma once
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 
@@ -9,10 +10,11 @@ namespace raybudget::passes {
 
 class EnvironmentPass {
  public:
-  EnvironmentPass(const vk::Context& ctx, VkPipelineLayout layout);
+  EnvironmentPass(const vk::Context& ctx, PassLayouts& layouts);
   void record(const FrameContext& fc) const;
 
  private:
+  const PassLayout& layout_;
   vk::Owned<VkPipeline> sky_;
   vk::Owned<VkPipeline> prefilter_;
 };

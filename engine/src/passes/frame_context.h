@@ -11,17 +11,12 @@ namespace raybudget::passes {
 
 struct FrameContext {
   VkCommandBuffer cmd;
-  VkPipelineLayout layout;
-  VkDescriptorSet set;
+  uint32_t slot;  // the frame slot: each pass binds its own set for it (pass_layouts.h)
   const SceneGpu& scene;
   const FrameTargets& targets;
   const select::SelectionBuffers& selection;
   glm::mat4 viewProj;  // the camera's
 };
-
-inline void bindSet(const FrameContext& fc, VkPipelineBindPoint point) {
-  vkCmdBindDescriptorSets(fc.cmd, point, fc.layout, 0, 1, &fc.set, 0, nullptr);
-}
 
 // True when a bounding sphere may intersect the frustum of `viewProj` (Vulkan clip space,
 // depth 0..1). Planes are taken from the matrix rows (Gribb & Hartmann).

@@ -8,13 +8,13 @@
 
 namespace raybudget::passes {
 
-GBufferPass::GBufferPass(const vk::Context& ctx, VkPipelineLayout layout) {
+GBufferPass::GBufferPass(const vk::Context& ctx, PassLayouts& layouts) : layout_(layouts.create({kSpirv_gbuffer_vert, kSpirv_gbuffer_frag})) {
   vk::GraphicsPipelineDesc d;
   d.vertex = kSpirv_gbuffer_vert;
   d.fragment = kSpirv_gbuffer_frag;
   d.colorFormats = {kNormalFormat, kBaseMetalFormat, kRoughTransIorFormat, kEmissiveFormat, kIdFormat, kIdFormat, kPositionFormat};
   d.depthFormat = kDepthFormat;
-  pipeline_ = vk::createGraphicsPipeline(ctx, layout, d);
+  pipeline_ = vk::createGraphicsPipeline(ctx, layout_.pipelineLayout, d);
 }
 
 void GBufferPass::record(const FrameContext& fc) const {
@@ -52,7 +52,7 @@ void GBufferPass::record(const FrameContext& fc) const {
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(fc.cmd, &ri);
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-  bindSet(fc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+  layout_.bind(fc, VK_PIPELINE_BIND_POINT_GRAPHICS);
   vkCmdBindIndexBuffer(fc.cmd, fc.scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
   const VkViewport viewport{0.0f, 0.0f, float(t.width), float(t.height), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, {t.width, t.height}};
@@ -62,7 +62,7 @@ void GBufferPass::record(const FrameContext& fc) const {
     if (!sphereInFrustum(fc.viewProj, fc.scene.objectSpheres[d.object])) continue;
     gpu::DrawPush push{};
     push.objectMaterial = glm::uvec4(d.object, d.material, 0, 0);
-    vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    layout_.push(fc, push);
     vkCmdDrawIndexed(fc.cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
   }
   vkCmdEndRendering(fc.cmd);

@@ -2,6 +2,7 @@
 // roughness + transmission + IOR, emissive, object ID and material ID.
 #pragma once
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 
@@ -9,10 +10,11 @@ namespace raybudget::passes {
 
 class GBufferPass {
  public:
-  GBufferPass(const vk::Context& ctx, VkPipelineLayout layout);
+  GBufferPass(const vk::Context& ctx, PassLayouts& layouts);
   void record(const FrameContext& fc) const;
 
  private:
+  const PassLayout& layout_;
   vk::Owned<VkPipeline> pipeline_;
 };
 

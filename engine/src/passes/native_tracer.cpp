@@ -1,7 +1,9 @@
 // The device's VK_KHR_ray_query acceleration structures as the scene's tracer
 // (native_accel.h): the TLAS and the geometry table are what the shaders bind. Moved objects
 // get new instance records and a TLAS rebuilt on the device within the frame.
+#include <algorithm>
 #include <chrono>
+#include <vector>
 #include <cstring>
 
 #include "passes/bindings.h"
@@ -30,7 +32,7 @@ class NativeTracer final : public SceneTracer {
   }
 
   // The TLAS, and the geometry table in both other bindings (the layout keeps one shape).
-  void writeBindings(VkDevice device, VkDescriptorSet set) const override {
+  void writeBindings(VkDevice device, VkDescriptorSet set, std::span<const uint32_t> only) const override {
     const VkAccelerationStructureKHR tlas = accel_.tlas();
     VkWriteDescriptorSetAccelerationStructureKHR tlasWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
     tlasWrite.accelerationStructureCount = 1;
@@ -46,7 +48,10 @@ class NativeTracer final : public SceneTracer {
       w[i].pBufferInfo = i == 0 ? nullptr : &table;
     }
     w[0].pNext = &tlasWrite;
-    vkUpdateDescriptorSets(device, 3, w, 0, nullptr);
+    std::vector<VkWriteDescriptorSet> wanted;
+    for (const VkWriteDescriptorSet& x : w)
+      if (std::binary_search(only.begin(), only.end(), x.dstBinding)) wanted.push_back(x);
+    vkUpdateDescriptorSets(device, uint32_t(wanted.size()), wanted.data(), 0, nullptr);
   }
 
   double recordMovedObjects(VkCommandBuffer cmd, const Scene& shell, std::span<const gpu::GpuObject> records, vk::Buffer& staging,

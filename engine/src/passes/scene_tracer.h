@@ -24,9 +24,9 @@ class SceneTracer {
   virtual Tracer kind() const = 0;
   virtual AccelStats stats() const = 0;
   virtual vk::Spirv shader(TraceShader which) const = 0;
-  // Points kBvhNodes, kBvhTriangles and kBvhInstances of `set` at the structures (which live
-  // as long as the tracer).
-  virtual void writeBindings(VkDevice device, VkDescriptorSet set) const = 0;
+  // Points those of kBvhNodes, kBvhTriangles and kBvhInstances that are among `only`
+  // (sorted: the set's bindings) at the structures, which live as long as the tracer.
+  virtual void writeBindings(VkDevice device, VkDescriptorSet set, std::span<const uint32_t> only) const = 0;
   // Moved objects: brings the structures up to `shell`'s transforms (on the CPU, staged in
   // `staging`, grown as needed) and records their upload with the objects' new `records`
   // into `cmd`, then a barrier before every later read. Returns the CPU milliseconds.

@@ -6,12 +6,12 @@
 
 namespace raybudget::passes {
 
-ScreenPass::ScreenPass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader)
-    : pipeline_(vk::createComputePipeline(ctx, layout, shader)) {}
+ScreenPass::ScreenPass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader)
+    : layout_(layouts.create({shader})), pipeline_(vk::createComputePipeline(ctx, layout_.pipelineLayout, shader)) {}
 
 void ScreenPass::record(const FrameContext& fc) const {
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   vkCmdDispatch(fc.cmd, vk::groupsFor(fc.targets.width, RB_TILE_SIZE), vk::groupsFor(fc.targets.height, RB_TILE_SIZE), 1);
 }
 

@@ -2,6 +2,7 @@
 // reflection/refraction fallback and compose are each one of these with its own shader.
 #pragma once
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 #include "vk/pipelines.h"
@@ -10,11 +11,12 @@ namespace raybudget::passes {
 
 class ScreenPass {
  public:
-  ScreenPass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader);
+  ScreenPass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader);
   // Dispatches over every tile; the caller places the barriers between passes.
   void record(const FrameContext& fc) const;
 
  private:
+  const PassLayout& layout_;
   vk::Owned<VkPipeline> pipeline_;
 };
 

@@ -13,14 +13,14 @@ constexpr VkAccessFlags2 kDepthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_REA
 
 }  // namespace
 
-ShadowMapPass::ShadowMapPass(const vk::Context& ctx, VkPipelineLayout layout) {
+ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts) : layout_(layouts.create({kSpirv_shadow_vert, kSpirv_shadow_frag})) {
   vk::GraphicsPipelineDesc d;
   d.vertex = kSpirv_shadow_vert;
   d.depthFormat = kDepthFormat;
   d.depthBias = true;
-  opaque_ = vk::createGraphicsPipeline(ctx, layout, d);
+  opaque_ = vk::createGraphicsPipeline(ctx, layout_.pipelineLayout, d);
   d.fragment = kSpirv_shadow_frag;
-  masked_ = vk::createGraphicsPipeline(ctx, layout, d);
+  masked_ = vk::createGraphicsPipeline(ctx, layout_.pipelineLayout, d);
 }
 
 void ShadowMapPass::initialize(VkCommandBuffer cmd, const FrameTargets& t) {
@@ -50,7 +50,7 @@ void ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uint32_
     if (want != bound) {
       vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, want);
       if (bound == VK_NULL_HANDLE) {
-        bindSet(fc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+        layout_.bind(fc, VK_PIPELINE_BIND_POINT_GRAPHICS);
         vkCmdBindIndexBuffer(fc.cmd, fc.scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
       }
       vkCmdSetViewport(fc.cmd, 0, 1, &viewport);
@@ -62,7 +62,7 @@ void ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uint32_
     gpu::DrawPush push{};
     push.viewProj = viewProj;
     push.objectMaterial = glm::uvec4(d.object, d.material, 0, 0);
-    vkCmdPushConstants(fc.cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    layout_.push(fc, push);
     vkCmdDrawIndexed(fc.cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
   }
   vkCmdEndRendering(fc.cmd);

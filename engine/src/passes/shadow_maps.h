@@ -2,6 +2,7 @@
 // per point light, rendered from the scene each frame; sampled with PCF by the lighting.
 #pragma once
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 
@@ -9,7 +10,7 @@ namespace raybudget::passes {
 
 class ShadowMapPass {
  public:
-  ShadowMapPass(const vk::Context& ctx, VkPipelineLayout layout);
+  ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts);
   // False when the scene has no light with a shadow map (nothing recorded).
   static bool needed(const SceneGpu& scene) { return scene.shadows.mapLayers + scene.shadows.pointCubes > 0; }
   void record(const FrameContext& fc) const;
@@ -18,6 +19,7 @@ class ShadowMapPass {
 
  private:
   void renderView(const FrameContext& fc, VkImageView view, uint32_t size, const glm::mat4& viewProj) const;
+  const PassLayout& layout_;
   vk::Owned<VkPipeline> opaque_;  // depth only
   vk::Owned<VkPipeline> masked_;  // alpha-tested fragment stage
 };

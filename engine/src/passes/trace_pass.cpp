@@ -14,13 +14,14 @@ vk::Owned<VkPipeline> tracePipeline(const vk::Context& ctx, VkPipelineLayout lay
 
 }  // namespace
 
-TracePass::TracePass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader) : ctx_(ctx), layout_(layout), shader_(shader) {}
+TracePass::TracePass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader)
+    : ctx_(ctx), layout_(layouts.create({shader})), shader_(shader) {}
 
 void TracePass::recordOverTiles(const FrameContext& fc, bool fill) {
-  if (!fill && !plain_) plain_ = tracePipeline(ctx_, layout_, shader_, false);
-  if (fill && !filling_) filling_ = tracePipeline(ctx_, layout_, shader_, true);
+  if (!fill && !plain_) plain_ = tracePipeline(ctx_, layout_.pipelineLayout, shader_, false);
+  if (fill && !filling_) filling_ = tracePipeline(ctx_, layout_.pipelineLayout, shader_, true);
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fill ? filling_ : plain_);
-  bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   vkCmdDispatchIndirect(fc.cmd, fc.selection.tileList.buffer, 0);
 }
 

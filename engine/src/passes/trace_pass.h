@@ -6,6 +6,7 @@
 // (with them, tracing at full rate measured ~7% slower on lavapipe).
 #pragma once
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 #include "vk/pipelines.h"
@@ -14,7 +15,7 @@ namespace raybudget::passes {
 
 class TracePass {
  public:
-  TracePass(const vk::Context& ctx, VkPipelineLayout layout, vk::Spirv shader);
+  TracePass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader);
   // Dispatches over the trace passes' tile list; `fill`: reduced ray rates are in the frame.
   void recordOverTiles(const FrameContext& fc, bool fill);
   bool builtPlain() const { return bool(plain_); }
@@ -22,7 +23,7 @@ class TracePass {
 
  private:
   const vk::Context& ctx_;
-  VkPipelineLayout layout_;
+  const PassLayout& layout_;
   vk::Spirv shader_;
   vk::Owned<VkPipeline> plain_, filling_;
 };

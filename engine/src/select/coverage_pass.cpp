@@ -21,10 +21,11 @@ vk::Owned<VkPipeline> coveragePipeline(const vk::Context& ctx, VkPipelineLayout 
 
 }  // namespace
 
-CoveragePass::CoveragePass(const vk::Context& ctx, VkPipelineLayout layout)
-    : coverage_(coveragePipeline(ctx, layout, false)),
-      classifying_(coveragePipeline(ctx, layout, true)),
-      metrics_(vk::createComputePipeline(ctx, layout, kSpirv_object_metrics_comp)) {}
+CoveragePass::CoveragePass(const vk::Context& ctx, passes::PassLayouts& layouts)
+    : layout_(layouts.create({kSpirv_coverage_comp, kSpirv_object_metrics_comp})),
+      coverage_(coveragePipeline(ctx, layout_.pipelineLayout, false)),
+      classifying_(coveragePipeline(ctx, layout_.pipelineLayout, true)),
+      metrics_(vk::createComputePipeline(ctx, layout_.pipelineLayout, kSpirv_object_metrics_comp)) {}
 
 void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
   const VkCommandBuffer cmd = fc.cmd;
@@ -32,7 +33,7 @@ void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify ? classifying_ : coverage_);
-  passes::bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   vkCmdDispatch(cmd, vk::groupsFor(fc.selection.tiles, RB_GROUP_SIZE), 1, 1);  // one invocation per tile
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -40,7 +41,7 @@ void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
   gpu::DrawPush push{};
   push.objectMaterial.x = objects;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, metrics_);
-  vkCmdPushConstants(cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+  layout_.push(fc, push);
   vkCmdDispatch(cmd, vk::groupsFor(objects, RB_GROUP_SIZE), 1, 1);
 }
 

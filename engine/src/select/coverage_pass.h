@@ -2,6 +2,7 @@
 // then A, P, D, V, C, R per object (shaders/select/object_metrics.comp) into the object records.
 #pragma once
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 
@@ -9,12 +10,13 @@ namespace raybudget::select {
 
 class CoveragePass {
  public:
-  CoveragePass(const vk::Context& ctx, VkPipelineLayout layout);
+  CoveragePass(const vk::Context& ctx, passes::PassLayouts& layouts);
   // Clears the coverage, counts (and with `classify` the classifier's reflection and
   // refraction pixels, else 0), then computes the records; barriers included.
   void record(const passes::FrameContext& fc, bool classify) const;
 
  private:
+  const passes::PassLayout& layout_;
   vk::Owned<VkPipeline> coverage_;
   vk::Owned<VkPipeline> classifying_;  // with the classifier
   vk::Owned<VkPipeline> metrics_;

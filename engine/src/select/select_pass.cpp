@@ -9,8 +9,10 @@
 
 namespace raybudget::select {
 
-SelectPass::SelectPass(const vk::Context& ctx, VkPipelineLayout layout)
-    : select_(vk::createComputePipeline(ctx, layout, kSpirv_select_unbudgeted_comp)), tiles_(vk::createComputePipeline(ctx, layout, kSpirv_tile_list_comp)) {}
+SelectPass::SelectPass(const vk::Context& ctx, passes::PassLayouts& layouts)
+    : layout_(layouts.create({kSpirv_select_unbudgeted_comp, kSpirv_tile_list_comp})),
+      select_(vk::createComputePipeline(ctx, layout_.pipelineLayout, kSpirv_select_unbudgeted_comp)),
+      tiles_(vk::createComputePipeline(ctx, layout_.pipelineLayout, kSpirv_tile_list_comp)) {}
 
 void SelectPass::record(const passes::FrameContext& fc, SelectMode mode, uint32_t rate) const {
   const VkCommandBuffer cmd = fc.cmd;
@@ -19,10 +21,10 @@ void SelectPass::record(const passes::FrameContext& fc, SelectMode mode, uint32_
   const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};
   push.objectMaterial = glm::uvec4(objects, uint32_t(mode), rate, 0);
-  passes::bindSet(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   if (mode != SelectMode::Keep) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, select_);
-    vkCmdPushConstants(cmd, fc.layout, VK_SHADER_STAGE_ALL, 0, sizeof(push), &push);
+    layout_.push(fc, push);
     vkCmdDispatch(cmd, vk::groupsFor(objects, RB_GROUP_SIZE), 1, 1);
   }
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,

@@ -3,6 +3,7 @@
 // (shaders/select/tile_list.comp). Reads the object records of the coverage pass.
 #pragma once
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "vk/context.h"
 #include "vk/owned.h"
 
@@ -13,12 +14,13 @@ enum class SelectMode : uint32_t { None = 0, All = 1, Keep = 2 };
 
 class SelectPass {
  public:
-  SelectPass(const vk::Context& ctx, VkPipelineLayout layout);
+  SelectPass(const vk::Context& ctx, passes::PassLayouts& layouts);
   // Barriers included: afterwards the tile list is ready for indirect dispatch and reads.
   // `rate`: RB_RATE_* of every selected item (All).
   void record(const passes::FrameContext& fc, SelectMode mode, uint32_t rate) const;
 
  private:
+  const passes::PassLayout& layout_;
   vk::Owned<VkPipeline> select_;
   vk::Owned<VkPipeline> tiles_;
 };

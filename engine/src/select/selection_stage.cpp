@@ -112,13 +112,13 @@ struct SelectionStage::Impl {
   std::vector<Slot> slots;
   bool checkCpu = false;  // compare every frame with the CPU references (tests)
 
-  Impl(const vk::Context& c, VkPipelineLayout layout, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight, bool check)
+  Impl(const vk::Context& c, passes::PassLayouts& layouts, const Scene& scene, const RenderSettings& s, uint32_t framesInFlight, bool check)
       : ctx(c),
         initialParams(initialObjectParams(scene, s.rayTracing.maxRoughness)),
         lights(uint32_t(scene.lights.size())),
         buffers(createSelectionBuffers(c, uint32_t(scene.objects.size()), initialParams, s.width, s.height)),
-        coverage(c, layout),
-        selectPass(c, layout),
+        coverage(c, layouts),
+        selectPass(c, layouts),
         timeScale(s.width, s.height),
         slots(framesInFlight),
         checkCpu(check) {
@@ -396,9 +396,9 @@ struct SelectionStage::Impl {
   }
 };
 
-SelectionStage::SelectionStage(const vk::Context& ctx, VkPipelineLayout layout, const Scene& scene, const RenderSettings& settings,
+SelectionStage::SelectionStage(const vk::Context& ctx, passes::PassLayouts& layouts, const Scene& scene, const RenderSettings& settings,
                                uint32_t framesInFlight, bool checkAgainstCpu)
-    : impl_(std::make_unique<Impl>(ctx, layout, scene, settings, framesInFlight, checkAgainstCpu)) {}
+    : impl_(std::make_unique<Impl>(ctx, layouts, scene, settings, framesInFlight, checkAgainstCpu)) {}
 SelectionStage::~SelectionStage() = default;
 
 const SelectionBuffers& SelectionStage::buffers() const { return impl_->buffers; }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "passes/frame_context.h"
+#include "passes/pass_layouts.h"
 #include "raybudget/renderer.h"
 #include "select/policies.h"
 #include "select/selection_buffers.h"
@@ -21,7 +22,7 @@ class SelectionStage {
  public:
   // `checkAgainstCpu` (tests, raybudget/testing.h): read each frame's candidates, selection
   // and costs back and compare them with the CPU references (FrameTiming::selectionMatchesCpu).
-  SelectionStage(const vk::Context& ctx, VkPipelineLayout layout, const Scene& scene, const RenderSettings& settings, uint32_t framesInFlight,
+  SelectionStage(const vk::Context& ctx, passes::PassLayouts& layouts, const Scene& scene, const RenderSettings& settings, uint32_t framesInFlight,
                  bool checkAgainstCpu = false);
   ~SelectionStage();
   SelectionStage(const SelectionStage&) = delete;
