@@ -125,3 +125,94 @@ TEST(HostDevice, IncompleteHandlesAndOwnDeviceSettingsAreRefused) {
 
 }  // namespace
 }  // namespace raybudget
+
+#include "vk/resources.h"
+
+namespace raybudget {
+namespace {
+
+template <typename T>
+std::vector<uint8_t> bytesOf(const std::vector<T>& v) {
+  const auto* p = reinterpret_cast<const uint8_t*>(v.data());
+  return {p, p + v.size() * sizeof(T)};
+}
+
+// The host's G-buffer: images of its own in core::GBuffer's encoding, filled with `frame`'s.
+struct HostGBuffer {
+  std::vector<vk::Image> images;
+  core::GBuffer views;
+
+  HostGBuffer(const vk::Context& ctx, const FrameImages& frame) {
+    const std::pair<VkFormat, std::vector<uint8_t>> planes[] = {
+        {VK_FORMAT_D32_SFLOAT, bytesOf(frame.depth)},
+        {VK_FORMAT_R16G16B16A16_SFLOAT, bytesOf(frame.normals)},
+        {VK_FORMAT_R8G8B8A8_UNORM, frame.baseMetal},
+        {VK_FORMAT_R16G16B16A16_SFLOAT, bytesOf(frame.roughTransIor)},
+        {VK_FORMAT_R16G16B16A16_SFLOAT, bytesOf(frame.emissive)},
+        {VK_FORMAT_R32_UINT, bytesOf(frame.objectIds)},
+        {VK_FORMAT_R32_UINT, bytesOf(frame.materialIds)},
+        {VK_FORMAT_R32G32B32A32_SFLOAT, bytesOf(frame.positions)}};
+    for (const auto& [format, bytes] : planes) {
+      vk::ImageDesc d;
+      d.format = format;
+      d.width = frame.width;
+      d.height = frame.height;
+      d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+      images.push_back(vk::createImage(ctx, d));
+      vk::uploadTexture(ctx, images.back(), bytes);
+    }
+    views = {images[0].view, images[1].view, images[2].view, images[3].view, images[4].view, images[5].view, images[6].view, images[7].view,
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  }
+};
+
+// A standalone renderer's G-buffer, handed to a renderer on the host's device as the host's
+// own: the frame recorded into the host's command buffer shows the same pixels, skips the
+// raster, and reports its timings once its slot comes round again.
+TEST(HostDevice, AFrameRecordedIntoTheHostsCommandBufferFromItsGBufferMatches) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const RenderSettings settings = test::settingsFor(Policy::All, 160, 90);
+  FrameImages own;
+  Camera cam;
+  {
+    Renderer renderer(scene, settings);
+    cam = defaultCamera(scene, renderer.aspect());
+    renderer.render(cam);
+    own = renderer.readback(true);
+    test::expectValidationClean(renderer.validationMessages());
+  }
+  ASSERT_EQ(own.depth.size(), size_t(160 * 90));
+  test::TestHost host;
+  {
+    const vk::Context hostCtx(host.device());  // the test's own helpers, on the host's device
+    const HostGBuffer gbuffer(hostCtx, own);
+    RenderSettings onHost = settings;
+    onHost.validation = false;
+    Renderer renderer(scene, onHost, host.device());
+    hostCtx.submitAndWait([&](VkCommandBuffer cmd) { renderer.recordFrame(cmd, cam, gbuffer.views); });
+    EXPECT_TRUE(renderer.completedFrames().empty()) << "no slot came round yet";
+    const FrameImages hosted = renderer.readback();
+    EXPECT_TRUE(hosted.ldrRgba8 == own.ldrRgba8) << "the host's G-buffer gives the standalone frame";
+    EXPECT_TRUE(hosted.hdrRgba16 == own.hdrRgba16);
+    EXPECT_TRUE(hosted.objectIds.empty()) << "the object IDs are the host's";
+    EXPECT_THROW(renderer.readback(true), Error);
+    EXPECT_THROW(renderer.render(cam), Error) << "frames are either the renderer's or the host's";
+    for (int i = 0; i < 2; ++i) hostCtx.submitAndWait([&](VkCommandBuffer cmd) { renderer.recordFrame(cmd, cam, gbuffer.views); });
+    const std::vector<FrameTiming> done = renderer.completedFrames();
+    ASSERT_EQ(done.size(), 1u);
+    EXPECT_EQ(done[0].frame, 0u);
+    EXPECT_FALSE(done[0].passMs[size_t(Pass::GBuffer)].has_value());
+    EXPECT_EQ(done[0].skipped[size_t(Pass::GBuffer)], PassSkip::HostGBuffer);
+    EXPECT_TRUE(done[0].passMs[size_t(Pass::TraceShadows)].has_value());
+    EXPECT_TRUE(renderer.completedFrames().empty()) << "each frame's timings are returned once";
+    const core::FrameOutputs out = renderer.outputs();
+    EXPECT_TRUE(out.hdr && out.ldr && out.hdrView && out.ldrView && out.direct && out.indirect);
+    core::GBuffer missing = gbuffer.views;
+    missing.position = VK_NULL_HANDLE;
+    EXPECT_THROW(hostCtx.submitAndWait([&](VkCommandBuffer cmd) { renderer.recordFrame(cmd, cam, missing); }), Error);
+  }
+  test::expectValidationClean(host.validationMessages());
+}
+
+}  // namespace
+}  // namespace raybudget

@@ -90,6 +90,7 @@ const char* passSkipText(PassSkip skip) {
     case PassSkip::NoSmoothOrTransmissiveMaterial: return "no material smooth enough to reflect or transmissive";
     case PassSkip::EveryPixelTracesShadows: return "every pixel traces its shadows";
     case PassSkip::EnvironmentReady: return "the static environment is built";
+    case PassSkip::HostGBuffer: return "the host rasterised the G-buffer";
   }
   return "?";
 }
@@ -161,6 +162,8 @@ struct Renderer::Impl {
     vk::Owned<VkCommandBuffer> cmd;
     vk::Owned<VkFence> fence;
     vk::Buffer uniforms;
+    core::GBuffer gbuffer;  // the views the slot's sets read the G-buffer from
+    bool recorded = false;  // recorded into a host's command buffer (recordFrame), not yet retired
     bool inFlight = false;
     uint64_t frame = 0;
     std::array<PassSkip, kPassCount> skipped{};  // why each pass not recorded was left out
@@ -219,8 +222,9 @@ struct Renderer::Impl {
       slot.cmd = allocateCommandBuffer();
       slot.fence = makeFence();
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+      slot.gbuffer = targets.gbufferViews();
       layouts.writeAll(uint32_t(&slot - slots), [&](VkDescriptorSet set, std::span<const uint32_t> bindings) {
-        passes::writeSet(ctx, set, bindings, slot.uniforms, scene, targets, selection.buffers(), samplers);
+        passes::writeSet(ctx, set, bindings, slot.uniforms, scene, targets, slot.gbuffer, selection.buffers(), samplers);
       });
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
@@ -277,6 +281,11 @@ struct Renderer::Impl {
     VK_CHECK(vkWaitForFences(ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX));
     VK_CHECK(vkResetFences(ctx.device(), 1, &fence));
     slot.inFlight = false;
+    return collect(slot);
+  }
+
+  // The timings and the selection's read-backs of the slot's completed frame.
+  FrameTiming collect(Slot& slot) {
     FrameTiming t;
     t.frame = slot.frame;
     t.tlasRebuildMs = slot.tlasRebuildMs;
@@ -354,13 +363,36 @@ struct Renderer::Impl {
     return objects;
   }
 
+  // Points the G-buffer bindings of the slot's sets at `g` when they read other views. The
+  // slot's previous frame has completed (its fence, or recordFrame's contract).
+  void bindGBuffer(Slot& slot, const core::GBuffer& g) {
+    const core::GBuffer& b = slot.gbuffer;
+    if (b.depth == g.depth && b.normal == g.normal && b.baseMetal == g.baseMetal && b.roughTransIor == g.roughTransIor &&
+        b.emissive == g.emissive && b.objectId == g.objectId && b.materialId == g.materialId && b.position == g.position && b.layout == g.layout)
+      return;
+    slot.gbuffer = g;
+    layouts.writeAll(uint32_t(&slot - slots), [&](VkDescriptorSet set, std::span<const uint32_t> bindings) {
+      std::vector<uint32_t> gbufferOnly;
+      for (uint32_t x : bindings)
+        if (passes::isGBufferBinding(x)) gbufferOnly.push_back(x);
+      passes::writeSet(ctx, set, gbufferOnly, slot.uniforms, scene, targets, g, selection.buffers(), samplers);
+    });
+  }
+
   void record(Slot& slot, const glm::mat4& viewProj) {
-    const uint32_t s = uint32_t(&slot - slots);
     VkCommandBuffer cmd = slot.cmd;
     VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+    recordCommands(slot, cmd, viewProj, false);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+  }
+
+  // The frame's commands into `cmd`; `hostGBuffer`: the slot's sets read a host's G-buffer,
+  // so no raster.
+  void recordCommands(Slot& slot, VkCommandBuffer cmd, const glm::mat4& viewProj, bool hostGBuffer) {
+    const uint32_t s = uint32_t(&slot - slots);
     timestamps.reset(cmd, s);
     // Frames share their images: order this frame after everything the previous one did.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
@@ -389,7 +421,7 @@ struct Renderer::Impl {
     // tiles holding selected pixels (an empty tile list is an empty indirect dispatch).
     const uint32_t traced = tracedEffects();
     selection.beginFrame(s);
-    timed(Pass::GBuffer, [&] { gbuffer.record(fc); });
+    run(Pass::GBuffer, hostGBuffer ? PassSkip::HostGBuffer : PassSkip::None, [&] { gbuffer.record(fc); });
     // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
     const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
     const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing : PassSkip::NoEffectInScene;
@@ -417,13 +449,14 @@ struct Renderer::Impl {
     computeToCompute(cmd);
     timed(Pass::Compose, [&] { compose.record(fc); });
     selection.recordStats(cmd, s);
-    VK_CHECK(vkEndCommandBuffer(cmd));
   }
 
   std::vector<FrameTiming> render(const Camera& camera) {
     std::vector<FrameTiming> done;
     Slot& slot = slots[frameIndex % kFramesInFlight];
+    claimFrames(false);
     if (auto t = retire(slot)) done.push_back(*t);
+    bindGBuffer(slot, targets.gbufferViews());
     writeUniforms(slot, camera);
     const float aspect = float(settings.width) / float(settings.height);
     record(slot, camera.projection(aspect) * camera.view());
@@ -435,6 +468,36 @@ struct Renderer::Impl {
     slot.inFlight = true;
     slot.frame = frameIndex++;
     return done;
+  }
+
+  // recordFrame: the slot's previous frame has completed by the host's contract.
+  void recordFrame(VkCommandBuffer cmd, const Camera& camera, const core::GBuffer& g) {
+    if (!cmd) throw Error("recordFrame: no command buffer");
+    for (VkImageView v : {g.depth, g.normal, g.baseMetal, g.roughTransIor, g.emissive, g.objectId, g.materialId, g.position})
+      if (!v) throw Error("recordFrame: every G-buffer view must be set (core::GBuffer)");
+    if (g.layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL && g.layout != VK_IMAGE_LAYOUT_GENERAL)
+      throw Error("recordFrame: the G-buffer's layout must be SHADER_READ_ONLY_OPTIMAL or GENERAL");
+    claimFrames(true);
+    Slot& slot = slots[frameIndex % kFramesInFlight];
+    if (slot.recorded) completed.push_back(collect(slot));
+    bindGBuffer(slot, g);
+    writeUniforms(slot, camera);
+    const float aspect = float(settings.width) / float(settings.height);
+    recordCommands(slot, cmd, camera.projection(aspect) * camera.view(), true);
+    slot.recorded = true;
+    slot.frame = frameIndex++;
+  }
+
+  std::vector<FrameTiming> completed;  // recordFrame's frames collected, not yet returned
+  std::optional<bool> hostFrames;      // whether the frames are recorded into a host's command buffers
+
+  // A renderer's frames are all its own (render) or all recorded into a host's command
+  // buffers (recordFrame): the slots' completion comes from its fences or from the host.
+  void claimFrames(bool host) {
+    if (!hostFrames) hostFrames = host;
+    if (*hostFrames != host)
+      throw Error(host ? "recordFrame() after render(): a renderer's frames are either its own or recorded into a host's command buffers"
+                       : "render() after recordFrame(): a renderer's frames are either its own or recorded into a host's command buffers");
   }
 
   // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
@@ -500,6 +563,17 @@ std::vector<FrameTiming> Renderer::render(const Camera& camera) { return impl_->
 
 std::vector<FrameTiming> Renderer::finish() { return impl_->finish(); }
 
+void Renderer::recordFrame(VkCommandBuffer commandBuffer, const Camera& camera, const core::GBuffer& gbuffer) {
+  impl_->recordFrame(commandBuffer, camera, gbuffer);
+}
+
+std::vector<FrameTiming> Renderer::completedFrames() { return std::exchange(impl_->completed, {}); }
+
+core::FrameOutputs Renderer::outputs() const {
+  const passes::FrameTargets& t = impl_->targets;
+  return {t.hdr.image, t.ldr.image, t.hdr.view, t.ldr.view, t.direct.image, t.indirect.image, t.direct.view, t.indirect.view, VK_IMAGE_LAYOUT_GENERAL};
+}
+
 std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetMs, BenefitAblation ablation, ItemRate rate) {
   return impl_->restartSelection(policy, budgetMs, ablation, rate);
 }
@@ -523,6 +597,10 @@ std::vector<ObjectMetrics> Renderer::objectMetrics() {
 FrameImages Renderer::readback(bool gbufferDetail) {
   Impl& r = *impl_;
   if (r.frameIndex == 0) throw Error("readback() before any frame was rendered");
+  // Frames recorded into a host's command buffers read the host's G-buffer: only the
+  // outputs are the renderer's.
+  const bool hostFrames = r.hostFrames.value_or(false);
+  if (hostFrames && gbufferDetail) throw Error("readback(true): the G-buffer of recordFrame's frames is the host's");
   VK_CHECK(vkQueueWaitIdle(r.ctx.queue()));
   const passes::FrameTargets& t = r.targets;
   const VkDeviceSize pixels = VkDeviceSize(t.width) * t.height;
@@ -533,15 +611,17 @@ FrameImages Renderer::readback(bool gbufferDetail) {
     VkDeviceSize bytes;
     uint32_t layers;
   };
-  std::vector<Source> sources = {{&t.ldr, VK_IMAGE_LAYOUT_GENERAL, pixels * 4, 1},
-                                 {&t.hdr, VK_IMAGE_LAYOUT_GENERAL, pixels * 8, 1},
-                                 {&t.objectId, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 4, 1}};
+  std::vector<Source> sources = {{&t.ldr, VK_IMAGE_LAYOUT_GENERAL, pixels * 4, 1}, {&t.hdr, VK_IMAGE_LAYOUT_GENERAL, pixels * 8, 1}};
+  if (!hostFrames) sources.push_back({&t.objectId, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 4, 1});
   if (gbufferDetail) {
     sources.push_back({&t.position, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 16, 1});
     sources.push_back({&t.shadowMask, VK_IMAGE_LAYOUT_GENERAL, pixels * 4 * maskLayers, maskLayers});
     sources.push_back({&t.normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 8, 1});
     sources.push_back({&t.roughTransIor, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 8, 1});
     sources.push_back({&t.baseMetal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 4, 1});
+    sources.push_back({&t.depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 4, 1});
+    sources.push_back({&t.emissive, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 8, 1});
+    sources.push_back({&t.materialId, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, pixels * 4, 1});
   }
   std::vector<vk::Buffer> buffers;
   for (const Source& src : sources) buffers.push_back(vk::createBuffer(r.ctx, src.bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
@@ -552,7 +632,7 @@ FrameImages Renderer::readback(bool gbufferDetail) {
       vk::imageBarrier(cmd, *src.image, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                        VK_ACCESS_2_TRANSFER_READ_BIT, src.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
       VkBufferImageCopy copy{};
-      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, src.layers};
+      copy.imageSubresource = {src.image->aspect, 0, 0, src.layers};
       copy.imageExtent = {t.width, t.height, 1};
       vkCmdCopyImageToBuffer(cmd, src.image->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffers[i].buffer, 1, &copy);
       vk::imageBarrier(cmd, *src.image, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
@@ -569,13 +649,16 @@ FrameImages Renderer::readback(bool gbufferDetail) {
   };
   take(out.ldrRgba8, 0);
   take(out.hdrRgba16, 1);
-  take(out.objectIds, 2);
+  if (!hostFrames) take(out.objectIds, 2);
   if (gbufferDetail) {
     take(out.positions, 3);
     take(out.shadowMask, 4);
     take(out.normals, 5);
     take(out.roughTransIor, 6);
     take(out.baseMetal, 7);
+    take(out.depth, 8);
+    take(out.emissive, 9);
+    take(out.materialIds, 10);
   }
   return out;
 }

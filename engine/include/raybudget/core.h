@@ -64,4 +64,32 @@ struct HostDevice {
   bool shaderFloat64Enabled = false; // DeviceSetup::shaderFloat64Enabled, likewise
 };
 
+// A G-buffer the host rasterised, of the renderer's size, in raybudget's encoding: the
+// formats below, each view read by compute shaders in `layout` (docs/INTEGRATION.md).
+struct GBuffer {
+  VkImageView depth = VK_NULL_HANDLE;          // D32_SFLOAT, 0 near .. 1 far (clear to 1)
+  VkImageView normal = VK_NULL_HANDLE;         // R16G16B16A16_SFLOAT: world shading normal, unit xyz
+  VkImageView baseMetal = VK_NULL_HANDLE;      // R8G8B8A8_UNORM: base colour rgb (linear), metallic a
+  VkImageView roughTransIor = VK_NULL_HANDLE;  // R16G16B16A16_SFLOAT: roughness, transmission, IOR, unlit (0/1)
+  VkImageView emissive = VK_NULL_HANDLE;       // R16G16B16A16_SFLOAT: emitted radiance rgb
+  VkImageView objectId = VK_NULL_HANDLE;       // R32_UINT: the scene's object ID, 0xFFFFFFFF where none (clear to it)
+  VkImageView materialId = VK_NULL_HANDLE;     // R32_UINT: the scene's material index
+  // R32G32B32A32_SFLOAT: world position xyz, and in w the geometric (triangle plane) normal
+  // turned towards the camera, octahedron-encoded by packSnorm2x16 (secondary rays start at
+  // the exact point and are offset along it: depth reconstruction is a few ulps off).
+  VkImageView position = VK_NULL_HANDLE;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // or GENERAL
+};
+
+// The renderer's results a host composes or shows, written by compute shaders and left in
+// `layout`; the host orders its reads after them with a barrier from
+// VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT / VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT.
+struct FrameOutputs {
+  VkImage hdr = VK_NULL_HANDLE, ldr = VK_NULL_HANDLE;              // R16G16B16A16_SFLOAT linear HDR; R8G8B8A8_UNORM tonemapped sRGB
+  VkImageView hdrView = VK_NULL_HANDLE, ldrView = VK_NULL_HANDLE;
+  VkImage direct = VK_NULL_HANDLE, indirect = VK_NULL_HANDLE;      // R16G16B16A16_SFLOAT: the lit surface, and its reflected + refracted light
+  VkImageView directView = VK_NULL_HANDLE, indirectView = VK_NULL_HANDLE;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
 }  // namespace raybudget::core

@@ -141,6 +141,7 @@ enum class PassSkip : uint8_t {
   NoSmoothOrTransmissiveMaterial,  // trace effects: nothing to reflect or refract (SceneEffects)
   EveryPixelTracesShadows,         // shadow maps under `all`
   EnvironmentReady,                // the static environment after the first frame
+  HostGBuffer,                     // gbuffer: recordFrame reads the host's
 };
 const char* passSkipText(PassSkip skip);
 
@@ -228,12 +229,16 @@ struct FrameImages {
   std::vector<uint16_t> hdrRgba16;  // linear HDR, IEEE half floats
   std::vector<uint32_t> objectIds;  // G-buffer object IDs (RB_NO_OBJECT = 0xFFFFFFFF for none)
   // With readback(true): G-buffer world positions (xyz; w packs the geometric normal), the
-  // ray-traced shadow mask (light-major: mask[light * pixels + pixel]) and the materials.
+  // ray-traced shadow mask (light-major: mask[light * pixels + pixel]), the materials, depth
+  // and emission: the whole G-buffer in core::GBuffer's encoding.
   std::vector<float> positions;
   std::vector<uint16_t> normals;  // shading normals, RGBA half floats
   std::vector<float> shadowMask;
   std::vector<uint16_t> roughTransIor;  // roughness, transmission, IOR, unlit (RGBA half floats)
   std::vector<uint8_t> baseMetal;       // base colour and metallic (RGBA8 unorm)
+  std::vector<float> depth;             // D32 depth, 0 near .. 1 far
+  std::vector<uint16_t> emissive;       // emitted radiance (RGBA half floats)
+  std::vector<uint32_t> materialIds;    // material index per pixel
 };
 
 // The ray tracer's acceleration structure, built once when the Renderer is made.
@@ -269,6 +274,19 @@ class Renderer {
 
   // Waits for every submitted frame and returns the timings not yet returned.
   std::vector<FrameTiming> finish();
+
+  // Records one frame into the host's command buffer (recording, outside a render pass),
+  // reading the host's G-buffer instead of rasterising one: coverage, select, the fallbacks,
+  // the trace passes, lighting and compose, into outputs(). The host submits it. Frames use
+  // RenderSettings' frames-in-flight slots in turn (2): when it records a frame, the one it
+  // recorded two calls before must have completed on the GPU (the host waited for its fence).
+  // The G-buffer's writes must be made visible to compute-shader reads before the command
+  // buffer reaches this frame. Timings of completed frames: completedFrames().
+  void recordFrame(VkCommandBuffer commandBuffer, const Camera& camera, const core::GBuffer& gbuffer);
+  // Timings of frames recorded with recordFrame whose slot has been reused (so they have
+  // completed); never waits.
+  std::vector<FrameTiming> completedFrames();
+  core::FrameOutputs outputs() const;
 
   // Switches to another policy and budget and forgets what the selection learned (S, each
   // object's work per pixel) without rebuilding buffers and pipelines (benchmark sweeps).

@@ -40,6 +40,8 @@ std::pair<VkDescriptorType, uint32_t> bindingType(uint32_t binding, uint32_t tex
   return {info.type, info.count};
 }
 
+bool isGBufferBinding(uint32_t binding) { return (binding >= kGDepth && binding <= kGMaterialId) || binding == kGPosition; }
+
 vk::DescriptorNeeds descriptorNeeds(uint32_t textureCount, bool nativeTracer) {
   vk::DescriptorNeeds n;
   for (uint32_t b = 0; b < kBindingCount; ++b) {
@@ -84,7 +86,8 @@ Samplers createSamplers(const vk::Context& ctx) {
 }
 
 void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint32_t> only, const vk::Buffer& uniforms, const SceneGpu& scene,
-              const FrameTargets& t, const select::SelectionBuffers& selection, const Samplers& samplers) {
+              const FrameTargets& t, const core::GBuffer& gbuffer, const select::SelectionBuffers& selection, const Samplers& samplers) {
+  const core::GBuffer& gb = gbuffer;
   std::vector<VkDescriptorBufferInfo> buffers = {
       {uniforms.buffer, 0, VK_WHOLE_SIZE}, {scene.objects.buffer, 0, VK_WHOLE_SIZE}, {scene.materials.buffer, 0, VK_WHOLE_SIZE},
       {scene.lights.buffer, 0, VK_WHOLE_SIZE}, {scene.vertices.buffer, 0, VK_WHOLE_SIZE}};
@@ -92,9 +95,9 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   for (const GpuTexture& tex : scene.textures) textures.push_back({tex.sampler, tex.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
   const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   const VkDescriptorImageInfo sampled[] = {
-      {samplers.nearest, t.depth.view, ro},          {samplers.nearest, t.normal.view, ro},   {samplers.nearest, t.baseMetal.view, ro},
-      {samplers.nearest, t.roughTransIor.view, ro},  {samplers.nearest, t.emissive.view, ro}, {samplers.nearest, t.objectId.view, ro},
-      {samplers.nearest, t.materialId.view, ro},     {samplers.shadow, t.shadowMaps.view, ro}, {samplers.shadow, t.pointShadows.view, ro},
+      {samplers.nearest, gb.depth, gb.layout},         {samplers.nearest, gb.normal, gb.layout},   {samplers.nearest, gb.baseMetal, gb.layout},
+      {samplers.nearest, gb.roughTransIor, gb.layout}, {samplers.nearest, gb.emissive, gb.layout}, {samplers.nearest, gb.objectId, gb.layout},
+      {samplers.nearest, gb.materialId, gb.layout},    {samplers.shadow, t.shadowMaps.view, ro}, {samplers.shadow, t.pointShadows.view, ro},
       {samplers.linear, t.env.view, ro},             {samplers.linear, t.sky.view, ro}};
   const VkImageLayout g = VK_IMAGE_LAYOUT_GENERAL;
   const VkDescriptorImageInfo storage[] = {{VK_NULL_HANDLE, t.direct.view, g}, {VK_NULL_HANDLE, t.indirect.view, g},
@@ -128,7 +131,7 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   write(kIndices, 1, &indices, nullptr);
   const VkDescriptorImageInfo mask{VK_NULL_HANDLE, t.shadowMaskArray, g};
   write(kShadowMask, 1, nullptr, &mask);
-  const VkDescriptorImageInfo position{samplers.nearest, t.position.view, ro};
+  const VkDescriptorImageInfo position{samplers.nearest, gb.position, gb.layout};
   write(kGPosition, 1, nullptr, &position);
   const VkDescriptorBufferInfo heuristic[] = {{selection.coverage.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectParams.buffer, 0, VK_WHOLE_SIZE},

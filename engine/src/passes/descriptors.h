@@ -31,8 +31,11 @@ vk::DescriptorNeeds descriptorNeeds(uint32_t textureCount, bool nativeTracer);
 std::pair<VkDescriptorType, uint32_t> bindingType(uint32_t binding, uint32_t textureCount, bool nativeTracer);
 
 // Points the bindings `only` (sorted) of `set` at their resources; `uniforms` is the slot's
-// FrameUniforms.
+// FrameUniforms; `gbuffer` the views the G-buffer bindings read (the targets' own or a host's).
 void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint32_t> only, const vk::Buffer& uniforms, const SceneGpu& scene,
-              const FrameTargets& targets, const select::SelectionBuffers& selection, const Samplers& samplers);
+              const FrameTargets& targets, const core::GBuffer& gbuffer, const select::SelectionBuffers& selection, const Samplers& samplers);
+
+// kGDepth..kGMaterialId and kGPosition: what a host's G-buffer replaces.
+bool isGBufferBinding(uint32_t binding);
 
 }  // namespace raybudget::passes

@@ -35,13 +35,14 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.height = height;
   const VkImageUsageFlags attach = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  t.depth = image2d(ctx, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+  t.depth = image2d(ctx, kDepthFormat, width, height,
+                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.normal = image2d(ctx, kNormalFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.baseMetal = image2d(ctx, kBaseMetalFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.roughTransIor = image2d(ctx, kRoughTransIorFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-  t.emissive = image2d(ctx, kEmissiveFormat, width, height, attach);
+  t.emissive = image2d(ctx, kEmissiveFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.objectId = image2d(ctx, kIdFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-  t.materialId = image2d(ctx, kIdFormat, width, height, attach);
+  t.materialId = image2d(ctx, kIdFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   // Full-precision world position (+ packed geometric normal): secondary rays start at the
   // exact surface point, which depth reconstruction cannot give to within a few ulps.
   t.position = image2d(ctx, kPositionFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "passes/scene_gpu.h"
+#include "raybudget/core.h"
 #include "shared/config.h"
 #include "vk/pipelines.h"
 #include "vk/resources.h"
@@ -41,6 +42,12 @@ struct FrameTargets {
   vk::Owned<VkImageView> shadowMaskArray;          // 2D-array view (also for one light)
   bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;
+
+  // The G-buffer as the passes read it: these images, or a host's (Renderer::recordFrame).
+  core::GBuffer gbufferViews() const {
+    return {depth.view, normal.view, baseMetal.view, roughTransIor.view, emissive.view, objectId.view, materialId.view, position.view,
+            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  }
 
   std::vector<const vk::Image*> gbufferColors() const {
     return {&normal, &baseMetal, &roughTransIor, &emissive, &objectId, &materialId, &position};

@@ -165,7 +165,7 @@ void generateMips(VkCommandBuffer cmd, const Image& image) {
     b.newLayout = to;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image.image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, baseMip, count, 0, layers};
+    b.subresourceRange = {image.aspect, baseMip, count, 0, layers};
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &b;
@@ -198,7 +198,7 @@ void uploadTexture(const Context& ctx, const Image& image, const std::vector<uin
     imageBarrier(cmd, image, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageSubresource = {image.aspect, 0, 0, 1};
     copy.imageExtent = {image.desc.width, image.desc.height, 1};
     vkCmdCopyBufferToImage(cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     generateMips(cmd, image);
