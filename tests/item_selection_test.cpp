@@ -141,8 +141,10 @@ TEST(Items, BenefitLearningAndSelectionEqualTheCpuReference) {
   const std::vector<FrameTiming> all = orbit(1e6f, nullptr);
   ASSERT_EQ(all.size(), 6u);
   ASSERT_GT(all.back().predictedTraceMs, 0.0);
+  // An eighth of the unbudgeted frame's predicted cost: the items' costs come from clock
+  // ticks, which a loaded machine inflates in one run and not the other, so the margin is wide.
   std::vector<ObjectMetrics> metrics;
-  const std::vector<FrameTiming> part = orbit(float(all.back().predictedTraceMs / 4.0), &metrics);
+  const std::vector<FrameTiming> part = orbit(float(all.back().predictedTraceMs / 8.0), &metrics);
   uint32_t binding = 0;
   for (size_t f = 0; f < part.size(); ++f) binding += part[f].selectedObjects > 0 && part[f].selectedObjects < all[f].selectedObjects;
   EXPECT_GE(binding, 3u) << "the budget should bind in most frames";
