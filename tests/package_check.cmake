@@ -1,6 +1,8 @@
 # The installed package as a host sees it: installs the build into a fresh prefix, builds
 # examples/minimal_host against that prefix alone (find_package(raybudget)), runs it with
-# validation, and checks its image equals `raybudget render`'s for the same scene and settings.
+# validation (it rasterises its own G-buffer and has raybudget record the frame into its
+# command buffer), and checks its image against `raybudget render`'s for the same scene and
+# settings.
 file(REMOVE_RECURSE ${WORK})
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY ${cwd})
@@ -23,8 +25,14 @@ file(MAKE_DIRECTORY ${WORK}/run)
 set(cwd ${WORK}/run)
 run(${WORK}/host-build/minimal_host ${SCENE} --validation)
 run(${RAYBUDGET} render ${SCENE} --policy all --frames 1 --width 320 --height 180 --out ${WORK}/cli)
-execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run/minimal_host.png ${WORK}/cli/frame.png RESULT_VARIABLE same)
-if(NOT same EQUAL 0)
-  message(FATAL_ERROR "minimal_host.png differs from raybudget render's frame.png")
+# Identical on lavapipe; another driver may round the host's CPU-transformed vertices and our
+# GPU-transformed ones differently, so a few pixels may differ slightly.
+if(EXISTS ${PYTHON})
+  run(${PYTHON} ${SOURCE_DIR}/tests/compare_images.py ${WORK}/run/minimal_host.png ${WORK}/cli/frame.png 8 0.005)
+else()
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run/minimal_host.png ${WORK}/cli/frame.png RESULT_VARIABLE same)
+  if(NOT same EQUAL 0)
+    message(FATAL_ERROR "minimal_host.png differs from raybudget render's frame.png")
+  endif()
+  message("minimal_host.png equals raybudget render's frame.png")
 endif()
-message("minimal_host.png equals raybudget render's frame.png")
