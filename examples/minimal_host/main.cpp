@@ -4,7 +4,7 @@
 // It checks that its device can host raybudget (core::missingRequirements), creates it with
 // the features raybudget asks for (core::deviceSetup), rasterises the scene's untextured,
 // opaque materials into a G-buffer of its own in raybudget's encoding (gbuffer.frag), has
-// raybudget record the ray-traced frame into its command buffer (Renderer::recordFrame),
+// raybudget's core record the ray-traced frame into its command buffer (core::Context),
 // copies the composed image out and writes minimal_host.png into the working directory.
 // With --validation its instance runs the Khronos layer and the program fails on any message.
 #include <cstdio>
@@ -17,7 +17,9 @@
 
 #include "gbuffer_frag.h"
 #include "gbuffer_vert.h"
-#include "raybudget/raybudget.h"
+#include "raybudget/core.h"
+#include "raybudget/error.h"
+#include "raybudget/image_io.h"
 
 namespace {
 
@@ -245,10 +247,11 @@ int main(int argc, char** argv) {
     settings.policy = raybudget::Policy::All;  // every object's shadows, reflections, refractions traced
     const uint32_t w = settings.width, h = settings.height;
     {
-      // The renderer borrows the device: it must be gone before the device is destroyed.
-      raybudget::Renderer renderer(scene, settings, host.lend());
-      const raybudget::Camera camera = raybudget::defaultCamera(scene, renderer.aspect());
-      const glm::mat4 viewProj = camera.projection(renderer.aspect()) * camera.view();
+      // The core borrows the device: it must be gone before the device is destroyed.
+      raybudget::core::Context core(host.lend(), scene, settings);
+      const float aspect = float(w) / float(h);
+      const raybudget::Camera camera = raybudget::defaultCamera(scene, aspect);
+      const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
 
       // The host's geometry: each object's vertices in world space, one draw per primitive.
       struct WorldVertex {
@@ -409,10 +412,10 @@ int main(int argc, char** argv) {
 
       const raybudget::core::GBuffer gbuffer{depth.view,    normal.view,     baseMetal.view, roughTransIor.view, emissive.view,
                                              objectId.view, materialId.view, position.view,  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-      renderer.recordFrame(cmd, camera, gbuffer);
+      core.recordFrame(cmd, camera, &gbuffer);
 
       // The composed image (tonemapped sRGB, GENERAL) out to the host.
-      const raybudget::core::FrameOutputs out = renderer.outputs();
+      const raybudget::core::FrameOutputs out = core.outputs();
       VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
       mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
       mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;

@@ -1,13 +1,24 @@
-// raybudget's boundary with a host engine's Vulkan device: what the library requires of a
-// physical device, the features and extensions to enable on it, and the host's handles the
-// library borrows (it never destroys them). The standalone Renderer runs on its own device
-// or on a host's (Renderer's HostDevice constructor); docs/INTEGRATION.md walks through it.
+// raybudget's core, as a host engine uses it: what the library requires of a physical
+// device, the features and extensions to enable on it, the host's handles it borrows (it
+// never destroys them), and the Context that records a frame's budgeted ray-traced effects
+// into the host's command buffer from the host's G-buffer. The standalone Renderer
+// (raybudget/renderer.h) is a host of it like any other; docs/INTEGRATION.md walks through it.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
+
+#include "raybudget/camera.h"
+#include "raybudget/scene.h"
+#include "raybudget/settings.h"
+
+namespace raybudget::testing {
+struct Checks;
+}
 
 namespace raybudget::core {
 
@@ -89,7 +100,67 @@ struct FrameOutputs {
   VkImageView hdrView = VK_NULL_HANDLE, ldrView = VK_NULL_HANDLE;
   VkImage direct = VK_NULL_HANDLE, indirect = VK_NULL_HANDLE;      // R16G16B16A16_SFLOAT: the lit surface, and its reflected + refracted light
   VkImageView directView = VK_NULL_HANDLE, indirectView = VK_NULL_HANDLE;
+  // R32_SFLOAT array, a layer per light: the ray-traced visibility of each light where
+  // shadows were traced this frame
+  VkImage shadowVisibility = VK_NULL_HANDLE;
+  uint32_t shadowVisibilityLayers = 0;
   VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
+// The images of the core's own G-buffer raster (recordFrame without a host G-buffer), in
+// core::GBuffer's formats, SHADER_READ_ONLY_OPTIMAL after such a frame: for read-back.
+struct OwnGBuffer {
+  VkImage depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position;
+};
+
+// The core on the host's device: the scene's buffers and acceleration structure, the
+// selection, the raster fallbacks, the trace passes, lighting and compose.
+class Context {
+ public:
+  // Uploads the scene and builds the acceleration structure, submitting to host.queue and
+  // waiting. Throws raybudget::Error on bad settings or a failed Vulkan call.
+  Context(const HostDevice& host, const Scene& scene, const RenderSettings& settings);
+  // With the checks of raybudget/testing.h (tests).
+  Context(const HostDevice& host, const Scene& scene, const RenderSettings& settings, const testing::Checks& checks);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  // Records one frame into `commandBuffer` (recording, outside a render pass): with
+  // `gbuffer`, reading the host's; without, rasterising the scene into the core's own
+  // (ownGBuffer()). Coverage, select, the raster fallbacks, the trace passes, lighting and
+  // compose follow, into outputs(). Frames use two slots in turn: when the host records a
+  // frame, the one it recorded two calls before must have completed on the GPU (the host
+  // waited for its fence). A host G-buffer's writes must be visible to compute-shader reads
+  // when the command buffer reaches this frame.
+  void recordFrame(VkCommandBuffer commandBuffer, const Camera& camera, const GBuffer* gbuffer = nullptr);
+  // Timings of frames whose slot has come round again (so they completed), each once, oldest
+  // first; never waits. `everyRecordedFrameCompleted`: the host has waited for all of them,
+  // so they are all returned.
+  std::vector<FrameTiming> completedFrames(bool everyRecordedFrameCompleted = false);
+  FrameOutputs outputs() const;
+  OwnGBuffer ownGBuffer() const;
+  uint64_t framesRecorded() const;
+
+  // Switches policy and budget and forgets what the selection learned (Renderer's
+  // restartSelection); every recorded frame has completed (collect their timings first with
+  // completedFrames(true)). Throws Error on a bad budget.
+  void restartSelection(Policy policy, float budgetMs, BenefitAblation ablation = BenefitAblation::None, ItemRate rate = ItemRate::Full);
+  CostModel costModel() const;
+  void setCostModel(const CostModel& model);  // throws Error on negative or non-finite values
+  // From the next frame on (the editor, animation); throws Error on a bad ID or transform.
+  void setObjectTransform(uint32_t objectId, const glm::mat4& transform);
+  // The per-object quantities of the last recorded frame, indexed by object ID; waits for
+  // host.queue to be idle and copies them out. Needs RenderSettings::objectMetrics.
+  std::vector<ObjectMetrics> objectMetrics() const;
+  AccelStats accelStats() const;
+  SceneEffects sceneEffects() const;  // what the scene can show at all
+  // The passes whose pipelines exist so far (built when a frame first needs them).
+  std::vector<std::string> builtPipelines() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace raybudget::core

@@ -1,0 +1,403 @@
+// The core: a frame's coverage, select, raster fallbacks, trace passes, lighting and
+// compose (and, for hosts without one, the G-buffer raster) recorded into a host's command
+// buffer on the host's device, two frame slots in turn, every pass bracketed by timestamps.
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include "compose_comp.h"
+#include "env_fallback_comp.h"
+#include "lighting_comp.h"
+#include "passes/descriptors.h"
+#include "passes/environment.h"
+#include "passes/frame_targets.h"
+#include "passes/gbuffer.h"
+#include "passes/scene_gpu.h"
+#include "passes/screen_pass.h"
+#include "passes/shadow_maps.h"
+#include "passes/trace_pass.h"
+#include "raybudget/core.h"
+#include "raybudget/error.h"
+#include "raybudget/testing.h"
+#include "select/selection_stage.h"
+#include "shared/config.h"
+#include "shared/types.h"
+#include "vk/check.h"
+#include "vk/context.h"
+#include "vk/timestamps.h"
+
+namespace raybudget::core {
+namespace {
+
+constexpr uint32_t kFramesInFlight = 2;
+
+}  // namespace
+
+struct Context::Impl {
+  struct Slot {
+    vk::Buffer uniforms;
+    GBuffer gbuffer;        // the views the slot's sets read the G-buffer from
+    bool recorded = false;  // recorded, its timings not yet collected
+    uint64_t frame = 0;
+    std::array<PassSkip, kPassCount> skipped{};  // why each pass not recorded was left out
+    double tlasRebuildMs = 0.0;
+    vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
+  };
+
+  RenderSettings settings;
+  SceneEffects effects;  // what the scene can show at all: no pass, no pipeline for the rest
+  glm::vec3 sunDirection;
+  vk::Context ctx;  // the host's device, borrowed
+  passes::SceneGpu scene;
+  passes::FrameTargets targets;
+  passes::Samplers samplers;
+  passes::PassLayouts layouts;  // each pass's descriptor set layout and per-slot sets
+  vk::TimestampPool timestamps;
+  // Coverage, select, the tile list and the cost model: the selection half of the stage.
+  select::SelectionStage selection;
+  passes::GBufferPass gbuffer;
+  std::optional<passes::ShadowMapPass> shadowMaps;  // only when a light has a shadow map
+  passes::EnvironmentPass environment;
+  passes::ScreenPass lighting;
+  passes::ScreenPass envFallback;
+  passes::ScreenPass compose;
+  passes::TracePass traceShadows;
+  passes::TracePass traceEffects;
+  Slot slots[kFramesInFlight];
+  uint64_t frameIndex = 0;
+  bool environmentReady = false;
+  bool objectsMoved = false;
+  std::vector<FrameTiming> completed;  // collected, not yet returned
+
+  Impl(const HostDevice& host, const Scene& s, const RenderSettings& rs, const testing::Checks& checks)
+      : settings(rs),
+        effects(raybudget::sceneEffects(s, rs.rayTracing.maxRoughness)),
+        sunDirection(sunOf(s)),
+        ctx(host),
+        scene(passes::uploadScene(ctx, s, rs)),
+        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount)),
+        samplers(passes::createSamplers(ctx)),
+        layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
+        timestamps(ctx, kFramesInFlight, kPassCount),
+        selection(ctx, layouts, s, rs, kFramesInFlight, checks.selectionAgainstCpu),
+        gbuffer(ctx, layouts),
+        environment(ctx, layouts),
+        lighting(ctx, layouts, kSpirv_lighting_comp),
+        envFallback(ctx, layouts, kSpirv_env_fallback_comp),
+        compose(ctx, layouts, kSpirv_compose_comp),
+        traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows)),
+        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects)) {
+    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts);
+    for (Slot& slot : slots) {
+      slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+      slot.gbuffer = targets.gbufferViews();
+      layouts.writeAll(uint32_t(&slot - slots), [&](VkDescriptorSet set, std::span<const uint32_t> bindings) {
+        passes::writeSet(ctx, set, bindings, slot.uniforms, scene, targets, slot.gbuffer, selection.buffers(), samplers);
+      });
+    }
+    // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask})
+        vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      passes::ShadowMapPass::initialize(cmd, targets);
+    });
+  }
+
+  // The sky's sun follows the scene's first directional light, else a default elevation.
+  static glm::vec3 sunOf(const Scene& s) {
+    for (const Light& l : s.lights)
+      if (l.type == LightType::Directional) return -l.direction;
+    return glm::normalize(glm::vec3(0.3f, 1.0f, 0.4f));
+  }
+
+  // The timings and the selection's read-backs of the slot's completed frame.
+  FrameTiming collect(Slot& slot) {
+    FrameTiming t;
+    t.frame = slot.frame;
+    t.tlasRebuildMs = slot.tlasRebuildMs;
+    t.skipped = slot.skipped;
+    const uint32_t s = uint32_t(&slot - slots);
+    const auto ms = timestamps.read(s);
+    for (size_t p = 0; p < kPassCount; ++p) t.passMs[p] = ms[p];
+    selection.retire(s, settings, t);
+    return t;
+  }
+
+  void writeUniforms(Slot& slot, const Camera& camera) {
+    gpu::FrameUniforms u{};
+    const float aspect = float(settings.width) / float(settings.height);
+    u.view = camera.view();
+    u.proj = camera.projection(aspect);
+    u.viewProj = u.proj * u.view;
+    u.invViewProj = glm::inverse(u.viewProj);
+    u.cameraPositionNear = glm::vec4(camera.position, camera.znear);
+    u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
+    u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
+    u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, 0.0f, 0.0f);
+    u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
+                              itemFlags() | (reducedRates() ? RB_RT_RATES : 0u));
+    std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
+  }
+
+  // RB_RT_* bits of the effects traced this frame: those switched on that the scene can show;
+  // with policy none, nothing.
+  uint32_t tracedEffects() const {
+    if (settings.policy == Policy::None) return 0u;
+    const RayTracingSettings& rt = settings.rayTracing;
+    return (rt.shadows && effects.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections && effects.reflections ? RB_RT_REFLECTIONS : 0u) |
+           (rt.refractions && effects.refractions ? RB_RT_REFRACTIONS : 0u);
+  }
+
+  // Why a trace pass for `bits` (RB_RT_*) is left out of the frame (PassSkip::None: it runs).
+  PassSkip traceSkip(uint32_t bits, bool sceneHasIt) const {
+    if (tracedEffects() & bits) return PassSkip::None;
+    if (settings.policy == Policy::None) return PassSkip::PolicyTracesNothing;
+    if (!sceneHasIt) return bits == RB_RT_SHADOWS ? PassSkip::NoLights : PassSkip::NoSmoothOrTransmissiveMaterial;
+    return PassSkip::EffectsOff;
+  }
+
+  // RB_RT_CLASSIFY_SHADOWS / RB_RT_MEASURE_ITEMS / RB_RT_SHORTEN_SHADOW_RAYS for the item-aware
+  // policies: the shadow pass traces only where the shadow map is uncertain and ends its rays
+  // past the map's nearest blocker, and the trace and lighting passes count each item's work
+  // and the display error its tracing removed.
+  uint32_t itemFlags() const {
+    if (settings.policy != Policy::Benefit && settings.policy != Policy::Classified) return 0u;
+    const RayTracingSettings& rt = settings.rayTracing;
+    const bool classify = rt.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
+    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
+  }
+
+  // Whether selected items are traced at a reduced rate (the policies that select items).
+  bool reducedRates() const {
+    const Policy p = settings.policy;
+    const ItemRate r = settings.rayTracing.rate;
+    return r != ItemRate::Full && (p == Policy::Benefit || ((p == Policy::All || p == Policy::Classified) && r != ItemRate::Auto));
+  }
+
+  void computeToCompute(VkCommandBuffer cmd) {
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+
+  bool native() const { return scene.tracer->kind() == Tracer::Native; }
+
+  // The object records for the moved objects' new transforms (and their culling spheres).
+  std::vector<gpu::GpuObject> refreshObjectRecords() {
+    std::vector<gpu::GpuObject> objects;
+    for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
+    for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+    return objects;
+  }
+
+  // Points the G-buffer bindings of the slot's sets at `g` when they read other views. The
+  // slot's previous frame has completed (its fence, or recordFrame's contract).
+  void bindGBuffer(Slot& slot, const GBuffer& g) {
+    const GBuffer& b = slot.gbuffer;
+    if (b.depth == g.depth && b.normal == g.normal && b.baseMetal == g.baseMetal && b.roughTransIor == g.roughTransIor &&
+        b.emissive == g.emissive && b.objectId == g.objectId && b.materialId == g.materialId && b.position == g.position && b.layout == g.layout)
+      return;
+    slot.gbuffer = g;
+    layouts.writeAll(uint32_t(&slot - slots), [&](VkDescriptorSet set, std::span<const uint32_t> bindings) {
+      std::vector<uint32_t> gbufferOnly;
+      for (uint32_t x : bindings)
+        if (passes::isGBufferBinding(x)) gbufferOnly.push_back(x);
+      passes::writeSet(ctx, set, gbufferOnly, slot.uniforms, scene, targets, g, selection.buffers(), samplers);
+    });
+  }
+
+  // The frame's commands into `cmd`; `hostGBuffer`: the slot's sets read a host's G-buffer,
+  // so no raster.
+  void recordCommands(Slot& slot, VkCommandBuffer cmd, const glm::mat4& viewProj, bool hostGBuffer) {
+    const uint32_t s = uint32_t(&slot - slots);
+    timestamps.reset(cmd, s);
+    // Frames share their images: order this frame after everything the previous one did.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    // Moved objects: the tracer's structures and the object records follow, uploaded from the
+    // slot's staging buffer after the previous frame's reads (the frame-start barrier).
+    slot.tlasRebuildMs = 0.0;
+    if (objectsMoved) {
+      objectsMoved = false;
+      const std::vector<gpu::GpuObject> records = refreshObjectRecords();
+      slot.tlasRebuildMs = scene.tracer->recordMovedObjects(cmd, scene.shell, records, slot.updateStaging, scene.objects);
+    }
+    const passes::FrameContext fc{cmd, s, scene, targets, selection.buffers(), viewProj};
+    auto timed = [&](Pass pass, auto&& body) {
+      timestamps.begin(cmd, s, uint32_t(pass));
+      body();
+      timestamps.end(cmd, s, uint32_t(pass));
+    };
+    // Each pass either runs (timed) or is left out with its reason.
+    auto run = [&](Pass pass, PassSkip skip, auto&& body) {
+      slot.skipped[size_t(pass)] = skip;
+      if (skip == PassSkip::None) timed(pass, body);
+    };
+    // Skip what the frame does not need: no shadow maps when every pixel traces its
+    // shadows, no trace work when nothing is traced, and the trace passes run only over the
+    // tiles holding selected pixels (an empty tile list is an empty indirect dispatch).
+    const uint32_t traced = tracedEffects();
+    selection.beginFrame(s);
+    run(Pass::GBuffer, hostGBuffer ? PassSkip::HostGBuffer : PassSkip::None, [&] { gbuffer.record(fc); });
+    // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
+    const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
+    const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing : PassSkip::NoEffectInScene;
+    run(Pass::Coverage, settings.objectMetrics || traced ? PassSkip::None : nothingTraced,
+        [&] { selection.recordCoverage(fc, classify); });
+    if (traced) computeToCompute(cmd);
+    run(Pass::Select, traced ? PassSkip::None : nothingTraced, [&] { selection.recordSelect(fc, s, settings); });
+    // With a budgeted policy unselected objects keep the shadow maps.
+    const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All;
+    run(Pass::ShadowMaps, !shadowMaps ? PassSkip::NoLights : everyPixelTracesShadows ? PassSkip::EveryPixelTracesShadows : PassSkip::None,
+        [&] { shadowMaps->record(fc); });
+    run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
+    environmentReady = true;
+    // Items at a reduced ray rate are filled inside the trace passes (shaders/include/tile_fill.glsl).
+    run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc, reducedRates()); });
+    if (traced & RB_RT_SHADOWS) computeToCompute(cmd);
+    // The environment fallback first: the lighting pass reads it to measure the display error
+    // of the traced shadows (RB_RT_MEASURE_ITEMS).
+    timed(Pass::EnvFallback, [&] { envFallback.record(fc); });
+    computeToCompute(cmd);
+    timed(Pass::Lighting, [&] { lighting.record(fc); });
+    const PassSkip effectsSkip = traceSkip(RB_RT_REFLECTIONS | RB_RT_REFRACTIONS, effects.reflections || effects.refractions);
+    if (effectsSkip == PassSkip::None) computeToCompute(cmd);
+    run(Pass::TraceEffects, effectsSkip, [&] { traceEffects.recordOverTiles(fc, reducedRates()); });
+    computeToCompute(cmd);
+    timed(Pass::Compose, [&] { compose.record(fc); });
+    selection.recordStats(cmd, s);
+  }
+
+  // The slot's previous frame has completed by the host's contract.
+  void recordFrame(VkCommandBuffer cmd, const Camera& camera, const GBuffer* host) {
+    if (!cmd) throw Error("recordFrame: no command buffer");
+    if (host) {
+      const GBuffer& g = *host;
+      for (VkImageView v : {g.depth, g.normal, g.baseMetal, g.roughTransIor, g.emissive, g.objectId, g.materialId, g.position})
+        if (!v) throw Error("recordFrame: every G-buffer view must be set (core::GBuffer)");
+      if (g.layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL && g.layout != VK_IMAGE_LAYOUT_GENERAL)
+        throw Error("recordFrame: the G-buffer's layout must be SHADER_READ_ONLY_OPTIMAL or GENERAL");
+    }
+    Slot& slot = slots[frameIndex % kFramesInFlight];
+    if (slot.recorded) completed.push_back(collect(slot));
+    bindGBuffer(slot, host ? *host : targets.gbufferViews());
+    writeUniforms(slot, camera);
+    const float aspect = float(settings.width) / float(settings.height);
+    recordCommands(slot, cmd, camera.projection(aspect) * camera.view(), host != nullptr);
+    slot.recorded = true;
+    slot.frame = frameIndex++;
+  }
+
+  // Every recorded frame has completed (the host says so): their timings, oldest first.
+  void collectAll() {
+    for (uint32_t k = 0; k < kFramesInFlight; ++k) {
+      Slot& slot = slots[(frameIndex + k) % kFramesInFlight];
+      if (slot.recorded) {
+        completed.push_back(collect(slot));
+        slot.recorded = false;
+      }
+    }
+  }
+
+  // Forgets what the selection learned (S, work per pixel) and switches policy and budget;
+  // the time scale learned so far for the new policy's cost unit is kept (the prior if none).
+  void restartSelection(Policy policy, float budgetMs, BenefitAblation ablation, ItemRate rate) {
+    RenderSettings next = settings;
+    next.policy = policy;
+    next.budgetMs = budgetMs;
+    next.benefitAblation = ablation;
+    next.rayTracing.rate = rate;
+    validateSettings(next);
+    collectAll();
+    settings = next;
+    selection.restart(settings);
+  }
+
+  void setCostModel(const CostModel& m) {
+    for (double v : {m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs, m.traceFixedMs})
+      if (!std::isfinite(v) || v < 0.0 || v > 1e6) throw Error("cost model values must be finite and within 0..1e6, got " + std::to_string(v));
+    selection.setCostModel(m);
+  }
+
+};
+
+Context::Context(const HostDevice& host, const Scene& scene, const RenderSettings& settings) : Context(host, scene, settings, testing::Checks{}) {}
+
+Context::Context(const HostDevice& host, const Scene& scene, const RenderSettings& settings, const testing::Checks& checks) {
+  validateSettings(settings);
+  impl_ = std::make_unique<Impl>(host, scene, settings, checks);
+}
+
+Context::~Context() = default;
+
+void Context::recordFrame(VkCommandBuffer commandBuffer, const Camera& camera, const GBuffer* gbuffer) {
+  impl_->recordFrame(commandBuffer, camera, gbuffer);
+}
+
+std::vector<FrameTiming> Context::completedFrames(bool everyRecordedFrameCompleted) {
+  if (everyRecordedFrameCompleted) impl_->collectAll();
+  return std::exchange(impl_->completed, {});
+}
+
+FrameOutputs Context::outputs() const {
+  const passes::FrameTargets& t = impl_->targets;
+  FrameOutputs o;
+  o.hdr = t.hdr.image;
+  o.ldr = t.ldr.image;
+  o.hdrView = t.hdr.view;
+  o.ldrView = t.ldr.view;
+  o.direct = t.direct.image;
+  o.indirect = t.indirect.image;
+  o.directView = t.direct.view;
+  o.indirectView = t.indirect.view;
+  o.shadowVisibility = t.shadowMask.image;
+  o.shadowVisibilityLayers = t.shadowMask.desc.layers;
+  return o;
+}
+
+OwnGBuffer Context::ownGBuffer() const {
+  const passes::FrameTargets& t = impl_->targets;
+  return {t.depth.image, t.normal.image, t.baseMetal.image, t.roughTransIor.image, t.emissive.image, t.objectId.image, t.materialId.image,
+          t.position.image};
+}
+
+void Context::restartSelection(Policy policy, float budgetMs, BenefitAblation ablation, ItemRate rate) {
+  impl_->restartSelection(policy, budgetMs, ablation, rate);
+}
+
+CostModel Context::costModel() const { return impl_->selection.costModel(); }
+
+void Context::setCostModel(const CostModel& model) { impl_->setCostModel(model); }
+
+void Context::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
+  raybudget::setObjectTransform(impl_->scene.shell, objectId, transform);
+  impl_->objectsMoved = true;
+}
+
+std::vector<ObjectMetrics> Context::objectMetrics() const {
+  if (!impl_->settings.objectMetrics) throw Error("objectMetrics() needs RenderSettings::objectMetrics");
+  if (impl_->frameIndex == 0) throw Error("objectMetrics() before any frame was rendered");
+  return impl_->selection.objectMetrics();
+}
+
+AccelStats Context::accelStats() const { return impl_->scene.tracer->stats(); }
+
+SceneEffects Context::sceneEffects() const { return impl_->effects; }
+
+std::vector<std::string> Context::builtPipelines() const {
+  const Impl& r = *impl_;
+  std::vector<std::string> out = {"gbuffer", "coverage", "select", "environment", "env_fallback", "lighting", "compose"};
+  if (r.shadowMaps) out.push_back("shadow_maps");
+  if (r.traceShadows.builtPlain()) out.push_back("trace_shadows");
+  if (r.traceShadows.builtFilling()) out.push_back("trace_shadows+fill");
+  if (r.traceEffects.builtPlain()) out.push_back("trace_effects");
+  if (r.traceEffects.builtFilling()) out.push_back("trace_effects+fill");
+  return out;
+}
+
+uint64_t Context::framesRecorded() const { return impl_->frameIndex; }
+
+}  // namespace raybudget::core
