@@ -130,3 +130,57 @@ TEST(CoverageGpu, MatchesTheCpuReferenceOnTheCiScenes) {
 
 }  // namespace
 }  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+// K, Q and I changed at run time (the editor's sliders) reach the next frame's C = V·Q and
+// R = (S·I + V)·K, survive a restart of the selection, and bad values change nothing.
+TEST(ObjectParams, ChangedAtRunTimeTheNextFrameUsesThem) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s = test::settingsFor(Policy::Paper, 160, 96);
+  s.budgetMs = 1000.0f;
+  s.learnTimeScale = false;
+  s.objectMetrics = true;
+  Renderer r(scene, s);
+  const Camera cam = defaultCamera(scene, r.aspect());
+  auto frame = [&] {
+    r.render(cam);
+    r.finish();
+    return r.objectMetrics();
+  };
+  const std::vector<ObjectMetrics> before = frame();
+  size_t i = 0;
+  while (i < before.size() && before[i].pixels == 0) ++i;
+  ASSERT_LT(i, before.size()) << "some object is on screen";
+  RayBudgetParams p;
+  p.importanceK = 3.0f;
+  p.raysQ = 7.0f;
+  p.hysteresisI = 0.0f;
+  r.setObjectParams(uint32_t(i), p);
+  const RayBudgetParams set = r.objectParams(uint32_t(i));
+  EXPECT_EQ(set.importanceK, 3.0f);
+  EXPECT_EQ(set.raysQ, 7.0f);
+  EXPECT_EQ(set.hysteresisI, 0.0f);
+  const std::vector<ObjectMetrics> after = frame();
+  EXPECT_EQ(after[i].V, before[i].V) << "the same view";
+  EXPECT_EQ(after[i].C, after[i].V * 7.0f);
+  EXPECT_EQ(after[i].R, after[i].V * 3.0f) << "I = 0: S no longer counts";
+  RayBudgetParams bad = p;
+  bad.importanceK = std::nanf("");
+  try {
+    r.setObjectParams(uint32_t(i), bad);
+    ADD_FAILURE() << "a NaN K was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("object " + std::to_string(i)), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(r.setObjectParams(uint32_t(scene.objects.size()), p), Error);
+  EXPECT_EQ(r.objectParams(uint32_t(i)).importanceK, 3.0f) << "a refused value changes nothing";
+  r.restartSelection(Policy::Paper, 1000.0f);
+  const std::vector<ObjectMetrics> restarted = frame();
+  EXPECT_EQ(restarted[i].C, restarted[i].V * 7.0f) << "a restart keeps the edited values";
+  test::expectValidationClean(r.validationMessages());
+}
+
+}  // namespace
+}  // namespace raybudget

@@ -237,6 +237,10 @@ void Renderer::setCostModel(const CostModel& model) { impl_->core.setCostModel(m
 
 void Renderer::setObjectTransform(uint32_t objectId, const glm::mat4& transform) { impl_->core.setObjectTransform(objectId, transform); }
 
+void Renderer::setObjectParams(uint32_t objectId, const RayBudgetParams& params) { impl_->core.setObjectParams(objectId, params); }
+
+RayBudgetParams Renderer::objectParams(uint32_t objectId) const { return impl_->core.objectParams(objectId); }
+
 std::vector<ObjectMetrics> Renderer::objectMetrics() { return impl_->core.objectMetrics(); }
 
 FrameImages Renderer::readback(bool gbufferDetail) { return impl_->readback(gbufferDetail); }

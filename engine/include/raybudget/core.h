@@ -150,6 +150,12 @@ class Context {
   void setCostModel(const CostModel& model);  // throws Error on negative or non-finite values
   // From the next frame on (the editor, animation); throws Error on a bad ID or transform.
   void setObjectTransform(uint32_t objectId, const glm::mat4& transform);
+  // An object's K, Q and I from the next frame on (absent values derived as at load: K 1,
+  // I 0.5, Q from its materials and the lights); S carries over. Throws Error naming the
+  // object on a bad ID or a negative, non-finite or absurd value, and changes nothing then.
+  void setObjectParams(uint32_t objectId, const RayBudgetParams& params);
+  // The K, Q and I the selection uses for the object (all three filled in).
+  RayBudgetParams objectParams(uint32_t objectId) const;
   // The per-object quantities of the last recorded frame, indexed by object ID; waits for
   // host.queue to be idle and copies them out. Needs RenderSettings::objectMetrics.
   std::vector<ObjectMetrics> objectMetrics() const;

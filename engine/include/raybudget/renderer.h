@@ -81,6 +81,9 @@ class Renderer {
   // BVH instance (only the TLAS is rebuilt) and its bounds follow. Throws Error on a bad
   // ID or transform.
   void setObjectTransform(uint32_t objectId, const glm::mat4& transform);
+  // K, Q, I from the next frame on (core::Context::setObjectParams; the editor).
+  void setObjectParams(uint32_t objectId, const RayBudgetParams& params);
+  RayBudgetParams objectParams(uint32_t objectId) const;
 
   // The images of the last rendered frame (waits for it); `gbufferDetail` adds positions and
   // the shadow mask (for oracle tests).

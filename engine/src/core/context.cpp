@@ -22,6 +22,7 @@
 #include "raybudget/core.h"
 #include "raybudget/error.h"
 #include "raybudget/testing.h"
+#include "select/object_params.h"
 #include "select/selection_stage.h"
 #include "shared/config.h"
 #include "shared/types.h"
@@ -240,7 +241,7 @@ struct Context::Impl {
     // shadows, no trace work when nothing is traced, and the trace passes run only over the
     // tiles holding selected pixels (an empty tile list is an empty indirect dispatch).
     const uint32_t traced = tracedEffects();
-    selection.beginFrame(s);
+    selection.beginFrame(cmd, s);
     run(Pass::GBuffer, hostGBuffer ? PassSkip::HostGBuffer : PassSkip::None, [&] { gbuffer.record(fc); });
     // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
     const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
@@ -371,6 +372,23 @@ void Context::restartSelection(Policy policy, float budgetMs, BenefitAblation ab
 CostModel Context::costModel() const { return impl_->selection.costModel(); }
 
 void Context::setCostModel(const CostModel& model) { impl_->setCostModel(model); }
+
+void Context::setObjectParams(uint32_t objectId, const RayBudgetParams& params) {
+  Scene& shell = impl_->scene.shell;
+  if (objectId >= shell.objects.size())
+    throw Error("setObjectParams: no object " + std::to_string(objectId) + " (the scene has " + std::to_string(shell.objects.size()) + ")");
+  validateRayBudgetParams(params, "object " + std::to_string(objectId) + " ('" + shell.objects[objectId].name + "')");
+  shell.objects[objectId].params = params;
+  const select::ObjectParams p = select::objectParams(shell, shell.objects[objectId], impl_->settings.rayTracing.maxRoughness);
+  impl_->selection.setObjectParams(objectId, p.K, p.Q, p.I);
+}
+
+RayBudgetParams Context::objectParams(uint32_t objectId) const {
+  const Scene& shell = impl_->scene.shell;
+  if (objectId >= shell.objects.size()) throw Error("objectParams: no object " + std::to_string(objectId));
+  const select::ObjectParams p = select::objectParams(shell, shell.objects[objectId], impl_->settings.rayTracing.maxRoughness);
+  return {p.K, p.Q, p.I};
+}
 
 void Context::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
   raybudget::setObjectTransform(impl_->scene.shell, objectId, transform);

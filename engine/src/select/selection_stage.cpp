@@ -346,6 +346,18 @@ struct SelectionStage::Impl {
                                          r[0] > 0 && r[3] == 0 && !slot.belowFixedCost});
   }
 
+  std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads
+
+  // K, Q and I (not S, which the GPU keeps in kqiS.w) of the changed objects.
+  void uploadChangedParams(VkCommandBuffer cmd) {
+    if (changedParams.empty()) return;
+    for (uint32_t i : changedParams)
+      vkCmdUpdateBuffer(cmd, buffers.objectParams.buffer, i * sizeof(gpu::GpuObjectParams), 3 * sizeof(float), &initialParams[i].kqiS);
+    changedParams.clear();
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_MEMORY_READ_BIT);
+  }
+
   void restart(const RenderSettings& s) {
     ensureSelector(s);
     timeScale.forgetErrors();
@@ -403,9 +415,16 @@ SelectionStage::~SelectionStage() = default;
 
 const SelectionBuffers& SelectionStage::buffers() const { return impl_->buffers; }
 
-void SelectionStage::beginFrame(uint32_t slot) {
+void SelectionStage::beginFrame(VkCommandBuffer cmd, uint32_t slot) {
   impl_->slots[slot].selected = false;
   impl_->slots[slot].budgeted = false;
+  impl_->uploadChangedParams(cmd);
+}
+
+void SelectionStage::setObjectParams(uint32_t object, float K, float Q, float I) {
+  gpu::GpuObjectParams& p = impl_->initialParams.at(object);
+  p.kqiS = glm::vec4(K, Q, I, p.kqiS.w);
+  impl_->changedParams.push_back(object);
 }
 
 void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classify) const { impl_->coverage.record(fc, classify); }

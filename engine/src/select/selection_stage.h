@@ -30,8 +30,11 @@ class SelectionStage {
 
   const SelectionBuffers& buffers() const;
 
-  // Starts frame slot `slot`: nothing selected until recordSelect.
-  void beginFrame(uint32_t slot);
+  // Starts frame slot `slot`: nothing selected until recordSelect; K, Q and I changed since
+  // the last frame are uploaded first (a transfer and a barrier before every later read).
+  void beginFrame(VkCommandBuffer cmd, uint32_t slot);
+  // An object's K, Q, I from the next frame on (and after restarts); S stays the GPU's.
+  void setObjectParams(uint32_t object, float K, float Q, float I);
   // The coverage pass (with `classify`, the classifier's pixel counts too); barriers included.
   void recordCoverage(const passes::FrameContext& fc, bool classify) const;
   // The select pass for `slot`: with a budgeted policy the GPU selection within T less the
