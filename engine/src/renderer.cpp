@@ -32,24 +32,6 @@ struct ReadSource {
   uint32_t layers;
 };
 
-void layoutBarrier(VkCommandBuffer cmd, const ReadSource& src, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess, VkImageLayout from, VkImageLayout to) {
-  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  b.srcStageMask = srcStage;
-  b.srcAccessMask = srcAccess;
-  b.dstStageMask = dstStage;
-  b.dstAccessMask = dstAccess;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = src.image;
-  b.subresourceRange = {src.aspect, 0, 1, 0, src.layers};
-  VkDependencyInfo d{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  d.imageMemoryBarrierCount = 1;
-  d.pImageMemoryBarriers = &b;
-  vkCmdPipelineBarrier2(cmd, &d);
-}
-
 }  // namespace
 
 struct Renderer::Impl {
@@ -158,14 +140,14 @@ struct Renderer::Impl {
       // Each source goes to TRANSFER_SRC for its copy and back to the layout the frame expects.
       for (size_t i = 0; i < sources.size(); ++i) {
         const ReadSource& src = sources[i];
-        layoutBarrier(cmd, src, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT, src.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        vk::imageBarrier(cmd, src.image, src.aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, src.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy copy{};
         copy.imageSubresource = {src.aspect, 0, 0, src.layers};
         copy.imageExtent = {settings.width, settings.height, 1};
         vkCmdCopyImageToBuffer(cmd, src.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffers[i].buffer, 1, &copy);
-        layoutBarrier(cmd, src, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      src.layout);
+        vk::imageBarrier(cmd, src.image, src.aspect, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, src.layout);
       }
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                         VK_ACCESS_2_HOST_READ_BIT);

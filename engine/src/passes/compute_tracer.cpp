@@ -52,10 +52,7 @@ class ComputeTracer final : public SceneTracer {
     w[0].pTexelBufferView = &texels[0];
     w[1].pTexelBufferView = &texels[1];
     w[2].pBufferInfo = &instances;
-    std::vector<VkWriteDescriptorSet> wanted;
-    for (const VkWriteDescriptorSet& x : w)
-      if (std::binary_search(only.begin(), only.end(), x.dstBinding)) wanted.push_back(x);
-    vkUpdateDescriptorSets(device, uint32_t(wanted.size()), wanted.data(), 0, nullptr);
+    updateBindingsAmong(device, w, only);
   }
 
   double recordMovedObjects(VkCommandBuffer cmd, const Scene& shell, std::span<const gpu::GpuObject> records, vk::Buffer& staging,

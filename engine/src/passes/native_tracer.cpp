@@ -48,10 +48,7 @@ class NativeTracer final : public SceneTracer {
       w[i].pBufferInfo = i == 0 ? nullptr : &table;
     }
     w[0].pNext = &tlasWrite;
-    std::vector<VkWriteDescriptorSet> wanted;
-    for (const VkWriteDescriptorSet& x : w)
-      if (std::binary_search(only.begin(), only.end(), x.dstBinding)) wanted.push_back(x);
-    vkUpdateDescriptorSets(device, uint32_t(wanted.size()), wanted.data(), 0, nullptr);
+    updateBindingsAmong(device, w, only);
   }
 
   double recordMovedObjects(VkCommandBuffer cmd, const Scene& shell, std::span<const gpu::GpuObject> records, vk::Buffer& staging,

@@ -41,6 +41,9 @@ std::unique_ptr<SceneTracer> createSceneTracer(const vk::Context& ctx, const Sce
 std::unique_ptr<SceneTracer> createComputeTracer(const vk::Context& ctx, const Scene& scene, SpatialSplits splits);
 std::unique_ptr<SceneTracer> createNativeTracer(const vk::Context& ctx, const Scene& scene);
 
+// Applies those of `writes` whose binding is among `only` (sorted).
+void updateBindingsAmong(VkDevice device, std::span<const VkWriteDescriptorSet> writes, std::span<const uint32_t> only);
+
 // The mapped bytes of `staging`, made host-visible and at least `bytes` long first.
 uint8_t* stagingOf(const vk::Context& ctx, vk::Buffer& staging, VkDeviceSize bytes);
 

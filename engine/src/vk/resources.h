@@ -60,8 +60,10 @@ Image createImage(const Context& ctx, const ImageDesc& desc);
 Owned<VkImageView> createView(const Context& ctx, const Image& image, VkImageViewType type, uint32_t baseMip, uint32_t mipCount,
                               uint32_t baseLayer, uint32_t layerCount);
 
-// Synchronization2 image barrier over the whole image.
+// Synchronization2 image barrier over the whole image (every mip and layer of `aspect`).
 void imageBarrier(VkCommandBuffer cmd, const Image& image, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess, VkImageLayout oldLayout, VkImageLayout newLayout);
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess, VkImageLayout oldLayout, VkImageLayout newLayout);
 
 // A global memory barrier (buffers, and images whose layout does not change).
