@@ -10,6 +10,7 @@
 #include "trace_rays_comp.h"
 #include "trace_rays_comp_native.h"
 #include "vk/check.h"
+#include "vk/compute_set.h"
 #include "vk/pipelines.h"
 #include "vk/resources.h"
 #include "vk/timestamps.h"
@@ -71,7 +72,6 @@ struct BatchTracer::Impl {
   }
 
   void createPipeline(vk::Spirv shader) {
-    const VkDevice device = ctx.device();
     std::vector<VkDescriptorSetLayoutBinding> b;
     std::vector<VkDescriptorPoolSize> sizes;
     for (const Binding& x : bindings) {
@@ -80,30 +80,10 @@ struct BatchTracer::Impl {
     }
     for (uint32_t i : {kRays, kHits}) b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2});
-    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    lci.bindingCount = uint32_t(b.size());
-    lci.pBindings = b.data();
-    VkDescriptorSetLayout sl = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateDescriptorSetLayout(device, &lci, nullptr, &sl));
-    setLayout = vk::Owned<VkDescriptorSetLayout>(sl, [device](VkDescriptorSetLayout x) { vkDestroyDescriptorSetLayout(device, x, nullptr); });
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push)};
-    VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    pci.setLayoutCount = 1;
-    pci.pSetLayouts = &sl;
-    pci.pushConstantRangeCount = 1;
-    pci.pPushConstantRanges = &range;
-    VkPipelineLayout pl = VK_NULL_HANDLE;
-    VK_CHECK(vkCreatePipelineLayout(device, &pci, nullptr, &pl));
-    layout = vk::Owned<VkPipelineLayout>(pl, [device](VkPipelineLayout x) { vkDestroyPipelineLayout(device, x, nullptr); });
+    setLayout = vk::createSetLayout(ctx, b);
+    layout = vk::createPipelineLayout(ctx, setLayout, VK_SHADER_STAGE_COMPUTE_BIT, sizeof(Push));
     pipeline = vk::createComputePipeline(ctx, layout, shader);
-    VkDescriptorPoolCreateInfo dci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    dci.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-    dci.maxSets = 1;
-    dci.poolSizeCount = uint32_t(sizes.size());
-    dci.pPoolSizes = sizes.data();
-    VkDescriptorPool p = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateDescriptorPool(device, &dci, nullptr, &p));
-    pool = vk::Owned<VkDescriptorPool>(p, [device](VkDescriptorPool x) { vkDestroyDescriptorPool(device, x, nullptr); });
+    pool = vk::createPool(ctx, sizes, 1, VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT);
   }
 
   // The set is rewritten per batch (its ray and hit buffers are new); the pool holds one.

@@ -6,6 +6,7 @@
 #include "passes/descriptors.h"
 #include "shared/types.h"
 #include "vk/check.h"
+#include "vk/compute_set.h"
 #include "vk/spirv_bindings.h"
 
 namespace raybudget::passes {
@@ -33,43 +34,19 @@ const PassLayout& PassLayouts::create(std::initializer_list<vk::Spirv> shaders) 
     bindings.push_back({b, type, count, VK_SHADER_STAGE_ALL, nullptr});
     counts[type] += count * slots_;
   }
-  const VkDevice device = ctx_.device();
-  VkDescriptorSetLayoutCreateInfo sci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  sci.bindingCount = uint32_t(bindings.size());
-  sci.pBindings = bindings.data();
-  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorSetLayout(device, &sci, nullptr, &setLayout));
-  l.setLayout = vk::Owned<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout x) { vkDestroyDescriptorSetLayout(device, x, nullptr); });
-
-  const VkPushConstantRange range{VK_SHADER_STAGE_ALL, 0, sizeof(gpu::DrawPush)};
-  VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pci.setLayoutCount = 1;
-  pci.pSetLayouts = &setLayout;
-  pci.pushConstantRangeCount = 1;
-  pci.pPushConstantRanges = &range;
-  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-  VK_CHECK(vkCreatePipelineLayout(device, &pci, nullptr, &pipelineLayout));
-  l.pipelineLayout = vk::Owned<VkPipelineLayout>(pipelineLayout, [device](VkPipelineLayout x) { vkDestroyPipelineLayout(device, x, nullptr); });
-
-  if (l.bindings.empty()) {  // a pass reading nothing through descriptors still binds an (empty) set
-    counts[VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER] = 1;
-  }
+  l.setLayout = vk::createSetLayout(ctx_, bindings);
+  l.pipelineLayout = vk::createPipelineLayout(ctx_, l.setLayout, VK_SHADER_STAGE_ALL, sizeof(gpu::DrawPush));
+  if (l.bindings.empty()) counts[VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER] = 1;  // a pool needs a size; the (empty) set is still bound
   std::vector<VkDescriptorPoolSize> sizes;
   for (const auto& [type, count] : counts) sizes.push_back({type, count});
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = slots_;
-  poolInfo.poolSizeCount = uint32_t(sizes.size());
-  poolInfo.pPoolSizes = sizes.data();
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool));
-  l.pool = vk::Owned<VkDescriptorPool>(pool, [device](VkDescriptorPool x) { vkDestroyDescriptorPool(device, x, nullptr); });
-  const std::vector<VkDescriptorSetLayout> layouts(slots_, setLayout);
+  l.pool = vk::createPool(ctx_, sizes, slots_);
+  const std::vector<VkDescriptorSetLayout> layouts(slots_, l.setLayout.get());
   l.sets.resize(slots_);
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = pool;
+  ai.descriptorPool = l.pool;
   ai.descriptorSetCount = slots_;
   ai.pSetLayouts = layouts.data();
-  VK_CHECK(vkAllocateDescriptorSets(device, &ai, l.sets.data()));
+  VK_CHECK(vkAllocateDescriptorSets(ctx_.device(), &ai, l.sets.data()));
   return l;
 }
 

@@ -6,8 +6,43 @@
 
 namespace raybudget::vk {
 
-ComputeSet createComputeSet(const Context& ctx, std::span<const VkDescriptorType> types, uint32_t pushBytes) {
+Owned<VkDescriptorSetLayout> createSetLayout(const Context& ctx, std::span<const VkDescriptorSetLayoutBinding> bindings) {
   const VkDevice device = ctx.device();
+  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  ci.bindingCount = uint32_t(bindings.size());
+  ci.pBindings = bindings.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorSetLayout(device, &ci, nullptr, &layout));
+  return Owned<VkDescriptorSetLayout>(layout, [device](VkDescriptorSetLayout x) { vkDestroyDescriptorSetLayout(device, x, nullptr); });
+}
+
+Owned<VkPipelineLayout> createPipelineLayout(const Context& ctx, VkDescriptorSetLayout setLayout, VkShaderStageFlags stages, uint32_t pushBytes) {
+  const VkDevice device = ctx.device();
+  const VkPushConstantRange range{stages, 0, pushBytes};
+  VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  ci.setLayoutCount = 1;
+  ci.pSetLayouts = &setLayout;
+  ci.pushConstantRangeCount = pushBytes > 0 ? 1 : 0;
+  ci.pPushConstantRanges = &range;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VK_CHECK(vkCreatePipelineLayout(device, &ci, nullptr, &layout));
+  return Owned<VkPipelineLayout>(layout, [device](VkPipelineLayout x) { vkDestroyPipelineLayout(device, x, nullptr); });
+}
+
+Owned<VkDescriptorPool> createPool(const Context& ctx, std::span<const VkDescriptorPoolSize> sizes, uint32_t maxSets,
+                                   VkDescriptorPoolCreateFlags flags) {
+  const VkDevice device = ctx.device();
+  VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  ci.flags = flags;
+  ci.maxSets = maxSets;
+  ci.poolSizeCount = uint32_t(sizes.size());
+  ci.pPoolSizes = sizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorPool(device, &ci, nullptr, &pool));
+  return Owned<VkDescriptorPool>(pool, [device](VkDescriptorPool x) { vkDestroyDescriptorPool(device, x, nullptr); });
+}
+
+ComputeSet createComputeSet(const Context& ctx, std::span<const VkDescriptorType> types, uint32_t pushBytes) {
   ComputeSet c;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   std::vector<VkDescriptorPoolSize> sizes;
@@ -15,33 +50,15 @@ ComputeSet createComputeSet(const Context& ctx, std::span<const VkDescriptorType
     bindings.push_back({i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     sizes.push_back({types[i], 1});
   }
-  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = uint32_t(bindings.size());
-  lci.pBindings = bindings.data();
-  VkDescriptorSetLayout sl = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorSetLayout(device, &lci, nullptr, &sl));
-  c.setLayout = Owned<VkDescriptorSetLayout>(sl, [device](VkDescriptorSetLayout x) { vkDestroyDescriptorSetLayout(device, x, nullptr); });
-  const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
-  VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pci.setLayoutCount = 1;
-  pci.pSetLayouts = &sl;
-  pci.pushConstantRangeCount = pushBytes > 0 ? 1 : 0;
-  pci.pPushConstantRanges = &range;
-  VkPipelineLayout pl = VK_NULL_HANDLE;
-  VK_CHECK(vkCreatePipelineLayout(device, &pci, nullptr, &pl));
-  c.pipelineLayout = Owned<VkPipelineLayout>(pl, [device](VkPipelineLayout x) { vkDestroyPipelineLayout(device, x, nullptr); });
-  VkDescriptorPoolCreateInfo dci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  dci.maxSets = 1;
-  dci.poolSizeCount = uint32_t(sizes.size());
-  dci.pPoolSizes = sizes.data();
-  VkDescriptorPool p = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorPool(device, &dci, nullptr, &p));
-  c.pool = Owned<VkDescriptorPool>(p, [device](VkDescriptorPool x) { vkDestroyDescriptorPool(device, x, nullptr); });
+  c.setLayout = createSetLayout(ctx, bindings);
+  c.pipelineLayout = createPipelineLayout(ctx, c.setLayout, VK_SHADER_STAGE_COMPUTE_BIT, pushBytes);
+  c.pool = createPool(ctx, sizes, 1);
+  VkDescriptorSetLayout sl = c.setLayout;
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = p;
+  ai.descriptorPool = c.pool;
   ai.descriptorSetCount = 1;
   ai.pSetLayouts = &sl;
-  VK_CHECK(vkAllocateDescriptorSets(device, &ai, &c.set));
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &ai, &c.set));
   return c;
 }
 
