@@ -170,18 +170,9 @@ struct HostGBuffer {
 std::vector<uint8_t> readLdr(const vk::Context& host, const core::FrameOutputs& out, uint32_t width, uint32_t height) {
   const vk::Buffer buffer = vk::createBuffer(host, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   auto layout = [&](VkCommandBuffer cmd, VkImageLayout from, VkImageLayout to) {
-    VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    ib.srcStageMask = ib.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    ib.srcAccessMask = ib.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    ib.oldLayout = from;
-    ib.newLayout = to;
-    ib.srcQueueFamilyIndex = ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    ib.image = out.ldr;
-    ib.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkDependencyInfo d{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    d.imageMemoryBarrierCount = 1;
-    d.pImageMemoryBarriers = &ib;
-    vkCmdPipelineBarrier2(cmd, &d);
+    vk::imageBarrier(cmd, out.ldr, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, from, to);
   };
   host.submitAndWait([&](VkCommandBuffer cmd) {
     VkBufferImageCopy copy{};

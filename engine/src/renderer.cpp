@@ -208,8 +208,7 @@ std::vector<FrameTiming> Renderer::restartSelection(Policy policy, float budgetM
   next.rayTracing.rate = rate;
   validateSettings(next);  // before waiting: a bad budget changes nothing
   std::vector<FrameTiming> done = finish();
-  impl_->core.restartSelection(policy, budgetMs, ablation, rate);
-  impl_->settings = next;
+  impl_->core.restartSelection(policy, budgetMs, ablation, rate);  // the core keeps the policy
   return done;
 }
 

@@ -109,7 +109,12 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
   // among those that meet the requirements.
   std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
   if (devices.empty()) throw Error("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
-  std::vector<std::pair<int, VkPhysicalDevice>> ranked;
+  struct Candidate {
+    int rank;
+    VkPhysicalDevice device;
+    DeviceCapabilities caps;
+  };
+  std::vector<Candidate> ranked;
   std::string names, reasons;
   for (VkPhysicalDevice d : devices) {
     const DeviceCapabilities caps = queryCapabilities(d);
@@ -120,15 +125,15 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
     if (!missing.empty()) continue;
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(d, &p);
-    ranked.push_back({typeRank(p.deviceType), d});
+    ranked.push_back({typeRank(p.deviceType), d, caps});
   }
   if (ranked.empty())
     throw Error("no Vulkan device" + (options.deviceName.empty() ? std::string() : " matching '" + options.deviceName + "'") +
                 " can run raybudget (devices: " + names + ")" + reasons);
-  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  physical_ = ranked.front().second;
+  std::stable_sort(ranked.begin(), ranked.end(), [](const Candidate& a, const Candidate& b) { return a.rank < b.rank; });
+  physical_ = ranked.front().device;
 
-  core::DeviceSetup setup = deviceSetup(queryCapabilities(physical_));
+  core::DeviceSetup setup = deviceSetup(ranked.front().caps);
   queueFamily_ = setup.queueFamily;
   rayQuery_ = setup.rayQueryEnabled;
   shaderFloat64_ = setup.shaderFloat64Enabled;
