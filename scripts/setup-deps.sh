@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config git python3 python3-venv
   libvulkan-dev vulkan-validationlayers vulkan-tools spirv-tools
   glslang-tools glslang-dev
-  libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libimgui-dev
   libopenexr-dev libimath-dev
   libgtest-dev libgmock-dev
   libembree-dev

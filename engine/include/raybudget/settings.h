@@ -196,6 +196,9 @@ struct CostModel {
   double traceFixedMs = 0.0;
   bool operator==(const CostModel&) const = default;
 };
+// The time scale the selection uses before it has measured any: ms per unit of predicted
+// work at this render size (CostModel::msPerWorkUnit's prior, which its 0 stands for).
+double priorMsPerWorkUnit(uint32_t width, uint32_t height);
 
 // The paper's per-object quantities as the GPU computed them (engine/src/select/metrics.h
 // is the CPU reference).

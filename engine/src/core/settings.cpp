@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "raybudget/error.h"
+#include "select/cost_model.h"
 #include "select/policies.h"
 #include "select/selection_stage.h"
 #include "shared/config.h"
@@ -131,5 +132,7 @@ void validateSettings(const RenderSettings& s) {
     throw Error("ray-tracing depth must be within 1.." + std::to_string(RB_RT_MAX_DEPTH));
 }
 
+
+double priorMsPerWorkUnit(uint32_t width, uint32_t height) { return select::priorMsPerUnit(select::CostUnit::Work, width, height); }
 
 }  // namespace raybudget
