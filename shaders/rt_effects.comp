@@ -215,6 +215,7 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
     pathTicks[path] = clockNow() - pathStart;
   }
   imageStore(indirectImage, pixel, vec4((probed[0] ? fallback[0] : color[0]) + (probed[1] ? fallback[1] : color[1]), 1.0));
+  markTraced(pixel, (reflects && !probed[0] ? RB_RT_REFLECTIONS : 0u) | (refracts && !probed[1] ? RB_RT_REFRACTIONS : 0u));
   // For the tile's fill: the paths traced here at a reduced rate.
   bool shared0 = reflects && !probed[0] && rates[0] != RB_RATE_FULL, shared1 = refracts && !probed[1] && rates[1] != RB_RATE_FULL;
   if (shared0 || shared1) {

@@ -51,6 +51,7 @@ bool traceShadows(ivec2 pixel, bool fills) {
   bool shorten = (frame.rayTracing.w & RB_RT_SHORTEN_SHADOW_RAYS) != 0u;
   bool share = fills && rate != RB_RATE_FULL;
   uint work = 0u, word = 0u;
+  bool traced = false;  // some light's ray was traced here
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
     float dist, scale;
@@ -59,7 +60,10 @@ bool traceShadows(ivec2 pixel, bool fills) {
       float mapped;
       if (classify && shadowMapCertain(lights[i], s.position, s.normal, frame.exposure.y, mapped)) visible = mapped;
       else if (!traces) visible = RB_MASK_PENDING;
-      else visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);
+      else {
+        visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);
+        traced = true;
+      }
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
     if (share) {
@@ -71,6 +75,7 @@ bool traceShadows(ivec2 pixel, bool fills) {
     }
   }
   if (share) shareFillSource(pixel, s.objectId, p, s.normal);
+  if (traced && !probe) markTraced(pixel, RB_RT_SHADOWS);
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
   // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).

@@ -133,6 +133,7 @@ struct Renderer::Impl {
       sources.push_back({g.depth, VK_IMAGE_ASPECT_DEPTH_BIT, readOnly, pixels * 4, 1});
       sources.push_back({g.emissive, color, readOnly, pixels * 8, 1});
       sources.push_back({g.materialId, color, readOnly, pixels * 4, 1});
+      sources.push_back({out.tracedMask, color, general, pixels * 4, 1});
     }
     std::vector<vk::Buffer> buffers;
     for (const ReadSource& src : sources) buffers.push_back(vk::createBuffer(*device, src.bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
@@ -171,6 +172,7 @@ struct Renderer::Impl {
       take(images.depth, 8);
       take(images.emissive, 9);
       take(images.materialIds, 10);
+      take(images.tracedMask, 11);
     }
     return images;
   }

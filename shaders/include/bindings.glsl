@@ -70,6 +70,13 @@ uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
 // The shadow maps of bindings 13 and 14 read as depths (no compare, nearest).
 layout(set = 0, binding = 38) uniform sampler2DArray shadowMapDepths;
 layout(set = 0, binding = 39) uniform samplerCubeArray pointShadowDepths;
+// Per pixel, the effects whose rays were traced and shown there this frame (RB_RT_SHADOWS,
+// RB_RT_REFLECTIONS, RB_RT_REFRACTIONS bits; 0 where the fallbacks stand, and where a
+// reduced rate filled the pixel from traced neighbours); core::FrameOutputs::tracedMask.
+layout(set = 0, binding = 40, r32ui) uniform uimage2D tracedMask;
+void markTraced(ivec2 pixel, uint effects) {
+  if (effects != 0u) imageStore(tracedMask, pixel, uvec4(imageLoad(tracedMask, pixel).r | effects));
+}
 
 // The 8x8 tiles covering the screen.
 uint screenTileCount() {

@@ -92,6 +92,9 @@ struct GBuffer {
   VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // or GENERAL
 };
 
+// The bits of FrameOutputs::tracedMask.
+enum TracedEffect : uint32_t { kTracedShadows = 1u, kTracedReflections = 2u, kTracedRefractions = 4u };
+
 // The renderer's results a host composes or shows, written by compute shaders and left in
 // `layout`; the host orders its reads after them with a barrier from
 // VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT / VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT.
@@ -104,6 +107,11 @@ struct FrameOutputs {
   // shadows were traced this frame
   VkImage shadowVisibility = VK_NULL_HANDLE;
   uint32_t shadowVisibilityLayers = 0;
+  // R32_UINT: per pixel, the effects whose rays were traced and shown there this frame
+  // (TracedEffect bits); 0 where the raster fallbacks stand (and where a reduced ray rate
+  // filled the pixel from traced neighbours).
+  VkImage tracedMask = VK_NULL_HANDLE;
+  VkImageView tracedMaskView = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
 };
 

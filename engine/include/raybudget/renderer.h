@@ -33,6 +33,7 @@ struct FrameImages {
   std::vector<float> depth;             // D32 depth, 0 near .. 1 far
   std::vector<uint16_t> emissive;       // emitted radiance (RGBA half floats)
   std::vector<uint32_t> materialIds;    // material index per pixel
+  std::vector<uint32_t> tracedMask;     // core::FrameOutputs::tracedMask: the effects traced per pixel
 };
 
 namespace testing {

@@ -70,6 +70,7 @@ struct Context::Impl {
   Slot slots[kFramesInFlight];
   uint64_t frameIndex = 0;
   bool environmentReady = false;
+  bool tracedMaskWritten = true;  // the traced mask may hold marks (at first: undefined contents)
   bool objectsMoved = false;
   std::vector<FrameTiming> completed;  // collected, not yet returned
 
@@ -101,7 +102,7 @@ struct Context::Impl {
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask})
+      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask, &targets.tracedMask})
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       passes::ShadowMapPass::initialize(cmd, targets);
@@ -179,6 +180,16 @@ struct Context::Impl {
     return r != ItemRate::Full && (p == Policy::Benefit || ((p == Policy::All || p == Policy::Classified) && r != ItemRate::Auto));
   }
 
+  // Zeroes the traced mask before the trace passes mark it; a frame that traces nothing
+  // clears it only when an earlier one left marks.
+  void clearTracedMask(VkCommandBuffer cmd) {
+    const VkClearColorValue zero{};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, targets.tracedMask.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+
   void computeToCompute(VkCommandBuffer cmd) {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -249,7 +260,13 @@ struct Context::Impl {
     run(Pass::Coverage, settings.objectMetrics || traced ? PassSkip::None : nothingTraced,
         [&] { selection.recordCoverage(fc, classify); });
     if (traced) computeToCompute(cmd);
-    run(Pass::Select, traced ? PassSkip::None : nothingTraced, [&] { selection.recordSelect(fc, s, settings); });
+    // The mask's clear is the select pass's (the stage's fixed cost).
+    if (!traced && tracedMaskWritten) clearTracedMask(cmd);
+    run(Pass::Select, traced ? PassSkip::None : nothingTraced, [&] {
+      clearTracedMask(cmd);
+      selection.recordSelect(fc, s, settings);
+    });
+    tracedMaskWritten = traced != 0;
     // With a budgeted policy unselected objects keep the shadow maps.
     const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All;
     run(Pass::ShadowMaps, !shadowMaps ? PassSkip::NoLights : everyPixelTracesShadows ? PassSkip::EveryPixelTracesShadows : PassSkip::None,
@@ -356,6 +373,8 @@ FrameOutputs Context::outputs() const {
   o.indirectView = t.indirect.view;
   o.shadowVisibility = t.shadowMask.image;
   o.shadowVisibilityLayers = t.shadowMask.desc.layers;
+  o.tracedMask = t.tracedMask.image;
+  o.tracedMaskView = t.tracedMask.view;
   return o;
 }
 

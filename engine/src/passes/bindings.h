@@ -46,7 +46,8 @@ enum Binding : uint32_t {
   kItemCosts = 37,
   kShadowMapDepths = 38,
   kPointShadowDepths = 39,
-  kBindingCount = 40,
+  kTracedMask = 40,
+  kBindingCount = 41,
 };
 
 }  // namespace raybudget::passes

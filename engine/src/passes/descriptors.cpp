@@ -131,6 +131,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   write(kIndices, 1, &indices, nullptr);
   const VkDescriptorImageInfo mask{VK_NULL_HANDLE, t.shadowMaskArray, g};
   write(kShadowMask, 1, nullptr, &mask);
+  const VkDescriptorImageInfo traced{VK_NULL_HANDLE, t.tracedMask.view, g};
+  write(kTracedMask, 1, nullptr, &traced);
   const VkDescriptorImageInfo position{samplers.nearest, gb.position, gb.layout};
   write(kGPosition, 1, nullptr, &position);
   const VkDescriptorBufferInfo heuristic[] = {{selection.coverage.buffer, 0, VK_WHOLE_SIZE},

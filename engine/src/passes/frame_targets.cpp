@@ -52,6 +52,7 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
+  t.tracedMask = image2d(ctx, VK_FORMAT_R32_UINT, width, height, storage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
 
   // Shadow maps: at least one layer / one cube, so the descriptors always have an image.
   const VkImageUsageFlags depthUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;

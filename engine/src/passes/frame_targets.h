@@ -40,6 +40,7 @@ struct FrameTargets {
   vk::Image envSource;                             // equirectangular HDR image, or 1x1 black
   vk::Image shadowMask;                            // ray-traced light visibility, a layer per light
   vk::Owned<VkImageView> shadowMaskArray;          // 2D-array view (also for one light)
+  vk::Image tracedMask;                            // R32_UINT: the RB_RT_* effects traced per pixel
   bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;
 
