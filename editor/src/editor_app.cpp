@@ -137,7 +137,8 @@ bool EditorApp::frame() {
 void EditorApp::record(VkCommandBuffer cmd, uint32_t imageIndex) {
   vkCmdResetQueryPool(cmd, uiQueries_, 0, 4);
   session_->core().recordFrame(cmd, camera_);
-  overlay_->record(cmd, pendingPick_.value_or(glm::ivec2(-1)), view_.picked >= 0 ? uint32_t(view_.picked) : OverlayPass::kNoObject);
+  overlay_->record(cmd, pendingPick_.value_or(glm::ivec2(-1)), view_.picked >= 0 ? uint32_t(view_.picked) : OverlayPass::kNoObject,
+                   view_.overlay == Overlay::Traced);
 
   // The canvas: the panels' background, the viewport on the left, the UI over both.
   const VkImage canvas = presenter_->canvas();

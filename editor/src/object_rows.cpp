@@ -132,14 +132,14 @@ std::string rowsCsv(const std::vector<ObjectRow>& rows) {
 }
 
 const char* overlayName(Overlay overlay) {
-  static const char* names[] = {"none", "items", "cost", "benefit", "ids"};
+  static const char* names[] = {"none", "items", "cost", "benefit", "ids", "traced"};
   return names[size_t(overlay)];
 }
 
 Overlay parseOverlay(const std::string& name) {
-  for (Overlay o : {Overlay::None, Overlay::Items, Overlay::Cost, Overlay::Benefit, Overlay::Ids})
+  for (Overlay o : {Overlay::None, Overlay::Items, Overlay::Cost, Overlay::Benefit, Overlay::Ids, Overlay::Traced})
     if (name == overlayName(o)) return o;
-  throw Error("overlay must be none, items, cost, benefit or ids, got '" + name + "'");
+  throw Error("overlay must be none, items, cost, benefit, ids or traced, got '" + name + "'");
 }
 
 glm::vec3 effectColour(uint32_t itemBits) {
@@ -153,7 +153,8 @@ glm::vec3 effectColour(uint32_t itemBits) {
 std::vector<glm::vec4> overlayTints(Overlay overlay, const std::vector<ObjectRow>& rows) {
   std::vector<glm::vec4> tints(rows.size(), glm::vec4(0.0f));
   switch (overlay) {
-    case Overlay::None: break;
+    case Overlay::None:
+    case Overlay::Traced: break;  // per pixel, in the overlay shader
     case Overlay::Items:
       for (size_t i = 0; i < rows.size(); ++i)
         if (const uint32_t bits = rows[i].metrics.selectedItems & 7u) tints[i] = glm::vec4(effectColour(bits), 0.5f);

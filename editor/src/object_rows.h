@@ -45,7 +45,9 @@ std::vector<const ObjectRow*> visibleRows(const std::vector<ObjectRow>& rows, co
 // The object list as CSV (a header, then a line per object), for `dump` and the tests.
 std::string rowsCsv(const std::vector<ObjectRow>& rows);
 
-enum class Overlay { None, Items, Cost, Benefit, Ids };
+// Traced: per pixel, the effects traced there (the core's traced mask: shadows only where
+// the classifier found the shadow map uncertain); the others tint whole objects.
+enum class Overlay { None, Items, Cost, Benefit, Ids, Traced };
 const char* overlayName(Overlay overlay);
 Overlay parseOverlay(const std::string& name);  // throws Error naming the choices
 // Per object ID the overlay's colour and blend weight: the traced items' effect colours,

@@ -17,7 +17,7 @@ node extras.raybudget).
   --tracer NAME         compute or native (default compute)
   --fixed-time-scale    keep the cost model's prior time scale: the selection is the same on
                         any machine (scripted tests)
-  --overlay NAME        none, items, cost, benefit, ids (default none)
+  --overlay NAME        none, items, cost, benefit, ids, traced (default none)
   --validation          Khronos validation with synchronization validation; any message
                         makes the editor exit with status 3
   --device NAME         substring of the Vulkan device's name

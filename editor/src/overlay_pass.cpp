@@ -13,7 +13,8 @@ struct OverlayPush {
   glm::ivec2 pick;
   uint32_t objectCount;
   uint32_t highlight;
-  uint32_t pad0, pad1;
+  uint32_t showTraced;
+  uint32_t pad;
 };
 
 }  // namespace
@@ -37,12 +38,14 @@ OverlayPass::OverlayPass(const WindowDevice& wd, const core::Context& core, VkEx
   pick_ = createHostBuffer(wd, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   *static_cast<uint32_t*>(pick_.mapped) = kNoObject;
 
-  const VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-  VkDescriptorSetLayoutBinding bindings[5]{};
-  for (uint32_t i = 0; i < 5; ++i) bindings[i] = {i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  constexpr uint32_t kBindings = 6;
+  const VkDescriptorType types[kBindings] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                             VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                             VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+  VkDescriptorSetLayoutBinding bindings[kBindings]{};
+  for (uint32_t i = 0; i < kBindings; ++i) bindings[i] = {i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  li.bindingCount = 5;
+  li.bindingCount = kBindings;
   li.pBindings = bindings;
   setLayout_ = make(device, vkCreateDescriptorSetLayout, vkDestroyDescriptorSetLayout, li, "vkCreateDescriptorSetLayout");
   const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(OverlayPush)};
@@ -63,7 +66,7 @@ OverlayPass::OverlayPass(const WindowDevice& wd, const core::Context& core, VkEx
   check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline), "vkCreateComputePipelines");
   pipeline_ = Owned<VkPipeline>(pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
 
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
   VkDescriptorPoolCreateInfo poi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poi.maxSets = 1;
@@ -80,9 +83,10 @@ OverlayPass::OverlayPass(const WindowDevice& wd, const core::Context& core, VkEx
   const VkDescriptorImageInfo ldr{VK_NULL_HANDLE, out.ldrView, out.layout};
   const VkDescriptorImageInfo ids{sampler_, objectIdView_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo view{VK_NULL_HANDLE, viewport_.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo traced{VK_NULL_HANDLE, out.tracedMaskView, out.layout};
   const VkDescriptorBufferInfo tintInfo{tints_.buffer, 0, VK_WHOLE_SIZE}, pickInfo{pick_.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet writes[5]{};
-  for (uint32_t i = 0; i < 5; ++i) {
+  VkWriteDescriptorSet writes[kBindings]{};
+  for (uint32_t i = 0; i < kBindings; ++i) {
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = set_;
     writes[i].dstBinding = i;
@@ -94,7 +98,8 @@ OverlayPass::OverlayPass(const WindowDevice& wd, const core::Context& core, VkEx
   writes[2].pImageInfo = &view;
   writes[3].pBufferInfo = &tintInfo;
   writes[4].pBufferInfo = &pickInfo;
-  vkUpdateDescriptorSets(device, 5, writes, 0, nullptr);
+  writes[5].pImageInfo = &traced;
+  vkUpdateDescriptorSets(device, kBindings, writes, 0, nullptr);
 }
 
 void OverlayPass::setTints(const std::vector<glm::vec4>& tints) {
@@ -102,11 +107,12 @@ void OverlayPass::setTints(const std::vector<glm::vec4>& tints) {
   std::memcpy(tints_.mapped, tints.data(), std::min<size_t>(tints.size() * sizeof(glm::vec4), tints_.size));
 }
 
-void OverlayPass::record(VkCommandBuffer cmd, glm::ivec2 pick, uint32_t highlight) {
-  // The core's compose (compute) and G-buffer raster (colour attachment) writes, read here.
+void OverlayPass::record(VkCommandBuffer cmd, glm::ivec2 pick, uint32_t highlight, bool showTraced) {
+  // The core's compose and trace passes (compute), its traced mask's clear and its G-buffer
+  // raster (colour attachment) write what is read here.
   VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+  mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
   mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
   mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
@@ -118,7 +124,7 @@ void OverlayPass::record(VkCommandBuffer cmd, glm::ivec2 pick, uint32_t highligh
                VK_IMAGE_LAYOUT_GENERAL);
   viewportInitialised_ = true;
   *static_cast<uint32_t*>(pick_.mapped) = kNoObject;
-  const OverlayPush push{glm::ivec2(size_.width, size_.height), pick, objectCount_, highlight, 0, 0};
+  const OverlayPush push{glm::ivec2(size_.width, size_.height), pick, objectCount_, highlight, showTraced ? 1u : 0u, 0};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
   vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);

@@ -1,5 +1,6 @@
 // The viewport pass: a compute shader (shaders/editor/overlay.comp) reads the core's
-// composed frame and its G-buffer's object IDs, blends the overlay's per-object tint,
+// composed frame, traced mask and G-buffer's object IDs, blends the overlay's per-object or
+// per-pixel tint,
 // outlines the picked object, writes the viewport image the canvas shows, and reads back
 // the object ID at a pixel for picking.
 #pragma once
@@ -23,8 +24,9 @@ class OverlayPass {
   void setTints(const std::vector<glm::vec4>& tints);
   // Records the pass after core::Context::recordFrame; leaves viewport() in
   // TRANSFER_SRC_OPTIMAL. `pick`: the pixel whose object ID pickedId() returns after the
-  // frame completed (negative: none).
-  void record(VkCommandBuffer cmd, glm::ivec2 pick, uint32_t highlight);
+  // frame completed (negative: none). `showTraced`: tint the pixels the core traced, per
+  // effect (its traced mask).
+  void record(VkCommandBuffer cmd, glm::ivec2 pick, uint32_t highlight, bool showTraced);
   uint32_t pickedId() const;
   VkImage viewport() const { return viewport_.image; }
   VkExtent2D extent() const { return viewport_.extent; }

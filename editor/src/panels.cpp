@@ -10,7 +10,7 @@ namespace {
 
 const Policy kPolicies[] = {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random, Policy::Benefit,
                             Policy::Classified};
-const Overlay kOverlays[] = {Overlay::None, Overlay::Items, Overlay::Cost, Overlay::Benefit, Overlay::Ids};
+const Overlay kOverlays[] = {Overlay::None, Overlay::Items, Overlay::Cost, Overlay::Benefit, Overlay::Ids, Overlay::Traced};
 
 std::string itemsText(uint32_t bits) {
   std::string s;

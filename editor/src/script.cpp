@@ -66,7 +66,7 @@ struct LineParser {
     } else if (w == "tracer") {
       textArg(CommandKind::Tracer, "tracer compute|native");
     } else if (w == "overlay") {
-      textArg(CommandKind::Overlay, "overlay none|items|cost|benefit|ids");
+      textArg(CommandKind::Overlay, "overlay none|items|cost|benefit|ids|traced");
     } else if (w == "camera") {
       if (words.size() == 2 && words[1] == "reset") {
         c.kind = CommandKind::CameraReset;

@@ -4,7 +4,7 @@
 //   pick NAME | pick X Y          select an object by name, or at window pixel X Y
 //   set K|Q|I VALUE               edit the picked object (validated as in the UI)
 //   budget MS | policy NAME | tracer compute|native
-//   overlay none|items|cost|benefit|ids
+//   overlay none|items|cost|benefit|ids|traced
 //   camera orbit DEGREES | camera fly DISTANCE | camera reset
 //   wait N                        render N frames
 //   screenshot PATH | save PATH | dump PATH (the object list as CSV)
