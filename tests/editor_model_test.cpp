@@ -32,9 +32,9 @@ TEST(EditorScript, ParsesEveryCommand) {
   const auto c = parseScript(
       "# a comment\n\npick mirror\npick 10 20\nset K 2.5  # trailing\nbudget 40\npolicy paper\ntracer native\noverlay items\n"
       "camera orbit 30\ncamera fly -2\ncamera reset\nwait 5\nscreenshot a.png\nsave b.gltf\ndump c.csv\nundo\nredo\n"
-      "expect mirror selected\nexpect floor unselected\nexpect Q 4\nset I nan\nquit\n",
+      "expect mirror selected\nexpect floor unselected\nexpect Q 4\nset I nan\nquit\nclose\nexpect picked floor\nexpect prompt\n",
       "s.txt");
-  ASSERT_EQ(c.size(), 21u);
+  ASSERT_EQ(c.size(), 24u);
   EXPECT_EQ(c[0].kind, CommandKind::PickName);
   EXPECT_EQ(c[0].text, "mirror");
   EXPECT_EQ(c[0].line, 3);
@@ -54,6 +54,10 @@ TEST(EditorScript, ParsesEveryCommand) {
   EXPECT_EQ(c[18].kind, CommandKind::ExpectParam);
   EXPECT_TRUE(std::isnan(c[19].value));  // refused later, where the UI refuses it
   EXPECT_EQ(c[20].kind, CommandKind::Quit);
+  EXPECT_EQ(c[21].kind, CommandKind::Close);
+  EXPECT_EQ(c[22].kind, CommandKind::ExpectPicked);
+  EXPECT_EQ(c[22].text, "floor");
+  EXPECT_EQ(c[23].kind, CommandKind::ExpectPrompt);
 }
 
 TEST(EditorScript, ErrorsNameTheFileAndLine) {

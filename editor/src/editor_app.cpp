@@ -369,6 +369,17 @@ void EditorApp::execute(const ScriptCommand& c) {
       if (session_->modified()) std::printf("editor: quitting with unsaved changes (discarded)\n");
       quit_ = true;
       break;
+    case CommandKind::Close: glfwSetWindowShouldClose(wd_->window(), GLFW_TRUE); break;
+    case CommandKind::ExpectPrompt:
+      if (!view_.quitPrompt) return fail("expected the unsaved-changes prompt, it is not open");
+      std::printf("editor: as expected, the unsaved-changes prompt is open\n");
+      break;
+    case CommandKind::ExpectPicked: {
+      const std::string picked = view_.picked >= 0 ? loaded_.objects[size_t(view_.picked)].name : "none";
+      if (picked != c.text) return fail("expected " + c.text + " picked, " + picked + " is");
+      std::printf("editor: as expected, %s is picked\n", picked.c_str());
+      break;
+    }
     case CommandKind::ExpectSelected: {
       const int id = session_->findObject(c.text);
       if (id < 0) return fail("no object is named '" + c.text + "'");

@@ -88,12 +88,17 @@ struct LineParser {
       textArg(CommandKind::Save, "save PATH");
     } else if (w == "dump") {
       textArg(CommandKind::Dump, "dump PATH");
-    } else if (w == "undo" || w == "redo" || w == "quit") {
+    } else if (w == "undo" || w == "redo" || w == "quit" || w == "close") {
       expectWords(1, w.c_str());
-      c.kind = w == "undo" ? CommandKind::Undo : w == "redo" ? CommandKind::Redo : CommandKind::Quit;
+      c.kind = w == "undo" ? CommandKind::Undo : w == "redo" ? CommandKind::Redo : w == "quit" ? CommandKind::Quit : CommandKind::Close;
+    } else if (w == "expect" && words.size() == 2 && words[1] == "prompt") {
+      c.kind = CommandKind::ExpectPrompt;
     } else if (w == "expect") {
-      expectWords(3, "expect NAME selected|unselected' or 'expect K|Q|I VALUE");
-      if (words[2] == "selected" || words[2] == "unselected") {
+      expectWords(3, "expect NAME selected|unselected', 'expect K|Q|I VALUE', 'expect picked NAME' or 'expect prompt");
+      if (words[1] == "picked") {
+        c.kind = CommandKind::ExpectPicked;
+        c.text = words[2];
+      } else if (words[2] == "selected" || words[2] == "unselected") {
         c.kind = CommandKind::ExpectSelected;
         c.text = words[1];
         c.value2 = words[2] == "selected" ? 1.0 : 0.0;
@@ -102,7 +107,7 @@ struct LineParser {
         c.text = words[1];
         c.value = number(2);
       } else {
-        fail("expect takes 'NAME selected|unselected' or 'K|Q|I VALUE'");
+        fail("expect takes 'NAME selected|unselected', 'K|Q|I VALUE', 'picked NAME' or 'prompt'");
       }
     } else {
       fail("unknown command '" + w + "'");

@@ -8,10 +8,14 @@
 //   camera orbit DEGREES | camera fly DISTANCE | camera reset
 //   wait N                        render N frames
 //   screenshot PATH | save PATH | dump PATH (the object list as CSV)
-//   undo | redo | quit
-//   expect NAME selected|unselected    fails the session unless the object's effects are
-//                                      (or none is) traced this frame
+//   undo | redo | quit (at once, unsaved edits discarded)
+//   close                         as the window's close button: quits, or with unsaved edits
+//                                 opens the prompt
+//   expect NAME selected|unselected    fails the session unless the object has (or has no)
+//                                      item traced this frame
 //   expect K|Q|I VALUE                 fails unless the picked object's value is VALUE
+//   expect picked NAME|none            fails unless that object (or none) is picked
+//   expect prompt                      fails unless the unsaved-changes prompt is open
 #pragma once
 #include <filesystem>
 #include <string>
@@ -21,7 +25,7 @@ namespace raybudget::editor {
 
 enum class CommandKind {
   PickName, PickPixel, Set, Budget, Policy, Tracer, Overlay, CameraOrbit, CameraFly, CameraReset, Wait, Screenshot,
-  Save, Dump, Undo, Redo, Quit, ExpectSelected, ExpectParam
+  Save, Dump, Undo, Redo, Quit, Close, ExpectSelected, ExpectParam, ExpectPicked, ExpectPrompt
 };
 
 struct ScriptCommand {
