@@ -96,7 +96,7 @@ editor(["court_edited.gltf", "--script", "reload.script", "--frames", "3"] + bud
 # 3. A .glb: edit, save, reload.
 glb_from_gltf(WORK / "court.gltf", WORK / "court.glb")
 # Closing with an unsaved edit opens the prompt instead of quitting.
-(WORK / "glb.script").write_text("pick mirror_panel\nset Q 7\nclose\nwait 2\nexpect prompt\nsave court_edited.glb\nquit\n")
+(WORK / "glb.script").write_text("pick mirror_panel\nset Q 7\ntracer native\nwait 2\ntracer compute\nclose\nwait 2\nexpect prompt\nsave court_edited.glb\nquit\n")
 editor(["court.glb", "--script", "glb.script"] + budgeted, WORK)
 doc_before, bin_before = read_glb(WORK / "court.glb")
 doc_after, bin_after = read_glb(WORK / "court_edited.glb")

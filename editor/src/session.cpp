@@ -1,10 +1,20 @@
 #include "session.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "raybudget/error.h"
 
 namespace raybudget::editor {
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", v);
+  return text;
+}
+
+}  // namespace
 
 Param parseParam(const std::string& letter) {
   if (letter == "K") return Param::K;
@@ -40,7 +50,7 @@ bool Session::setParam(uint32_t objectId, Param param, double value, std::string
   const ParamEdit edit{objectId, object.params, next};
   applyParams(objectId, next);
   history_.record(edit);
-  message = object.name + ": " + paramName(param) + " = " + std::to_string(v);
+  message = object.name + ": " + paramName(param) + " = " + number(v);
   return true;
 }
 
@@ -89,7 +99,7 @@ bool Session::setBudget(double ms, std::string& message) {
     return false;
   }
   settings_.budgetMs = float(ms);
-  message = "budget " + std::to_string(ms) + " ms";
+  message = "budget " + number(ms) + " ms";
   return true;
 }
 
