@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup-deps.sh
 bash scripts/bench-deps.sh  # bench.tiny_sweep_end_to_end: bench/run.py's Python packages
 BUILD_DIR=build-asan CMAKE_ARGS="-DRAYBUDGET_SANITIZE=ON" bash scripts/build.sh --target scene_tests
-(cd build-asan && ctest --output-on-failure --timeout 900 -j"${TEST_JOBS:-2}" -R '^(SceneLoader|BadInput|ExtrasRoundTrip|Camera|DefaultScene|RayBinning|SpatialSplit|CostModel|SceneEffects)\.')
+(cd build-asan && ctest --output-on-failure --timeout 900 -j"${TEST_JOBS:-2}" -R '^(SceneLoader|BadInput|ExtrasRoundTrip|Camera|DefaultScene|RayBinning|SpatialSplit|CostModel|SceneEffects|SceneBuilder)\.')
 bash scripts/build.sh
 cd build
 ctest --output-on-failure --timeout 900 -j"${TEST_JOBS:-2}" "$@"

@@ -6,6 +6,7 @@
 #include "raybudget/raybudget.h"
 #include "support/render_helpers.h"
 #include "support/test_host.h"
+#include "support/builder_scene.h"
 #include "support/test_scenes.h"
 #include "passes/descriptors.h"
 #include "vk/device_requirements.h"
@@ -232,6 +233,32 @@ TEST(HostDevice, AFrameRecordedIntoTheHostsCommandBufferFromItsGBufferMatches) {
     EXPECT_THROW(hostCtx.submitAndWait([&](VkCommandBuffer cmd) { core.recordFrame(cmd, cam, &missing); }), Error);
   }
   test::expectValidationClean(host.validationMessages());
+}
+
+}  // namespace
+}  // namespace raybudget
+
+namespace raybudget {
+namespace {
+
+// A host's arrays (SceneBuilder) render like the glTF they came from: the same frame under
+// full RT, byte for byte.
+TEST(HostDevice, ASceneFromTheHostsArraysRendersLikeTheGltf) {
+  const Scene loaded = loadScene(test::defaultScenePath());
+  const Scene built = test::rebuiltThroughBuilder(loaded);
+  std::vector<uint8_t> frames[2];
+  int k = 0;
+  for (const Scene* scene : {&loaded, &built}) {
+    Renderer renderer(*scene, test::settingsFor(Policy::All, 160, 96));
+    renderer.render(defaultCamera(*scene, renderer.aspect()));
+    renderer.finish();
+    frames[k++] = renderer.readback().ldrRgba8;
+    test::expectValidationClean(renderer.validationMessages());
+  }
+  ASSERT_EQ(frames[0].size(), frames[1].size());
+  size_t differing = 0;
+  for (size_t i = 0; i < frames[0].size(); ++i) differing += frames[0][i] != frames[1][i];
+  EXPECT_EQ(differing, 0u) << "channels differ";
 }
 
 }  // namespace

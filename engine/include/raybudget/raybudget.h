@@ -6,4 +6,5 @@
 #include "raybudget/image_io.h"
 #include "raybudget/renderer.h"
 #include "raybudget/scene.h"
+#include "raybudget/scene_builder.h"
 #include "raybudget/stats.h"

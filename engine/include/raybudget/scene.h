@@ -174,6 +174,10 @@ SceneEffects sceneEffects(const Scene& scene, float maxRoughness);
 void saveRayBudgetParams(const std::filesystem::path& source, const std::filesystem::path& destination,
                          const std::vector<std::pair<int, RayBudgetParams>>& nodeParams);
 
+// Throws Error naming `where` on a non-finite, singular (zero-scale) or absurd (a component
+// beyond 1e7) transform.
+void validateTransform(const glm::mat4& transform, const std::string& where);
+
 // Moves object `id` to `transform` and updates its world bounds (and the scene's). Throws
 // Error for an unknown object or a non-finite, singular or absurd transform.
 void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform);

@@ -6,6 +6,7 @@
 
 #include "raybudget/error.h"
 #include "scene/accessor_reader.h"
+#include "scene/triangles.h"
 
 namespace raybudget::gltf {
 namespace {
@@ -27,15 +28,6 @@ std::vector<uint32_t> triangleList(int mode, const std::vector<uint32_t>& idx) {
     for (size_t i = 2; i < idx.size(); ++i) out.insert(out.end(), {idx[0], idx[i - 1], idx[i]});
   }
   return out;
-}
-
-bool zeroArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  const glm::vec3 e1 = b - a, e2 = c - a;
-  const float l1 = glm::dot(e1, e1), l2 = glm::dot(e2, e2);
-  const glm::vec3 n = glm::cross(e1, e2);
-  // Relative test: sin^2 of the angle between the edges below 1e-14 means no area at
-  // float precision, whatever the triangle's scale.
-  return l1 == 0.0f || l2 == 0.0f || glm::dot(n, n) <= 1e-14f * l1 * l2;
 }
 
 int defaultMaterial(Scene& scene) {
@@ -103,17 +95,10 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
     std::vector<uint32_t> tris = triangleList(prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode, idx);
 
     // Drop zero-area triangles: they add BVH and raster work and no pixels.
-    std::vector<uint32_t> kept;
-    kept.reserve(tris.size());
+    std::vector<glm::vec3> pos3(pos.size());
+    for (size_t i = 0; i < pos.size(); ++i) pos3[i] = glm::vec3(pos[i]);
     size_t dropped = 0;
-    for (size_t t = 0; t + 2 < tris.size(); t += 3) {
-      const uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
-      if (zeroArea(glm::vec3(pos[a]), glm::vec3(pos[b]), glm::vec3(pos[c]))) {
-        ++dropped;
-        continue;
-      }
-      kept.insert(kept.end(), {a, b, c});
-    }
+    const std::vector<uint32_t> kept = dropZeroAreaTriangles(pos3, tris, dropped);
     if (dropped > 0) {
       scene.stats.droppedDegenerateTriangles += dropped;
       scene.warnings.push_back(at + ": dropped " + std::to_string(dropped) + " zero-area triangles");
@@ -121,15 +106,7 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
     if (kept.empty()) continue;
 
     // Area-weighted normals where the file has none.
-    std::vector<glm::vec3> generated;
-    if (nrm.empty()) {
-      generated.assign(pos.size(), glm::vec3(0.0f));
-      for (size_t t = 0; t < kept.size(); t += 3) {
-        const glm::vec3 a(pos[kept[t]]), b(pos[kept[t + 1]]), c(pos[kept[t + 2]]);
-        const glm::vec3 n = glm::cross(b - a, c - a);
-        for (int k = 0; k < 3; ++k) generated[kept[t + size_t(k)]] += n;
-      }
-    }
+    const std::vector<glm::vec3> generated = nrm.empty() ? areaWeightedNormals(pos3, kept) : std::vector<glm::vec3>{};
 
     const uint32_t base = uint32_t(mesh.vertices.size());
     for (size_t i = 0; i < pos.size(); ++i) {

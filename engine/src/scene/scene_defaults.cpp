@@ -52,14 +52,17 @@ Camera pathStartCamera(const Scene& scene, float aspect) {
   return c;
 }
 
-void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform) {
-  if (id >= scene.objects.size()) throw Error("setObjectTransform: object " + std::to_string(id) + " does not exist");
+void validateTransform(const glm::mat4& transform, const std::string& where) {
   const float det = glm::determinant(glm::mat3(transform));
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(transform[c][r]) || std::fabs(transform[c][r]) > 1.0e7f)
-        throw Error("setObjectTransform: object " + std::to_string(id) + ": non-finite or absurd transform");
-  if (!std::isfinite(det) || std::fabs(det) < 1e-30f) throw Error("setObjectTransform: object " + std::to_string(id) + ": singular transform");
+      if (!std::isfinite(transform[c][r]) || std::fabs(transform[c][r]) > 1.0e7f) throw Error(where + ": non-finite or absurd transform");
+  if (!std::isfinite(det) || std::fabs(det) < 1e-30f) throw Error(where + ": singular transform");
+}
+
+void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform) {
+  if (id >= scene.objects.size()) throw Error("setObjectTransform: object " + std::to_string(id) + " does not exist");
+  validateTransform(transform, "setObjectTransform: object " + std::to_string(id));
   Object& o = scene.objects[id];
   const Mesh& m = scene.meshes[o.mesh];
   o.transform = transform;
