@@ -7,6 +7,7 @@ namespace raybudget::vk {
 
 TimestampPool::TimestampPool(const Context& ctx, uint32_t slots, uint32_t passes)
     : device_(ctx.device()), passes_(passes), nsPerTick_(ctx.properties().limits.timestampPeriod),
+      flushAfterStamp_(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU),
       written_(slots, std::vector<bool>(passes, false)) {
   uint32_t familyCount = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &familyCount, nullptr);
@@ -30,12 +31,14 @@ void TimestampPool::reset(VkCommandBuffer cmd, uint32_t slot) {
 
 // Lavapipe records a timestamp when it next flushes its binned (raster) work, while compute
 // dispatches run at once: without a flush right after the stamp, a compute pass's begin
-// stamp lands after its own dispatch. A full barrier after each stamp forces that flush
-// (on lavapipe) and costs nothing measurable at pass granularity elsewhere.
+// stamp lands after its own dispatch. On a CPU device a full barrier after each stamp forces
+// that flush; a GPU writes an ALL_COMMANDS stamp once the work before it is done, and gets
+// no barrier (a host's own work may overlap the passes there).
 void TimestampPool::stamp(VkCommandBuffer cmd, uint32_t query) {
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, query);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+  if (flushAfterStamp_)
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                  VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 void TimestampPool::begin(VkCommandBuffer cmd, uint32_t slot, uint32_t pass) { stamp(cmd, (slot * passes_ + pass) * 2); }

@@ -32,6 +32,7 @@ class TimestampPool {
   uint32_t passes_;
   double nsPerTick_;
   uint64_t validMask_;
+  bool flushAfterStamp_;  // a CPU device (lavapipe) defers binned work: see stamp()
   std::vector<std::vector<bool>> written_;  // [slot][pass]
 };
 
