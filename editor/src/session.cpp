@@ -90,28 +90,27 @@ void Session::save(const std::filesystem::path& path) {
   history_.markSaved();
 }
 
-bool Session::setBudget(double ms, std::string& message) {
+bool Session::restart(Policy policy, double budgetMs, std::string& message) {
   try {
     core_->completedFrames(true);
-    core_->restartSelection(settings_.policy, float(ms), settings_.benefitAblation, settings_.rayTracing.rate);
-  } catch (const Error& e) {
-    message = e.what();
-    return false;
-  }
-  settings_.budgetMs = float(ms);
-  message = "budget " + number(ms) + " ms";
-  return true;
-}
-
-bool Session::setPolicy(Policy policy, std::string& message) {
-  try {
-    core_->completedFrames(true);
-    core_->restartSelection(policy, settings_.budgetMs, settings_.benefitAblation, settings_.rayTracing.rate);
+    core_->restartSelection(policy, float(budgetMs), settings_.benefitAblation, settings_.rayTracing.rate);
   } catch (const Error& e) {
     message = e.what();
     return false;
   }
   settings_.policy = policy;
+  settings_.budgetMs = float(budgetMs);
+  return true;
+}
+
+bool Session::setBudget(double ms, std::string& message) {
+  if (!restart(settings_.policy, ms, message)) return false;
+  message = "budget " + number(ms) + " ms";
+  return true;
+}
+
+bool Session::setPolicy(Policy policy, std::string& message) {
+  if (!restart(policy, settings_.budgetMs, message)) return false;
   message = std::string("policy ") + policyName(policy);
   return true;
 }

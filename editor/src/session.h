@@ -66,6 +66,8 @@ class Session {
 
  private:
   void applyParams(uint32_t objectId, const RayBudgetParams& params);
+  // Restarts the selection with this policy and budget; false with the message on a bad value.
+  bool restart(Policy policy, double budgetMs, std::string& message);
 
   Scene scene_;
   RenderSettings settings_;

@@ -1,4 +1,4 @@
-// World-space bounds of a mesh placed by a transform (its local box's 8 corners).
+// World-space bounds: of a mesh placed by a transform (its local box's 8 corners), and of a scene.
 #pragma once
 #include <limits>
 
@@ -15,6 +15,25 @@ inline void worldBounds(const Mesh& mesh, const glm::mat4& transform, glm::vec3&
     const glm::vec3 w = glm::vec3(transform * glm::vec4(corner, 1.0f));
     lo = glm::min(lo, w);
     hi = glm::max(hi, w);
+  }
+}
+
+// The scene's bounds: the union of its objects' (it has at least one).
+inline void updateSceneBounds(Scene& scene) {
+  scene.boundsMin = scene.objects[0].boundsMin;
+  scene.boundsMax = scene.objects[0].boundsMax;
+  for (const Object& o : scene.objects) {
+    scene.boundsMin = glm::min(scene.boundsMin, o.boundsMin);
+    scene.boundsMax = glm::max(scene.boundsMax, o.boundsMax);
+  }
+}
+
+// What every finished scene has: its bounds, and the default sun when it has no light.
+inline void finishScene(Scene& scene) {
+  updateSceneBounds(scene);
+  if (scene.lights.empty()) {
+    scene.lights.push_back(defaultSun());
+    scene.usesDefaultSun = true;
   }
 }
 

@@ -357,16 +357,7 @@ Scene loadScene(const std::filesystem::path& path) {
   }
 
   if (scene.objects.empty()) throw Error(file + ": the scene has no triangle geometry to render");
-  scene.boundsMin = scene.objects[0].boundsMin;
-  scene.boundsMax = scene.objects[0].boundsMax;
-  for (const Object& o : scene.objects) {
-    scene.boundsMin = glm::min(scene.boundsMin, o.boundsMin);
-    scene.boundsMax = glm::max(scene.boundsMax, o.boundsMax);
-  }
-  if (scene.lights.empty()) {
-    scene.lights.push_back(defaultSun());
-    scene.usesDefaultSun = true;
-  }
+  finishScene(scene);
   if (scene.camera && scene.camera->zfar <= 0.0f) {
     const float extent = glm::length(scene.boundsMax - scene.boundsMin);
     scene.camera->zfar = glm::length(scene.camera->position - 0.5f * (scene.boundsMin + scene.boundsMax)) + 2.0f * extent;

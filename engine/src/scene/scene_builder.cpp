@@ -144,16 +144,7 @@ Scene SceneBuilder::build() const {
   if (scene_.objects.empty()) throw Error("SceneBuilder: no instance was added");
   Scene s = scene_;
   s.path = "host-scene";
-  s.boundsMin = s.objects[0].boundsMin;
-  s.boundsMax = s.objects[0].boundsMax;
-  for (const Object& o : s.objects) {
-    s.boundsMin = glm::min(s.boundsMin, o.boundsMin);
-    s.boundsMax = glm::max(s.boundsMax, o.boundsMax);
-  }
-  if (s.lights.empty()) {
-    s.lights.push_back(defaultSun());
-    s.usesDefaultSun = true;
-  }
+  finishScene(s);
   return s;
 }
 

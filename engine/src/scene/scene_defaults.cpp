@@ -67,12 +67,7 @@ void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform) {
   const Mesh& m = scene.meshes[o.mesh];
   o.transform = transform;
   worldBounds(m, transform, o.boundsMin, o.boundsMax);
-  scene.boundsMin = scene.objects[0].boundsMin;
-  scene.boundsMax = scene.objects[0].boundsMax;
-  for (const Object& x : scene.objects) {
-    scene.boundsMin = glm::min(scene.boundsMin, x.boundsMin);
-    scene.boundsMax = glm::max(scene.boundsMax, x.boundsMax);
-  }
+  updateSceneBounds(scene);
 }
 
 void validateRayBudgetParams(const RayBudgetParams& params, const std::string& where) {
