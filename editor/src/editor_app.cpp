@@ -98,14 +98,12 @@ bool EditorApp::frame() {
     pendingScreenshot_ = options_.screenshot;
     quit_ = true;
   }
-  const RenderSettings& s = session_->settings();
   view_.panelWidth = float(options_.panelWidth);
   view_.panelX = float(presenter_->extent().width) - view_.panelWidth;
   view_.height = float(presenter_->extent().height);
   const UiRequests requests = panels_.draw(*session_, view_);
   uiCpuMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - uiStart).count());
   apply(requests);
-  (void)s;
   overlay_->setTints(overlayTints(view_.overlay, session_->rows()));
 
   check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
