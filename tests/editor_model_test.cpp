@@ -79,36 +79,31 @@ ParamEdit edit(uint32_t id, float before, float after) {
   return e;
 }
 
-TEST(EditorHistory, UndoRedoAndTheModifiedMarker) {
+TEST(EditorHistory, UndoRedoOfParametersAndSettings) {
   EditHistory h;
   EXPECT_FALSE(h.canUndo());
-  EXPECT_FALSE(h.modified());
   EXPECT_FALSE(h.undo());
   h.record(edit(1, 1.0f, 2.0f));
-  h.record(edit(2, 1.0f, 3.0f));
-  EXPECT_TRUE(h.modified());
+  h.record(SettingsEdit{{Policy::Density, 10.0f, Tracer::Compute}, {Policy::Benefit, 10.0f, Tracer::Compute}});
   auto u = h.undo();
   ASSERT_TRUE(u);
-  EXPECT_EQ(u->objectId, 2u);
-  EXPECT_EQ(*u->before.importanceK, 1.0f);
+  ASSERT_TRUE(std::holds_alternative<SettingsEdit>(*u));
+  EXPECT_EQ(std::get<SettingsEdit>(*u).before.policy, Policy::Density);
+  u = h.undo();
+  ASSERT_TRUE(u);
+  EXPECT_EQ(std::get<ParamEdit>(*u).objectId, 1u);
+  EXPECT_EQ(*std::get<ParamEdit>(*u).before.importanceK, 1.0f);
+  EXPECT_FALSE(h.undo());
   EXPECT_TRUE(h.canRedo());
   auto r = h.redo();
   ASSERT_TRUE(r);
-  EXPECT_EQ(*r->after.importanceK, 3.0f);
-  EXPECT_FALSE(h.redo());
-  h.markSaved();
-  EXPECT_FALSE(h.modified());
-  h.undo();
-  EXPECT_TRUE(h.modified());
-  h.redo();
-  EXPECT_FALSE(h.modified());  // back at the saved state
-  // Undo, then a new edit: the redo side is dropped, and the saved state is unreachable.
-  h.undo();
+  EXPECT_EQ(*std::get<ParamEdit>(*r).after.importanceK, 2.0f);
+  // A new edit drops what could be redone.
   h.record(edit(3, 1.0f, 4.0f));
   EXPECT_FALSE(h.canRedo());
-  EXPECT_TRUE(h.modified());
-  h.undo();
-  EXPECT_TRUE(h.modified());  // one edit applied, as when saved, but not the same one
+  EXPECT_EQ(std::get<ParamEdit>(*h.undo()).objectId, 3u);
+  EXPECT_EQ(std::get<ParamEdit>(*h.undo()).objectId, 1u);
+  EXPECT_FALSE(h.canUndo());
 }
 
 TEST(EditorCamera, OrbitKeepsTheTargetAndDistance) {
@@ -246,6 +241,14 @@ TEST(EditorSession, EditsAreValidatedUndoneAndSavedIntoTheGltf) {
   EXPECT_EQ(session.core().objectParams(id).hysteresisI, before.hysteresisI);
   ASSERT_TRUE(session.redo(message));
   EXPECT_FALSE(session.redo(message));
+  // Modified means the K/Q/I differ from the file's: setting a value back clears it.
+  ASSERT_TRUE(session.setParam(id, Param::K, *before.importanceK, message));
+  ASSERT_TRUE(session.setParam(id, Param::I, *before.hysteresisI, message));
+  EXPECT_EQ(session.modified(), scene.objects[id].params.importanceK.has_value() && scene.objects[id].params.hysteresisI.has_value() ? false
+                                                                                                                                   : true);
+  ASSERT_TRUE(session.undo(message));
+  ASSERT_TRUE(session.undo(message));
+  EXPECT_TRUE(session.modified());
 
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "raybudget_editor_session_test";
   std::filesystem::create_directories(out);
@@ -261,10 +264,22 @@ TEST(EditorSession, EditsAreValidatedUndoneAndSavedIntoTheGltf) {
   for (size_t i = 0; i < reloaded.objects.size(); ++i)
     if (i != id) EXPECT_EQ(reloaded.objects[i].params.importanceK, scene.objects[i].params.importanceK) << reloaded.objects[i].name;
 
+  // Budget and policy changes are undone like edits, and do not touch the document.
   std::string budgetMessage;
   EXPECT_FALSE(session.setBudget(-3.0, budgetMessage));
+  EXPECT_FALSE(session.setBudget(NAN, budgetMessage));
   EXPECT_TRUE(session.setBudget(12.0, budgetMessage)) << budgetMessage;
+  EXPECT_TRUE(session.setPolicy(Policy::Benefit, budgetMessage)) << budgetMessage;
   EXPECT_EQ(session.settings().budgetMs, 12.0f);
+  EXPECT_EQ(session.settings().policy, Policy::Benefit);
+  EXPECT_FALSE(session.modified());
+  ASSERT_TRUE(session.undo(budgetMessage));
+  EXPECT_EQ(session.settings().policy, Policy::Density);
+  ASSERT_TRUE(session.undo(budgetMessage));
+  EXPECT_EQ(session.settings().budgetMs, settings.budgetMs);
+  ASSERT_TRUE(session.redo(budgetMessage));
+  EXPECT_EQ(session.settings().budgetMs, 12.0f);
+  EXPECT_FALSE(session.modified());
   EXPECT_TRUE(host.validationMessages().empty());
 }
 

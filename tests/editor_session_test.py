@@ -6,7 +6,7 @@ message makes the editor exit with status 3):
   2. the saved .gltf keeps everything else: its JSON equals the original but for the mirror
      node's extras, and its buffer file is untouched; reloading it in the editor shows K 20;
   3. the same for a .glb: the BIN chunk is kept byte for byte; closing the window with the
-     edit unsaved opens the prompt;
+     edit unsaved opens the prompt; the tracer switched, undone and redone (a new core each time);
   4. the screenshot: the viewport region equals the standalone renderer's frame for the same
      camera and policy, and the panel region is the panels (their background and text);
   5. bad input: an unknown script command names the file and line; a missing scene its path.
@@ -96,7 +96,7 @@ editor(["court_edited.gltf", "--script", "reload.script", "--frames", "3"] + bud
 # 3. A .glb: edit, save, reload.
 glb_from_gltf(WORK / "court.gltf", WORK / "court.glb")
 # Closing with an unsaved edit opens the prompt instead of quitting.
-(WORK / "glb.script").write_text("pick mirror_panel\nset Q 7\ntracer native\nwait 2\ntracer compute\nclose\nwait 2\nexpect prompt\nsave court_edited.glb\nquit\n")
+(WORK / "glb.script").write_text("pick mirror_panel\nset Q 7\ntracer native\nwait 2\ntracer compute\nundo\nwait 1\nredo\nclose\nwait 2\nexpect prompt\nsave court_edited.glb\nquit\n")
 editor(["court.glb", "--script", "glb.script"] + budgeted, WORK)
 doc_before, bin_before = read_glb(WORK / "court.glb")
 doc_after, bin_after = read_glb(WORK / "court_edited.glb")

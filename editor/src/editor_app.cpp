@@ -34,6 +34,7 @@ EditorApp::EditorApp(const EditorOptions& options) : options_(options) {
   presenter_ = std::make_unique<Presenter>(*wd_);
   imgui_ = std::make_unique<ImGuiLayer>(*wd_, *presenter_);
   session_ = std::make_unique<Session>(wd_->lend(), loaded_, options.settings);
+  session_->beforeCoreRebuild = [this] { overlay_.reset(); };  // the overlay holds views of its images
   const RenderSettings& s = session_->settings();
   overlay_ = std::make_unique<OverlayPass>(*wd_, session_->core(), VkExtent2D{s.width, s.height}, uint32_t(loaded_.objects.size()));
   view_.overlay = parseOverlay(options.overlay);
@@ -266,15 +267,15 @@ void EditorApp::apply(const UiRequests& r) {
     view_.message = message;
     std::printf("editor: %s\n", message.c_str());
   };
+  const uint32_t generation = session_->coreGeneration();
   if (r.pick) pick(*r.pick);
   if (r.set) say(session_->setParam(view_.picked >= 0 ? uint32_t(view_.picked) : UINT32_MAX, r.set->first, r.set->second, message));
   if (r.undo) say(session_->undo(message));
   if (r.redo) say(session_->redo(message));
   if (r.budget) say(session_->setBudget(*r.budget, message));
   if (r.policy) say(session_->setPolicy(*r.policy, message));
-  if (r.tracer) {
-    overlay_.reset();  // it holds views of the old context's images
-    say(session_->setTracer(*r.tracer, message));
+  if (r.tracer) say(session_->setTracer(*r.tracer, message));
+  if (session_->coreGeneration() != generation) {  // a new tracer (or its undo): a new context
     const RenderSettings& s = session_->settings();
     overlay_ = std::make_unique<OverlayPass>(*wd_, session_->core(), VkExtent2D{s.width, s.height}, uint32_t(loaded_.objects.size()));
   }

@@ -29,6 +29,7 @@ Session::Session(const core::HostDevice& host, Scene scene, const RenderSettings
     : scene_(std::move(scene)), settings_(settings), host_(host) {
   settings_.objectMetrics = true;  // the object list shows A, P, D, V, C, R each frame
   core_ = std::make_unique<core::Context>(host_, scene_, settings_);
+  for (const Object& o : scene_.objects) savedParams_.push_back(o.params);
 }
 
 bool Session::setParam(uint32_t objectId, Param param, double value, std::string& message) {
@@ -60,26 +61,31 @@ void Session::applyParams(uint32_t objectId, const RayBudgetParams& params) {
   edited_.insert(objectId);
 }
 
-bool Session::undo(std::string& message) {
-  const std::optional<ParamEdit> edit = history_.undo();
+bool Session::undo(std::string& message) { return step(history_.undo(), true, message); }
+
+bool Session::redo(std::string& message) { return step(history_.redo(), false, message); }
+
+bool Session::step(const std::optional<Edit>& edit, bool undoing, std::string& message) {
+  const char* verb = undoing ? "undid" : "redid";
   if (!edit) {
-    message = "nothing to undo";
+    message = undoing ? "nothing to undo" : "nothing to redo";
     return false;
   }
-  applyParams(edit->objectId, edit->before);
-  message = "undid the edit of " + scene_.objects[edit->objectId].name;
+  if (const auto* p = std::get_if<ParamEdit>(&*edit)) {
+    applyParams(p->objectId, undoing ? p->before : p->after);
+    message = std::string(verb) + " the edit of " + scene_.objects[p->objectId].name;
+    return true;
+  }
+  const SettingsEdit& e = std::get<SettingsEdit>(*edit);
+  if (!applySettings(undoing ? e.before : e.after, message)) return false;
+  message = std::string(verb) + " the change of " + message;
   return true;
 }
 
-bool Session::redo(std::string& message) {
-  const std::optional<ParamEdit> edit = history_.redo();
-  if (!edit) {
-    message = "nothing to redo";
-    return false;
-  }
-  applyParams(edit->objectId, edit->after);
-  message = "redid the edit of " + scene_.objects[edit->objectId].name;
-  return true;
+bool Session::modified() const {
+  for (size_t i = 0; i < scene_.objects.size(); ++i)
+    if (!sameParams(scene_.objects[i].params, savedParams_[i])) return true;
+  return false;
 }
 
 void Session::save(const std::filesystem::path& path) {
@@ -87,8 +93,10 @@ void Session::save(const std::filesystem::path& path) {
   for (uint32_t id : edited_)
     if (scene_.objects[id].gltfNode >= 0) nodes.emplace_back(scene_.objects[id].gltfNode, scene_.objects[id].params);
   saveRayBudgetParams(scene_.path, path, nodes);
-  history_.markSaved();
+  for (size_t i = 0; i < scene_.objects.size(); ++i) savedParams_[i] = scene_.objects[i].params;
 }
+
+SessionSettings Session::sessionSettings() const { return {settings_.policy, settings_.budgetMs, settings_.rayTracing.tracer}; }
 
 bool Session::restart(Policy policy, double budgetMs, std::string& message) {
   try {
@@ -103,35 +111,61 @@ bool Session::restart(Policy policy, double budgetMs, std::string& message) {
   return true;
 }
 
-bool Session::setBudget(double ms, std::string& message) {
-  if (!restart(settings_.policy, ms, message)) return false;
-  message = "budget " + number(ms) + " ms";
+bool Session::change(const SessionSettings& next, std::string& message) {
+  const SessionSettings before = sessionSettings();
+  if (next == before) return true;
+  if (!applySettings(next, message)) return false;
+  history_.record(SettingsEdit{before, next});
   return true;
+}
+
+bool Session::applySettings(const SessionSettings& next, std::string& message) {
+  const SessionSettings now = sessionSettings();
+  if (next.tracer != now.tracer) {
+    RenderSettings rebuilt = settings_;
+    rebuilt.policy = next.policy;
+    rebuilt.budgetMs = next.budgetMs;
+    rebuilt.rayTracing.tracer = next.tracer;
+    try {
+      validateSettings(rebuilt);
+      core_->completedFrames(true);
+      if (beforeCoreRebuild) beforeCoreRebuild();
+      core_.reset();  // one context on the device at a time; the new tracer learns its own cost model
+      ++coreGeneration_;
+      core_ = std::make_unique<core::Context>(host_, scene_, rebuilt);
+    } catch (const Error& e) {
+      message = e.what();
+      if (!core_) core_ = std::make_unique<core::Context>(host_, scene_, settings_);
+      return false;
+    }
+    settings_ = rebuilt;
+  } else if (!restart(next.policy, next.budgetMs, message)) {
+    return false;
+  }
+  message = std::string("policy ") + policyName(next.policy) + ", budget " + number(next.budgetMs) + " ms, tracer " + tracerName(next.tracer);
+  return true;
+}
+
+bool Session::setBudget(double ms, std::string& message) {
+  SessionSettings next = sessionSettings();
+  next.budgetMs = float(ms);
+  if (!std::isfinite(ms) || ms <= 0.0 || ms > 1e6) {
+    message = "the budget must be a positive number of milliseconds, got " + number(ms);
+    return false;
+  }
+  return change(next, message);
 }
 
 bool Session::setPolicy(Policy policy, std::string& message) {
-  if (!restart(policy, settings_.budgetMs, message)) return false;
-  message = std::string("policy ") + policyName(policy);
-  return true;
+  SessionSettings next = sessionSettings();
+  next.policy = policy;
+  return change(next, message);
 }
 
 bool Session::setTracer(Tracer tracer, std::string& message) {
-  RenderSettings next = settings_;
-  next.rayTracing.tracer = tracer;
-  try {
-    core_->completedFrames(true);
-    core_.reset();  // one context on the device at a time; the new tracer learns its own cost model
-    core_ = std::make_unique<core::Context>(host_, scene_, next);
-    settings_ = next;
-  } catch (const Error& e) {
-    message = e.what();
-    if (!core_) core_ = std::make_unique<core::Context>(host_, scene_, settings_);
-    ++coreGeneration_;
-    return false;
-  }
-  ++coreGeneration_;
-  message = std::string("tracer ") + tracerName(tracer);
-  return true;
+  SessionSettings next = sessionSettings();
+  next.tracer = tracer;
+  return change(next, message);
 }
 
 void Session::collectFrame() {

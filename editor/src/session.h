@@ -6,6 +6,8 @@
 #pragma once
 #include <cstdint>
 #include <deque>
+#include <functional>
+#include <optional>
 #include <filesystem>
 #include <memory>
 #include <set>
@@ -36,22 +38,27 @@ class Session {
   // Sets one parameter of an object from the next frame on and records it for undo. A
   // negative, non-finite or absurd value is refused: nothing changes and the message says why.
   bool setParam(uint32_t objectId, Param param, double value, std::string& message);
+  // Undo and redo step through every edit: K/Q/I and the policy, budget and tracer.
   bool undo(std::string& message);
   bool redo(std::string& message);
   bool canUndo() const { return history_.canUndo(); }
   bool canRedo() const { return history_.canRedo(); }
-  bool modified() const { return history_.modified(); }
+  // Whether some object's K/Q/I differ from the file's as loaded or last saved.
+  bool modified() const;
   // Writes every edited object's K/Q/I into `path` (a copy of the loaded file with the nodes'
   // extras.raybudget replaced). Throws Error naming the file.
   void save(const std::filesystem::path& path);
 
-  // Policy, budget and tracer from the next frame on (every recorded frame has completed);
-  // false with a message on a bad value. A new tracer rebuilds the core context
-  // (coreGeneration() counts them, so views of the old one can be rebuilt).
+  // Policy, budget and tracer from the next frame on (every recorded frame has completed),
+  // recorded for undo; false with a message on a bad value. A new tracer rebuilds the core
+  // context: beforeCoreRebuild is called first (to drop views of the old one's images) and
+  // coreGeneration() counts the rebuilds.
   bool setBudget(double ms, std::string& message);
   bool setPolicy(Policy policy, std::string& message);
   bool setTracer(Tracer tracer, std::string& message);
+  SessionSettings sessionSettings() const;
   uint32_t coreGeneration() const { return coreGeneration_; }
+  std::function<void()> beforeCoreRebuild;
 
   // After a frame completed: its timing, the objects' metrics and the rows.
   void collectFrame();
@@ -68,6 +75,9 @@ class Session {
   void applyParams(uint32_t objectId, const RayBudgetParams& params);
   // Restarts the selection with this policy and budget; false with the message on a bad value.
   bool restart(Policy policy, double budgetMs, std::string& message);
+  bool change(const SessionSettings& next, std::string& message);  // applied and recorded
+  bool applySettings(const SessionSettings& next, std::string& message);
+  bool step(const std::optional<Edit>& edit, bool undoing, std::string& message);
 
   Scene scene_;
   RenderSettings settings_;
@@ -76,6 +86,7 @@ class Session {
   uint32_t coreGeneration_ = 0;
   EditHistory history_;
   std::set<uint32_t> edited_;  // objects whose extras save rewrites
+  std::vector<RayBudgetParams> savedParams_;  // per object, as loaded or last saved
   std::vector<ObjectMetrics> metrics_, previousMetrics_;
   std::vector<ObjectRow> rows_;
   FrameTiming last_;
