@@ -81,6 +81,45 @@ TEST_F(BadInput, NanPosition) {
   expectLoadError(f.write(dir, "nan"), "POSITION of vertex 1 is not finite");
 }
 
+// Real assets: NaN or zero normals are recomputed from the geometry with a warning (as
+// three.js and Blender do); --strict refuses them.
+TEST_F(BadInput, NanAndZeroNormalsAreRecomputedWithAWarning) {
+  GltfFixture f = GltfFixture::triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {0, 1, 2, 2, 1, 3});
+  f.addNormals({{0, 0, 1}, {std::nanf(""), 0, 0}, {0, 0, 0}, {0, 0.6f, 0.8f}});
+  const auto path = f.write(dir, "nannormals");
+  const Scene s = loadScene(path);
+  const Mesh& m = s.meshes[s.objects[0].mesh];
+  EXPECT_EQ(m.vertices[0].normal, glm::vec3(0, 0, 1));
+  EXPECT_EQ(m.vertices[1].normal, glm::vec3(0, 0, 1));  // recomputed: the quad faces +z
+  EXPECT_EQ(m.vertices[2].normal, glm::vec3(0, 0, 1));
+  EXPECT_EQ(m.vertices[3].normal, glm::vec3(0, 0.6f, 0.8f));  // a valid one is kept
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("2 NORMAL values are NaN, infinite or zero; recomputed"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find(path.string()), std::string::npos);
+  try {
+    loadScene(path, {.strict = true});
+    FAIL() << "strict loading should refuse NaN normals";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("strict loading refuses what it would repair: " + path.string()), std::string::npos) << e.what();
+  }
+}
+
+// Real assets: a texture whose image file is missing is dropped from its material.
+TEST_F(BadInput, AMissingImageIsDroppedFromItsMaterialWithAWarning) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["images"] = {{{"uri", "no-such-image.png"}}};
+  f.json["textures"] = {{{"source", 0}}};
+  f.json["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  f.json["meshes"][0]["primitives"][0]["material"] = 0;
+  const auto path = f.write(dir, "noimage");
+  const Scene s = loadScene(path);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].baseColorTexture, -1);
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_THROW(loadScene(path, {.strict = true}), Error);
+  EXPECT_NO_THROW(loadScene(GltfFixture::oneTriangle().write(dir, "clean"), {.strict = true}));
+}
+
 TEST_F(BadInput, InfinitePosition) {
   GltfFixture f = GltfFixture::triangles({{0, 0, 0}, {1, 0, 0}, {0, INFINITY, 0}});
   expectLoadError(f.write(dir, "inf"), "POSITION of vertex 2 is not finite");

@@ -88,6 +88,8 @@ render options:
   --no-rt-shadows, --no-rt-reflections, --no-rt-refractions
                         keep that effect on its raster fallback even where traced
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
+  --strict              refuse a scene the loader would repair (NaN normals, unreadable
+                        images, zero-area triangles...; docs/ROBUSTNESS.md)
 )";
 
 uint32_t parseUint(const std::string& option, const std::string& value, uint32_t lo, uint32_t hi) {
@@ -193,6 +195,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--budget-confidence") c.settings.budgetConfidence = parseWithin(a, value(), 0.5f, 0.99f);
     else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
+    else if (a == "--strict") c.load.strict = true;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);

@@ -18,6 +18,7 @@ struct RenderCommand {
   bool itemStats = false;         // write items.csv: per object and effect, what its tracing cost and removed
   // --explain: print the pass plan; --explain=frames: also each frame's selected items
   enum class Explain { Off, Plan, Frames } explain = Explain::Off;
+  LoadOptions load;  // --strict: refuse what the loader would repair
   RenderSettings settings;
 };
 

@@ -31,7 +31,7 @@ void writeItemStats(const std::filesystem::path& path, const std::vector<raybudg
 
 int render(const raybudget::cli::RenderCommand& c) {
   using namespace raybudget;
-  const Scene scene = loadScene(c.scene);
+  const Scene scene = loadScene(c.scene, c.load);
   for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << '\n';
   std::cout << c.scene << ": " << scene.objects.size() << " objects, " << scene.stats.triangles << " triangles, " << scene.lights.size()
             << " lights" << (scene.usesDefaultSun ? " (default sun)" : "") << ", " << scene.materials.size() << " materials\n";

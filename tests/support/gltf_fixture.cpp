@@ -35,6 +35,16 @@ GltfFixture GltfFixture::triangles(const std::vector<glm::vec3>& positions, cons
   return f;
 }
 
+void GltfFixture::addNormals(const std::vector<glm::vec3>& normals) {
+  const size_t offset = bin.size();  // a multiple of 4: positions and indices are
+  bin.resize(offset + normals.size() * 12);
+  std::memcpy(bin.data() + offset, normals.data(), normals.size() * 12);
+  json["buffers"][0]["byteLength"] = bin.size();
+  json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", normals.size() * 12}});
+  json["accessors"].push_back({{"bufferView", json["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", normals.size()}, {"type", "VEC3"}});
+  json["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = json["accessors"].size() - 1;
+}
+
 GltfFixture GltfFixture::oneTriangle() { return triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}); }
 
 std::filesystem::path GltfFixture::write(const std::filesystem::path& dir, const std::string& name) const {

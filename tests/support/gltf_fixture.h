@@ -18,6 +18,9 @@ struct GltfFixture {
   static GltfFixture triangles(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices = {});
   static GltfFixture oneTriangle();
 
+  // Appends a NORMAL attribute (one per position) to the first primitive.
+  void addNormals(const std::vector<glm::vec3>& normals);
+
   // Writes NAME.gltf and NAME.bin into `dir`; returns the .gltf path.
   std::filesystem::path write(const std::filesystem::path& dir, const std::string& name) const;
 };

@@ -146,10 +146,17 @@ Light defaultSun();
 // on the ground, lit by the default sun (selection benchmarks and tests).
 Scene cubeGridScene(uint32_t count);
 
+// How loadScene treats what it can repair (docs/ROBUSTNESS.md): by default it repairs and
+// says so in Scene::warnings; `strict` refuses instead, with the first repair as the error.
+struct LoadOptions {
+  bool strict = false;
+};
+
 // Loads and validates a .gltf or .glb file. Throws raybudget::Error naming the file and the
-// problem on malformed input; recoverable oddities (points/lines, zero-area triangles)
-// become warnings in Scene::warnings.
-Scene loadScene(const std::filesystem::path& path);
+// problem on malformed input; recoverable oddities (points/lines, zero-area triangles, NaN
+// or zero normals, images that cannot be read) are repaired and become warnings in
+// Scene::warnings (with LoadOptions::strict, errors).
+Scene loadScene(const std::filesystem::path& path, const LoadOptions& options = {});
 
 // The camera to render with: the scene's own, else one framing its bounds.
 Camera defaultCamera(const Scene& scene, float aspect);

@@ -278,7 +278,21 @@ void addCamera(const tinygltf::Model& model, const tinygltf::Node& node, const g
 
 }  // namespace
 
-Scene loadScene(const std::filesystem::path& path) {
+namespace {
+Scene loadAndRepair(const std::filesystem::path& path);
+}
+
+Scene loadScene(const std::filesystem::path& path, const LoadOptions& options) {
+  Scene scene = loadAndRepair(path);
+  if (options.strict && !scene.warnings.empty())
+    throw Error("strict loading refuses what it would repair: " + scene.warnings.front() +
+                (scene.warnings.size() > 1 ? " (and " + std::to_string(scene.warnings.size() - 1) + " more)" : ""));
+  return scene;
+}
+
+namespace {
+
+Scene loadAndRepair(const std::filesystem::path& path) {
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw Error(file + ": file not found");
   tinygltf::Model model;
@@ -364,5 +378,7 @@ Scene loadScene(const std::filesystem::path& path) {
   }
   return scene;
 }
+
+}  // namespace
 
 }  // namespace raybudget

@@ -64,7 +64,8 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
       if (!finite3(pos[i]))
         throw Error(at + ": POSITION of vertex " + std::to_string(i) + " is not finite (NaN or Inf)");
 
-    auto optional = [&](const char* name, glm::vec4 fill) {
+    // `repairable`: non-finite values are left for the caller to repair (normals), else refused.
+    auto optional = [&](const char* name, glm::vec4 fill, bool repairable = false) {
       const auto it = prim.attributes.find(name);
       std::vector<glm::vec4> v;
       if (it != prim.attributes.end()) {
@@ -72,12 +73,12 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
         if (v.size() != pos.size())
           throw Error(at + ": " + name + " has " + std::to_string(v.size()) + " elements but POSITION has " +
                       std::to_string(pos.size()));
-        for (size_t i = 0; i < v.size(); ++i)
+        for (size_t i = 0; i < v.size() && !repairable; ++i)
           if (!finite3(v[i])) throw Error(at + ": " + name + " of vertex " + std::to_string(i) + " is not finite");
       }
       return v;
     };
-    const std::vector<glm::vec4> nrm = optional("NORMAL", glm::vec4(0, 0, 1, 0));
+    const std::vector<glm::vec4> nrm = optional("NORMAL", glm::vec4(0, 0, 1, 0), true);
     const std::vector<glm::vec4> uv = optional("TEXCOORD_0", glm::vec4(0, 0, 0, 0));
     const std::vector<glm::vec4> col = optional("COLOR_0", glm::vec4(1.0f));
 
@@ -105,14 +106,20 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
     }
     if (kept.empty()) continue;
 
-    // Area-weighted normals where the file has none.
-    const std::vector<glm::vec3> generated = nrm.empty() ? areaWeightedNormals(pos3, kept) : std::vector<glm::vec3>{};
+    // Area-weighted normals where the file has none, and in place of its NaN, Inf or zero ones
+    // (as three.js and Blender do), with a warning.
+    size_t badNormals = 0;
+    for (const glm::vec4& n : nrm) badNormals += !finite3(n) || glm::vec3(n) == glm::vec3(0.0f);
+    const std::vector<glm::vec3> generated = nrm.empty() || badNormals ? areaWeightedNormals(pos3, kept) : std::vector<glm::vec3>{};
+    if (badNormals)
+      scene.warnings.push_back(at + ": " + std::to_string(badNormals) + " NORMAL values are NaN, infinite or zero; recomputed from the geometry");
 
     const uint32_t base = uint32_t(mesh.vertices.size());
     for (size_t i = 0; i < pos.size(); ++i) {
       Vertex v;
       v.position = glm::vec3(pos[i]);
-      glm::vec3 n = nrm.empty() ? generated[i] : glm::vec3(nrm[i]);
+      const bool repair = nrm.empty() || !finite3(nrm[i]) || glm::vec3(nrm[i]) == glm::vec3(0.0f);
+      glm::vec3 n = repair ? generated[i] : glm::vec3(nrm[i]);
       const float len = glm::length(n);
       v.normal = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
       if (!uv.empty()) v.uv = glm::vec2(uv[i]);
