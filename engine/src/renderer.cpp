@@ -81,6 +81,7 @@ struct Renderer::Impl {
   }
 
   std::vector<FrameTiming> render(const Camera& camera) {
+    validateCamera(camera, "render");  // before anything is recorded
     Slot& slot = slots[core.framesRecorded() % kSlots];
     wait(slot);
     VkCommandBuffer cmd = slot.cmd;

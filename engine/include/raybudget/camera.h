@@ -1,5 +1,7 @@
 // A pinhole camera and the camera paths the CLI offers.
 #pragma once
+#include <string>
+
 #include <glm/glm.hpp>
 
 namespace raybudget {
@@ -12,10 +14,16 @@ struct Camera {
   float znear = 0.05f;
   float zfar = 500.0f;
 
+  // Looking along `up` (straight up or down) takes another up axis: the view stays finite.
   glm::mat4 view() const;
   // Vulkan clip space: y down, depth in [0, 1].
   glm::mat4 projection(float aspect) const;
 };
+
+// Throws raybudget::Error naming `where` and the fault for a camera no image can come from:
+// a non-finite value, the target at the position, a zero up vector, a field of view outside
+// (0, pi), or near and far planes not with 0 < znear < zfar.
+void validateCamera(const Camera& camera, const std::string& where);
 
 // Camera `frame` of `frameCount` on a full circle around `start.target` at `start`'s height
 // and distance: a deterministic orbit for benchmarks and tests.

@@ -292,6 +292,7 @@ struct Context::Impl {
   // The slot's previous frame has completed by the host's contract.
   void recordFrame(VkCommandBuffer cmd, const Camera& camera, const GBuffer* host) {
     if (!cmd) throw Error("recordFrame: no command buffer");
+    validateCamera(camera, "recordFrame");
     if (host) {
       const GBuffer& g = *host;
       for (VkImageView v : {g.depth, g.normal, g.baseMetal, g.roughTransIor, g.emissive, g.objectId, g.materialId, g.position})

@@ -1,12 +1,32 @@
 #include "raybudget/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "raybudget/error.h"
+
 namespace raybudget {
 
-glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
+glm::mat4 Camera::view() const {
+  const glm::vec3 forward = glm::normalize(target - position);
+  glm::vec3 u = up;  // as given otherwise: the same matrix as glm::lookAt's, bit for bit
+  if (std::fabs(glm::dot(forward, glm::normalize(up))) > 0.9999f)  // parallel: lookAt's cross product vanishes
+    u = std::fabs(forward.z) < 0.9f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  return glm::lookAt(position, target, u);
+}
+
+void validateCamera(const Camera& c, const std::string& where) {
+  auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(c.position) || !finite(c.target) || !finite(c.up) || !std::isfinite(c.yfov) || !std::isfinite(c.znear) || !std::isfinite(c.zfar))
+    throw Error(where + ": the camera has a non-finite value");
+  const glm::vec3 d = c.target - c.position;
+  if (glm::dot(d, d) <= 1e-30f * std::max(1.0f, glm::dot(c.position, c.position))) throw Error(where + ": the camera's target is at its position");
+  if (glm::dot(c.up, c.up) == 0.0f) throw Error(where + ": the camera's up vector is zero");
+  if (!(c.yfov > 0.0f && c.yfov < 3.14159f)) throw Error(where + ": the camera's field of view " + std::to_string(c.yfov) + " is not within (0, pi)");
+  if (!(c.znear > 0.0f && c.zfar > c.znear)) throw Error(where + ": the camera needs 0 < znear < zfar, got " + std::to_string(c.znear) + " and " + std::to_string(c.zfar));
+}
 
 glm::mat4 Camera::projection(float aspect) const {
   // glm's right-handed, zero-to-one perspective; flip y for Vulkan's clip space.
