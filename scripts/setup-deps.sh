@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev
   libembree-dev
   xvfb xauth
+  clang libclang-rt-14-dev
 )
 
 sudo_() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
