@@ -31,8 +31,11 @@ tri = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nod
        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
                      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
-       "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}]}
+       "buffers": [{"byteLength": 44, "uri": "triangle.bin"}]}
 open(f"{out}/triangle.gltf", "w").write(json.dumps(tri))
+# its buffer beside the inputs the harness writes (the working directory)
+tri_bin = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 2) + b"\0\0"
+open(f"{out}/../triangle.bin", "wb").write(tri_bin)
 PY
 cd "$work"
 echo "fuzz: $seconds s of the glTF loader"

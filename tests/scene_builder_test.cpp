@@ -67,7 +67,10 @@ TEST(SceneBuilder, GeneratesNormalsDropsZeroAreaTrianglesAndCopiesMaterialsPerIn
   const uint32_t glass = b.addMaterial({.name = "glass", .transmission = 1.0f});
   EXPECT_EQ(b.addInstance(mesh, red, glm::mat4(1.0f)), 0u);
   EXPECT_EQ(b.addInstance(mesh, glass, glm::translate(glm::mat4(1.0f), glm::vec3(3, 0, 0)), {2.0f, {}, {}}, "pane"), 1u);
+  EXPECT_EQ(b.addInstance(mesh, glass, glm::translate(glm::mat4(1.0f), glm::vec3(6, 0, 0))), 2u);
   const Scene s = b.build();
+  EXPECT_EQ(s.meshes.size(), 2u);  // one copy for the second material, shared by its instances
+  EXPECT_EQ(s.objects[2].mesh, s.objects[1].mesh);
   EXPECT_EQ(s.stats.droppedDegenerateTriangles, 1u);
   EXPECT_EQ(s.meshes[s.objects[0].mesh].indices.size(), 3u);
   EXPECT_EQ(s.meshes[s.objects[0].mesh].vertices[0].normal, glm::vec3(0, 0, 1));

@@ -263,18 +263,36 @@ void EditorApp::pick(int objectId) {
 
 void EditorApp::apply(const UiRequests& r) {
   std::string message;
-  auto say = [&](bool) {
+  auto say = [&] {
     view_.message = message;
     std::printf("editor: %s\n", message.c_str());
   };
   const uint32_t generation = session_->coreGeneration();
   if (r.pick) pick(*r.pick);
-  if (r.set) say(session_->setParam(view_.picked >= 0 ? uint32_t(view_.picked) : UINT32_MAX, r.set->first, r.set->second, message));
-  if (r.undo) say(session_->undo(message));
-  if (r.redo) say(session_->redo(message));
-  if (r.budget) say(session_->setBudget(*r.budget, message));
-  if (r.policy) say(session_->setPolicy(*r.policy, message));
-  if (r.tracer) say(session_->setTracer(*r.tracer, message));
+  if (r.set) {
+    session_->setParam(view_.picked >= 0 ? uint32_t(view_.picked) : UINT32_MAX, r.set->first, r.set->second, message);
+    say();
+  }
+  if (r.undo) {
+    session_->undo(message);
+    say();
+  }
+  if (r.redo) {
+    session_->redo(message);
+    say();
+  }
+  if (r.budget) {
+    session_->setBudget(*r.budget, message);
+    say();
+  }
+  if (r.policy) {
+    session_->setPolicy(*r.policy, message);
+    say();
+  }
+  if (r.tracer) {
+    session_->setTracer(*r.tracer, message);
+    say();
+  }
   if (session_->coreGeneration() != generation) {  // a new tracer (or its undo): a new context
     const RenderSettings& s = session_->settings();
     overlay_ = std::make_unique<OverlayPass>(*wd_, session_->core(), VkExtent2D{s.width, s.height}, uint32_t(loaded_.objects.size()));
@@ -288,7 +306,7 @@ void EditorApp::apply(const UiRequests& r) {
     } catch (const Error& e) {
       message = e.what();
     }
-    say(true);
+    say();
   }
   if (r.resetCamera) camera_ = startCamera_;
   if (r.quit) quit_ = true;

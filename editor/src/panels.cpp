@@ -104,7 +104,7 @@ void Panels::objectPanel(const Session& session, const UiView& view, UiRequests&
     if (ImGui::IsItemDeactivatedAfterEdit()) r.set = {params[i], slider};
     ImGui::SameLine();
     ImGui::SetNextItemWidth(view.panelWidth * 0.3f);
-    if (!ImGui::IsItemActive() && typed_[size_t(i)] != now[size_t(i)] && !ImGui::IsAnyItemActive()) typed_[size_t(i)] = now[size_t(i)];
+    if (!ImGui::IsAnyItemActive()) typed_[size_t(i)] = now[size_t(i)];  // the typed field follows the value unless being edited
     if (ImGui::InputFloat(paramName(params[i]), &typed_[size_t(i)], 0.0f, 0.0f, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue))
       r.set = {params[i], typed_[size_t(i)]};
     ImGui::PopID();

@@ -166,12 +166,16 @@ core::HostDevice WindowDevice::lend() const {
   return {instance_, physicalDevice_, device_, setup_.queueFamily, queue_, vkGetDeviceProcAddr, setup_.rayQueryEnabled, setup_.shaderFloat64Enabled};
 }
 
-uint32_t WindowDevice::memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const {
+Owned<VkDeviceMemory> WindowDevice::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags) const {
   VkPhysicalDeviceMemoryProperties p;
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &p);
-  for (uint32_t i = 0; i < p.memoryTypeCount; ++i)
-    if ((typeBits & (1u << i)) && (p.memoryTypes[i].propertyFlags & flags) == flags) return i;
-  throw Error("editor: no suitable memory type");
+  uint32_t type = 0;
+  while (type < p.memoryTypeCount && !((req.memoryTypeBits & (1u << type)) && (p.memoryTypes[type].propertyFlags & flags) == flags)) ++type;
+  if (type == p.memoryTypeCount) throw Error("editor: no suitable memory type");
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = type;
+  return make(device(), vkAllocateMemory, vkFreeMemory, ai, "vkAllocateMemory");
 }
 
 const std::vector<std::string>& WindowDevice::validationMessages() const { return *messages_; }
@@ -185,10 +189,7 @@ HostBuffer createHostBuffer(const WindowDevice& wd, VkDeviceSize size, VkBufferU
   b.buffer = make(wd.device(), vkCreateBuffer, vkDestroyBuffer, ci, "vkCreateBuffer");
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(wd.device(), b.buffer, &req);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  ai.allocationSize = req.size;
-  ai.memoryTypeIndex = wd.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  b.memory = make(wd.device(), vkAllocateMemory, vkFreeMemory, ai, "vkAllocateMemory");
+  b.memory = wd.allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   check(vkBindBufferMemory(wd.device(), b.buffer, b.memory, 0), "vkBindBufferMemory");
   check(vkMapMemory(wd.device(), b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
   return b;
@@ -207,10 +208,7 @@ DeviceImage createImage(const WindowDevice& wd, VkFormat format, VkExtent2D exte
   img.image = make(wd.device(), vkCreateImage, vkDestroyImage, ci, "vkCreateImage");
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(wd.device(), img.image, &req);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  ai.allocationSize = req.size;
-  ai.memoryTypeIndex = wd.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  img.memory = make(wd.device(), vkAllocateMemory, vkFreeMemory, ai, "vkAllocateMemory");
+  img.memory = wd.allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   check(vkBindImageMemory(wd.device(), img.image, img.memory, 0), "vkBindImageMemory");
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = img.image;

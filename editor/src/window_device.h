@@ -36,7 +36,8 @@ class WindowDevice {
   std::string deviceName() const;
   float timestampPeriodNs() const;
   core::HostDevice lend() const;
-  uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
+  // Memory for `req` of a type with `flags`; throws Error when the device has none.
+  Owned<VkDeviceMemory> allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags) const;
   // The validation layer's messages so far (empty without validation).
   const std::vector<std::string>& validationMessages() const;
 

@@ -8,6 +8,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -68,6 +69,7 @@ class SceneBuilder {
 
  private:
   Scene scene_;
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> materialVariants_;  // (mesh, material) -> its copy
 };
 
 }  // namespace raybudget

@@ -276,22 +276,6 @@ void addCamera(const tinygltf::Model& model, const tinygltf::Node& node, const g
   scene.camera = c;
 }
 
-}  // namespace
-
-namespace {
-Scene loadAndRepair(const std::filesystem::path& path);
-}
-
-Scene loadScene(const std::filesystem::path& path, const LoadOptions& options) {
-  Scene scene = loadAndRepair(path);
-  if (options.strict && !scene.warnings.empty())
-    throw Error("strict loading refuses what it would repair: " + scene.warnings.front() +
-                (scene.warnings.size() > 1 ? " (and " + std::to_string(scene.warnings.size() - 1) + " more)" : ""));
-  return scene;
-}
-
-namespace {
-
 Scene loadAndRepair(const std::filesystem::path& path) {
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw Error(file + ": file not found");
@@ -380,5 +364,13 @@ Scene loadAndRepair(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+Scene loadScene(const std::filesystem::path& path, const LoadOptions& options) {
+  Scene scene = loadAndRepair(path);
+  if (options.strict && !scene.warnings.empty())
+    throw Error("strict loading refuses what it would repair: " + scene.warnings.front() +
+                (scene.warnings.size() > 1 ? " (and " + std::to_string(scene.warnings.size() - 1) + " more)" : ""));
+  return scene;
+}
 
 }  // namespace raybudget

@@ -108,8 +108,9 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
 
     // Area-weighted normals where the file has none, and in place of its NaN, Inf or zero ones
     // (as three.js and Blender do), with a warning.
+    auto unusable = [&](size_t i) { return nrm.empty() || !finite3(nrm[i]) || glm::vec3(nrm[i]) == glm::vec3(0.0f); };
     size_t badNormals = 0;
-    for (const glm::vec4& n : nrm) badNormals += !finite3(n) || glm::vec3(n) == glm::vec3(0.0f);
+    for (size_t i = 0; i < nrm.size(); ++i) badNormals += unusable(i);
     const std::vector<glm::vec3> generated = nrm.empty() || badNormals ? areaWeightedNormals(pos3, kept) : std::vector<glm::vec3>{};
     if (badNormals)
       scene.warnings.push_back(at + ": " + std::to_string(badNormals) + " NORMAL values are NaN, infinite or zero; recomputed from the geometry");
@@ -118,8 +119,7 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
     for (size_t i = 0; i < pos.size(); ++i) {
       Vertex v;
       v.position = glm::vec3(pos[i]);
-      const bool repair = nrm.empty() || !finite3(nrm[i]) || glm::vec3(nrm[i]) == glm::vec3(0.0f);
-      glm::vec3 n = repair ? generated[i] : glm::vec3(nrm[i]);
+      glm::vec3 n = unusable(i) ? generated[i] : glm::vec3(nrm[i]);
       const float len = glm::length(n);
       v.normal = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
       if (!uv.empty()) v.uv = glm::vec2(uv[i]);

@@ -104,16 +104,21 @@ uint32_t SceneBuilder::addInstance(uint32_t mesh, uint32_t material, const glm::
   validateRayBudgetParams(params, at);
   validateTransform(transform, at);
   // Each instance draws its mesh with its own material: a mesh used with another material
-  // than its first instance's gets a copy (the renderer keeps materials per primitive).
+  // than its first instance's gets one copy per such material (the renderer keeps materials
+  // per primitive; the BVH build shares the copies' structure).
   uint32_t meshIndex = mesh;
   Mesh& m = scene_.meshes[mesh];
   if (m.primitives[0].material < 0) {
     m.primitives[0].material = int(material);
   } else if (m.primitives[0].material != int(material)) {
-    Mesh copy = m;
-    copy.primitives[0].material = int(material);
-    scene_.meshes.push_back(std::move(copy));
-    meshIndex = uint32_t(scene_.meshes.size() - 1);
+    const auto [variant, added] = materialVariants_.try_emplace({mesh, material}, 0u);
+    if (added) {
+      Mesh copy = m;
+      copy.primitives[0].material = int(material);
+      scene_.meshes.push_back(std::move(copy));
+      variant->second = uint32_t(scene_.meshes.size() - 1);
+    }
+    meshIndex = variant->second;
   }
   Object o;
   o.id = id;
