@@ -25,9 +25,8 @@
 // indirectImage for the pixels it traces. With RB_RT_MEASURE_ITEMS each traced path adds its
 // work and the display-space difference it made against the fallback to its item. A path whose
 // item the probe traces here (include/probe.glsl) is measured and not shown. An item at a
-// reduced ray rate (include/rates.glsl) traces its pixels of this frame and stores the path's
-// radiance without the surface's weight, stamped with the frame, for upsample_effects.comp to
-// fill the others from.
+// reduced ray rate (include/rates.glsl) traces its pixels of this frame, and the tile's
+// other pixels of the item are filled from what those changed (fillPending).
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
@@ -120,8 +119,9 @@ bool transmittedRay(vec3 p, vec3 ng, vec3 V, vec3 n, float ior, uint materialId,
   return false;
 }
 
-// Radiance of each path traced here at a reduced rate, without the surface's weight, for the
-// tile's fill (include/tile_fill.glsl); bit 0 / 1 of fillPaths: which paths it holds.
+// What each path traced here at a reduced rate changed against its fallback (traced minus
+// fallback, the surface's weights applied), for the tile's fill (include/tile_fill.glsl); bit 0
+// / 1 of fillPaths: which paths it holds.
 shared vec3 fillReflection[RB_TILE_PIXELS];
 shared vec3 fillRefraction[RB_TILE_PIXELS];
 shared uint fillPaths[RB_TILE_PIXELS];
@@ -141,12 +141,13 @@ bvec2 pendingPaths(Surface s, ivec2 pixel) {
                paths.y && itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && !rateTraces(itemRate(s.objectId, RB_ITEM_REFRACTIONS), pixel));
 }
 
-// Fills the paths pending at `pixel` from the tile's traced neighbours: their mean radiance
-// times this pixel's own weight replaces the path's environment fallback in indirectImage.
+// Fills the paths pending at `pixel` from the tile's traced neighbours: their weighted mean
+// change against the fallback is added to this pixel's fallback in indirectImage. Filling the
+// change rather than the radiance keeps this pixel's own environment where the neighbours'
+// rays escaped to it, and spares each filled pixel its weights and environment lookups (which
+// cost about as much as the fill's gather on lavapipe).
 void fillPending(ivec2 pixel, Surface s, bvec2 pending) {
-  vec3 p, ng, N, V, specularWeight, transmitWeight;
-  readExactSurface(pixel, p, ng);
-  FillCentre c = fillCentre(s.objectId, p, s.normal);
+  FillCentre c = fillCentre(s.objectId, s.position, s.normal);
   // Both paths' items may run at different rates: a neighbour counts where either traced.
   uint rates[2] = uint[2](pending.x ? itemRate(s.objectId, RB_ITEM_REFLECTIONS) : RB_RATE_QUARTER,
                           pending.y ? itemRate(s.objectId, RB_ITEM_REFRACTIONS) : RB_RATE_QUARTER);
@@ -169,12 +170,8 @@ void fillPending(ivec2 pixel, Surface s, bvec2 pending) {
       }
     }
   if (all(lessThan(weights, vec2(RB_FILL_MIN_WEIGHT)))) return;
-  tracedPathWeights(s, p, ng, N, V, specularWeight, transmitWeight);
-  vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
-  vec3 indirect = imageLoad(indirectImage, pixel).rgb;
-  if (weights.x >= RB_FILL_MIN_WEIGHT) indirect += sum[0] / weights.x * specularWeight - envReflection(s, rasterV);
-  if (weights.y >= RB_FILL_MIN_WEIGHT) indirect += sum[1] / weights.y * transmitWeight - envTransmission(s, rasterV);
-  imageStore(indirectImage, pixel, vec4(indirect, 1.0));
+  vec3 change = (weights.x >= RB_FILL_MIN_WEIGHT ? sum[0] / weights.x : vec3(0.0)) + (weights.y >= RB_FILL_MIN_WEIGHT ? sum[1] / weights.y : vec3(0.0));
+  imageStore(indirectImage, pixel, vec4(imageLoad(indirectImage, pixel).rgb + change, 1.0));
 }
 
 void traceEffects(ivec2 pixel, bool lit, Surface s) {
@@ -201,7 +198,6 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
   // Path 0 reflects, path 1 transmits; one traceRadiance call site keeps the shader (and
   // its compile time on lavapipe) half the size.
   vec3 color[2] = fallback;
-  vec3 radiance[2] = vec3[2](vec3(0.0), vec3(0.0));  // each traced path without the surface's weight
   uint work[2] = uint[2](0u, 0u);
   uint pathTicks[2] = uint[2](0u, 0u);  // each path's span on the clock
   for (int path = 0; path < 2; ++path) {
@@ -210,8 +206,7 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
     vec3 origin = offsetRay(p, ng), dir = R, absorbed = vec3(1.0);
     color[path] = vec3(0.0);
     if (path == 1 && !transmittedRay(p, ng, V, N, s.ior, s.materialId, origin, dir, absorbed, work[path])) continue;
-    radiance[path] = traceRadiance(origin, dir, depth, work[path]) * absorbed;
-    color[path] = radiance[path] * (path == 0 ? specularWeight : transmitWeight);
+    color[path] = traceRadiance(origin, dir, depth, work[path]) * absorbed * (path == 0 ? specularWeight : transmitWeight);
     pathTicks[path] = clockNow() - pathStart;
   }
   imageStore(indirectImage, pixel, vec4((probed[0] ? fallback[0] : color[0]) + (probed[1] ? fallback[1] : color[1]), 1.0));
@@ -220,10 +215,10 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
   bool shared0 = reflects && !probed[0] && rates[0] != RB_RATE_FULL, shared1 = refracts && !probed[1] && rates[1] != RB_RATE_FULL;
   if (shared0 || shared1) {
     uint i = fillIndex(pixel);
-    shareFillSource(pixel, s.objectId, p, s.normal);
+    shareFillSource(pixel, s.objectId, s.position, s.normal);  // (the filled pixel's centre is its s.position too)
     fillPaths[i] = (shared0 ? 1u : 0u) | (shared1 ? 2u : 0u);
-    fillReflection[i] = radiance[0];
-    fillRefraction[i] = radiance[1];
+    fillReflection[i] = color[0] - fallback[0];
+    fillRefraction[i] = color[1] - fallback[1];
   }
   addObjectWork(s.objectId, (probed[0] ? 0u : work[0]) + (probed[1] ? 0u : work[1]));
   if (measuringItems()) {

@@ -105,15 +105,16 @@ struct GpuObjectCost {
 #define RB_KEEP_FULL_GAIN_REFRACTIONS 0.045  // double, C++ in float, and the two must round alike
 // The share of an item's full-rate cost a rate costs: not the share of its rays, as every
 // pixel of the item still reads its surface and the skipped ones are filled (include/
-// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, trace passes at 1/2 and 1/4 over
-// full, 0.79 and 0.62 on the WaterBottle orbit, 0.79 and 0.62 on the court (one run each).
-#define RB_COST_HALF 0.8
-#define RB_COST_QUARTER 0.6
-#define RB_COST_QUARTER_TO_FULL 0.4  // 1 - RB_COST_QUARTER
+// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, the effects pass at 1/2 and 1/4
+// over full on orbits (5-6 frames, one run each): the court 0.59 and 0.36, the plaza 0.65 and
+// 0.43, the WaterBottle 0.82 and 0.51. (Shadows keep full rate, below.)
+#define RB_COST_HALF 0.7
+#define RB_COST_QUARTER 0.45
+#define RB_COST_QUARTER_TO_FULL 0.55  // 1 - RB_COST_QUARTER
 // At these costs 1/2 lies under the line from 1/4 to full for both effects (reflections
-// 0.91 < 0.84 + 0.16 / 2, refractions 0.975 < 0.955 + 0.045 / 2): each hull is 1/4, full, two
-// segments: skip -> 1/4 (cost RB_COST_QUARTER, value RB_KEEP_QUARTER_*) and 1/4 -> full (the
-// rest of both).
+// 0.91 < 0.84 + 0.16 * 0.25 / 0.55, refractions 0.975 < 0.955 + 0.045 * 0.25 / 0.55): each hull
+// is 1/4, full, two segments: skip -> 1/4 (cost RB_COST_QUARTER, value RB_KEEP_QUARTER_*) and
+// 1/4 -> full (the rest of both).
 
 // 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
