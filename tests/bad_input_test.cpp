@@ -13,19 +13,8 @@
 namespace raybudget {
 namespace {
 
+using test::expectLoadError;
 using test::GltfFixture;
-
-// Loads `path` expecting an Error whose message names the file and contains `expected`.
-void expectLoadError(const std::filesystem::path& path, const std::string& expected) {
-  try {
-    loadScene(path);
-    FAIL() << "loading " << path << " should have failed with '" << expected << "'";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path.string()), std::string::npos) << "message does not name the file: " << what;
-    EXPECT_NE(what.find(expected), std::string::npos) << "message: " << what;
-  }
-}
 
 class BadInput : public ::testing::Test {
  protected:

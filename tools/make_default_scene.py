@@ -168,7 +168,9 @@ class GltfWriter:
         if s != (1, 1, 1):
             n["scale"] = [round(v, 4) for v in s]
         if r is not None:
-            n["rotation"] = [round(v, 6) for v in r]
+            # glTF requires unit quaternions (the loader normalizes others with a warning).
+            length = math.sqrt(sum(v * v for v in r))
+            n["rotation"] = [round(v / length, 7) for v in r]
         if mesh is not None:
             n["mesh"] = mesh
         if params is not None:

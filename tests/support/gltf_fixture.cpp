@@ -3,6 +3,11 @@
 #include <cstring>
 #include <fstream>
 
+#include <gtest/gtest.h>
+
+#include "raybudget/error.h"
+#include "raybudget/scene.h"
+
 namespace raybudget::test {
 
 GltfFixture GltfFixture::triangles(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
@@ -54,6 +59,17 @@ std::filesystem::path GltfFixture::write(const std::filesystem::path& dir, const
   std::ofstream(gltf) << j.dump(2);
   std::ofstream(dir / (name + ".bin"), std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
   return gltf;
+}
+
+void expectLoadError(const std::filesystem::path& path, const std::string& expected) {
+  try {
+    loadScene(path);
+    ADD_FAILURE() << "loading " << path << " should have failed with '" << expected << "'";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << "message does not name the file: " << what;
+    EXPECT_NE(what.find(expected), std::string::npos) << "message: " << what;
+  }
 }
 
 }  // namespace raybudget::test

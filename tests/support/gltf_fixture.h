@@ -25,4 +25,8 @@ struct GltfFixture {
   std::filesystem::path write(const std::filesystem::path& dir, const std::string& name) const;
 };
 
+// Loads `path` expecting an Error whose message names the file and contains `expected`
+// (gtest failures otherwise).
+void expectLoadError(const std::filesystem::path& path, const std::string& expected);
+
 }  // namespace raybudget::test

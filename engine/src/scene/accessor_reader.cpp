@@ -61,6 +61,12 @@ View checkedView(const tinygltf::Model& model, int index, const std::string& whe
     throw Error(name + " has an invalid component type " + std::to_string(acc.componentType) + " or type " +
                 std::to_string(acc.type));
   const size_t elementSize = csize * size_t(v.components);
+  if (acc.count == 0) throw Error(name + " has count 0; glTF requires at least one element");
+  if (acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+    throw Error(name + " is normalized, which glTF allows only for (unsigned) byte and short components (ACCESSOR_NORMALIZED_INVALID)");
+  if (acc.byteOffset % csize != 0)
+    throw Error(name + ": byteOffset " + std::to_string(acc.byteOffset) + " is not a multiple of its component size " +
+                std::to_string(csize) + " (ACCESSOR_OFFSET_ALIGNMENT)");
   if (acc.bufferView < 0) return v;  // glTF: all zeros
   if (size_t(acc.bufferView) >= model.bufferViews.size())
     throw Error(name + " refers to bufferView " + std::to_string(acc.bufferView) + ", which does not exist");
@@ -74,6 +80,12 @@ View checkedView(const tinygltf::Model& model, int index, const std::string& whe
                 std::to_string(bv.byteOffset) + ", length " + std::to_string(bv.byteLength) +
                 ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
                 std::to_string(buf.data.size()) + " bytes): the buffer is short or missing");
+  if ((bv.byteOffset + acc.byteOffset) % csize != 0)
+    throw Error(name + " starts at byte " + std::to_string(bv.byteOffset + acc.byteOffset) +
+                " of its buffer, not a multiple of its component size " + std::to_string(csize) + " (ACCESSOR_TOTAL_OFFSET_ALIGNMENT)");
+  if (bv.byteStride != 0 && (bv.byteStride < 4 || bv.byteStride > 252 || bv.byteStride % 4 != 0))
+    throw Error(name + ": bufferView " + std::to_string(acc.bufferView) + " has byteStride " + std::to_string(bv.byteStride) +
+                "; glTF allows 4 to 252 in steps of 4");
   v.stride = bv.byteStride != 0 ? bv.byteStride : elementSize;
   if (v.stride < elementSize)
     throw Error(name + ": byteStride " + std::to_string(v.stride) + " is smaller than an element");

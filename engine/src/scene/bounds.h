@@ -1,5 +1,6 @@
 // World-space bounds: of a mesh placed by a transform (its local box's 8 corners), and of a scene.
 #pragma once
+#include <cmath>
 #include <limits>
 
 #include "raybudget/scene.h"
@@ -16,6 +17,13 @@ inline void worldBounds(const Mesh& mesh, const glm::mat4& transform, glm::vec3&
     lo = glm::min(lo, w);
     hi = glm::max(hi, w);
   }
+}
+
+// Whether a box is finite: a transform that overflows float range leaves infinities (or NaN).
+inline bool finiteBounds(const glm::vec3& lo, const glm::vec3& hi) {
+  for (int c = 0; c < 3; ++c)
+    if (!std::isfinite(lo[c]) || !std::isfinite(hi[c])) return false;
+  return true;
 }
 
 // The scene's bounds: the union of its objects' (it has at least one).

@@ -16,6 +16,7 @@
 #include "raybudget/scene.h"
 #include "scene/accessor_reader.h"
 #include "scene/bounds.h"
+#include "scene/gltf_rules.h"
 #include "scene/mesh_builder.h"
 
 namespace raybudget {
@@ -147,16 +148,29 @@ void loadMaterials(const tinygltf::Model& model, const std::string& file, Scene&
   }
 }
 
-glm::mat4 localTransform(const tinygltf::Node& n, const std::string& at) {
+// The node's transform: its matrix (which must be affine) or its TRS, the rotation
+// normalized with a warning where it is not a unit quaternion (NODE_ROTATION_NON_UNIT).
+glm::mat4 localTransform(const tinygltf::Node& n, const std::string& at, std::vector<std::string>& warnings) {
   glm::mat4 m(1.0f);
   if (n.matrix.size() == 16) {
     for (int k = 0; k < 16; ++k) glm::value_ptr(m)[k] = float(n.matrix[size_t(k)]);
+    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
+      throw Error(at + ": matrix is projective (its last row is not 0, 0, 0, 1); glTF node matrices must decompose into "
+                       "translation, rotation and scale (NODE_MATRIX_NON_TRS)");
   } else {
     glm::vec3 t(0.0f), s(1.0f);
     glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
     if (n.translation.size() == 3) t = glm::vec3(float(n.translation[0]), float(n.translation[1]), float(n.translation[2]));
     if (n.scale.size() == 3) s = glm::vec3(float(n.scale[0]), float(n.scale[1]), float(n.scale[2]));
-    if (n.rotation.size() == 4) r = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
+    if (n.rotation.size() == 4) {
+      r = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
+      const float length = glm::length(r);
+      if (!std::isfinite(length) || length == 0.0f) throw Error(at + ": rotation is not a finite, non-zero quaternion");
+      if (std::fabs(length - 1.0f) > 1e-5f) {
+        warnings.push_back(at + ": rotation quaternion has length " + std::to_string(length) + ", normalized (NODE_ROTATION_NON_UNIT)");
+        r /= length;
+      }
+    }
     m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
   }
   for (int k = 0; k < 16; ++k) {
@@ -205,6 +219,8 @@ void addObject(Scene& scene, uint32_t mesh, int node, const glm::mat4& world, co
   o.transform = world;
   o.params = params;
   worldBounds(m, world, o.boundsMin, o.boundsMax);
+  if (!finiteBounds(o.boundsMin, o.boundsMax))
+    throw Error(at + ": the mesh placed by its transforms reaches beyond float range (world bounds are not finite)");
   scene.stats.triangles += m.indices.size() / 3;
   scene.objects.push_back(std::move(o));
 }
@@ -267,6 +283,10 @@ void addCamera(const tinygltf::Model& model, const tinygltf::Node& node, const g
     c.yfov = glm::clamp(finiteOr(gc.perspective.yfov, at + " camera yfov"), 0.01f, 3.0f);
     c.znear = std::max(finiteOr(gc.perspective.znear, at + " camera znear"), 1e-4f);
     c.zfar = gc.perspective.zfar > 0.0 ? finiteOr(gc.perspective.zfar, at + " camera zfar") : 0.0f;  // 0: from bounds later
+    if (c.zfar > 0.0f && c.zfar <= c.znear) {
+      scene.warnings.push_back(at + ": camera zfar is not beyond znear; zfar taken from the scene's bounds (CAMERA_ZFAR_LEQUAL_ZNEAR)");
+      c.zfar = 0.0f;
+    }
   } else {
     scene.warnings.push_back(at + ": orthographic camera rendered as a perspective one with the same pose");
   }
@@ -289,6 +309,8 @@ Scene loadAndRepair(const std::filesystem::path& path) {
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file) : loader.LoadASCIIFromFile(&model, &err, &warn, file);
   if (!ok || !err.empty()) throw Error(file + ": not a valid glTF file: " + (err.empty() ? "parse failed" : err));
 
+  gltf::checkAssetVersion(model, file);
+  gltf::checkSharedVertexBufferViews(model, file);
   Scene scene;
   scene.path = path;
   if (!warn.empty()) scene.warnings.push_back(file + ": " + warn);
@@ -338,7 +360,7 @@ Scene loadAndRepair(const std::filesystem::path& path) {
     if (item.depth > 256 || ++visits > 4 * model.nodes.size() + 16)
       throw Error(at + ": the node hierarchy has a cycle or is deeper than 256 levels");
     const tinygltf::Node& node = model.nodes[size_t(item.node)];
-    const glm::mat4 world = item.parent * localTransform(node, at);
+    const glm::mat4 world = item.parent * localTransform(node, at, scene.warnings);
     if (node.mesh >= 0) {
       const uint32_t mesh = meshFor(node.mesh, at);
       const RayBudgetParams params = readParams(node.extras, at);

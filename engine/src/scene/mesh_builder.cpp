@@ -6,6 +6,7 @@
 
 #include "raybudget/error.h"
 #include "scene/accessor_reader.h"
+#include "scene/gltf_rules.h"
 #include "scene/triangles.h"
 
 namespace raybudget::gltf {
@@ -57,12 +58,14 @@ Mesh buildMesh(const tinygltf::Model& model, int meshIndex, const std::string& w
       continue;
     }
     if (prim.mode > TINYGLTF_MODE_TRIANGLE_FAN) throw Error(at + ": unknown primitive mode " + std::to_string(prim.mode));
+    checkPrimitiveFormats(model, prim, at);
     const auto posIt = prim.attributes.find("POSITION");
     if (posIt == prim.attributes.end()) throw Error(at + ": has no POSITION attribute");
     const std::vector<glm::vec4> pos = readVec4(model, posIt->second, at + " POSITION");
     for (size_t i = 0; i < pos.size(); ++i)
       if (!finite3(pos[i]))
         throw Error(at + ": POSITION of vertex " + std::to_string(i) + " is not finite (NaN or Inf)");
+    checkPositionBounds(model, posIt->second, pos, at, scene.warnings);
 
     // `repairable`: non-finite values are left for the caller to repair (normals), else refused.
     auto optional = [&](const char* name, glm::vec4 fill, bool repairable = false) {

@@ -1,0 +1,210 @@
+#include "scene/gltf_rules.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <tiny_gltf.h>
+
+#include "raybudget/error.h"
+#include "scene/accessor_reader.h"
+
+namespace raybudget::gltf {
+namespace {
+
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+constexpr int kUInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+
+std::string componentName(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case kUByte: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case kUShort: return "UNSIGNED_SHORT";
+    case kUInt: return "UNSIGNED_INT";
+    case kFloat: return "FLOAT";
+    default: return std::to_string(componentType);
+  }
+}
+
+std::string typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return std::to_string(type);
+  }
+}
+
+// One format a semantic allows: a type and a component type, normalized or not.
+struct Format {
+  int type;
+  int componentType;
+  bool normalized;
+};
+
+std::string formatName(int type, int componentType, bool normalized) {
+  return typeName(type) + " " + componentName(componentType) + (normalized ? " normalized" : "");
+}
+
+// The formats glTF 2.0 allows each vertex attribute semantic (without its _n suffix);
+// empty for an unknown one.
+std::vector<Format> allowedFormats(const std::string& semantic) {
+  using F = Format;
+  if (semantic == "POSITION" || semantic == "NORMAL") return {F{TINYGLTF_TYPE_VEC3, kFloat, false}};
+  if (semantic == "TANGENT") return {F{TINYGLTF_TYPE_VEC4, kFloat, false}};
+  if (semantic == "TEXCOORD")
+    return {F{TINYGLTF_TYPE_VEC2, kFloat, false}, F{TINYGLTF_TYPE_VEC2, kUByte, true}, F{TINYGLTF_TYPE_VEC2, kUShort, true}};
+  if (semantic == "COLOR")
+    return {F{TINYGLTF_TYPE_VEC3, kFloat, false}, F{TINYGLTF_TYPE_VEC3, kUByte, true}, F{TINYGLTF_TYPE_VEC3, kUShort, true},
+            F{TINYGLTF_TYPE_VEC4, kFloat, false}, F{TINYGLTF_TYPE_VEC4, kUByte, true}, F{TINYGLTF_TYPE_VEC4, kUShort, true}};
+  if (semantic == "JOINTS") return {F{TINYGLTF_TYPE_VEC4, kUByte, false}, F{TINYGLTF_TYPE_VEC4, kUShort, false}};
+  if (semantic == "WEIGHTS")
+    return {F{TINYGLTF_TYPE_VEC4, kFloat, false}, F{TINYGLTF_TYPE_VEC4, kUByte, true}, F{TINYGLTF_TYPE_VEC4, kUShort, true}};
+  return {};
+}
+
+// "TEXCOORD_1" -> ("TEXCOORD", 1); a name without a numeric suffix -> (name, -1).
+std::pair<std::string, int> splitSemantic(const std::string& name) {
+  const size_t underscore = name.rfind('_');
+  if (underscore == std::string::npos || underscore == 0 || underscore + 1 == name.size()) return {name, -1};
+  const std::string digits = name.substr(underscore + 1);
+  if (digits.size() > 4 || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) return {name, -1};
+  return {name.substr(0, underscore), std::stoi(digits)};
+}
+
+bool indexedSemantic(const std::string& base) { return base == "TEXCOORD" || base == "COLOR" || base == "JOINTS" || base == "WEIGHTS"; }
+
+size_t componentBytes(int componentType) {
+  return componentType == kUByte || componentType == TINYGLTF_COMPONENT_TYPE_BYTE         ? 1
+         : componentType == kUShort || componentType == TINYGLTF_COMPONENT_TYPE_SHORT ? 2
+                                                                                       : 4;
+}
+
+size_t typeComponents(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4:
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 1;
+  }
+}
+
+void checkVertexAttribute(const tinygltf::Model& model, int index, const std::string& semantic, const std::string& at) {
+  const std::string where = at + " " + semantic;
+  accessorCount(model, index, where);  // the accessor's own checks: it exists, it fits, it is aligned
+  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  const std::string name = where + ": accessor " + std::to_string(index);
+  const std::vector<Format> allowed = allowedFormats(splitSemantic(semantic).first);
+  const bool ok = std::any_of(allowed.begin(), allowed.end(), [&](const Format& f) {
+    return f.type == acc.type && f.componentType == acc.componentType && f.normalized == acc.normalized;
+  });
+  if (!ok) {
+    std::string list;
+    for (const Format& f : allowed) list += (list.empty() ? "" : ", ") + formatName(f.type, f.componentType, f.normalized);
+    throw Error(name + " is " + formatName(acc.type, acc.componentType, acc.normalized) + "; glTF allows " + semantic + " only as " +
+                list + " (MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT)");
+  }
+  if (acc.bufferView < 0) return;
+  const tinygltf::BufferView& bv = model.bufferViews[size_t(acc.bufferView)];
+  const size_t stride = bv.byteStride != 0 ? bv.byteStride : componentBytes(acc.componentType) * typeComponents(acc.type);
+  if ((bv.byteOffset + acc.byteOffset) % 4 != 0 || stride % 4 != 0)
+    throw Error(name + " starts at byte " + std::to_string(bv.byteOffset + acc.byteOffset) + " of its buffer with elements " +
+                std::to_string(stride) + " bytes apart; vertex attributes must be aligned to 4 bytes (MESH_PRIMITIVE_ACCESSOR_UNALIGNED)");
+}
+
+}  // namespace
+
+void checkAssetVersion(const tinygltf::Model& model, const std::string& file) {
+  auto major = [](const std::string& v) {
+    const size_t dot = v.find('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == v.size()) return -1;
+    if (!std::all_of(v.begin(), v.end(), [](char c) { return (c >= '0' && c <= '9') || c == '.'; })) return -1;
+    return std::stoi(v.substr(0, std::min<size_t>(dot, 6)));
+  };
+  const std::string& version = model.asset.version;
+  if (major(version) != 2)
+    throw Error(file + ": asset.version is '" + version + "'; raybudget reads glTF 2.x (UNKNOWN_ASSET_MAJOR_VERSION)");
+  const std::string& minVersion = model.asset.minVersion;
+  if (!minVersion.empty() && (major(minVersion) != 2 || minVersion.substr(minVersion.find('.') + 1) != "0"))
+    throw Error(file + ": asset.minVersion is '" + minVersion + "'; raybudget reads glTF 2.0 files");
+}
+
+void checkPrimitiveFormats(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& at) {
+  std::map<std::string, std::set<int>> numbered;
+  for (const auto& [semantic, index] : primitive.attributes) {
+    if (!semantic.empty() && semantic[0] == '_') continue;  // application-specific: not read
+    const auto [base, number] = splitSemantic(semantic);
+    const bool known = indexedSemantic(base) ? number >= 0 : (number < 0 && !allowedFormats(base).empty());
+    if (!known)
+      throw Error(at + ": attribute '" + semantic +
+                  "' is not a glTF semantic (POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n, or _NAME) "
+                  "(MESH_PRIMITIVE_INVALID_ATTRIBUTE)");
+    if (number >= 0) numbered[base].insert(number);
+    checkVertexAttribute(model, index, semantic, at);
+  }
+  for (const auto& [base, numbers] : numbered)
+    if (*numbers.rbegin() + 1 != int(numbers.size()))
+      throw Error(at + ": the " + base + "_n attributes are not numbered 0.." + std::to_string(numbers.size() - 1) +
+                  " without gaps (MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY)");
+  if (primitive.indices < 0) return;
+  const std::string where = at + " indices";
+  accessorCount(model, primitive.indices, where);
+  const tinygltf::Accessor& acc = model.accessors[size_t(primitive.indices)];
+  const std::string name = where + ": accessor " + std::to_string(primitive.indices);
+  const bool unsignedInt = acc.componentType == kUByte || acc.componentType == kUShort || acc.componentType == kUInt;
+  if (acc.type != TINYGLTF_TYPE_SCALAR || !unsignedInt || acc.normalized)
+    throw Error(name + " is " + formatName(acc.type, acc.componentType, acc.normalized) +
+                "; glTF allows indices only as SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT (MESH_PRIMITIVE_INDICES_ACCESSOR_INVALID_FORMAT)");
+  if (acc.bufferView >= 0 && model.bufferViews[size_t(acc.bufferView)].byteStride != 0)
+    throw Error(name + ": its bufferView " + std::to_string(acc.bufferView) +
+                " has a byteStride, which glTF forbids for indices (MESH_PRIMITIVE_INDICES_ACCESSOR_WITH_BYTESTRIDE)");
+}
+
+void checkSharedVertexBufferViews(const tinygltf::Model& model, const std::string& file) {
+  std::map<int, std::set<int>> attributeAccessors;  // bufferView -> the vertex attribute accessors in it
+  for (const tinygltf::Mesh& mesh : model.meshes)
+    for (const tinygltf::Primitive& primitive : mesh.primitives)
+      for (const auto& [semantic, index] : primitive.attributes)
+        if (index >= 0 && size_t(index) < model.accessors.size() && model.accessors[size_t(index)].bufferView >= 0)
+          attributeAccessors[model.accessors[size_t(index)].bufferView].insert(index);
+  for (const auto& [view, accessors] : attributeAccessors)
+    if (accessors.size() > 1 && size_t(view) < model.bufferViews.size() && model.bufferViews[size_t(view)].byteStride == 0)
+      throw Error(file + ": bufferView " + std::to_string(view) + " holds " + std::to_string(accessors.size()) +
+                  " vertex attribute accessors but no byteStride, which glTF then requires (MESH_PRIMITIVE_ACCESSOR_WITHOUT_BYTESTRIDE)");
+}
+
+void checkPositionBounds(const tinygltf::Model& model, int accessor, const std::vector<glm::vec4>& positions, const std::string& at,
+                         std::vector<std::string>& warnings) {
+  const tinygltf::Accessor& acc = model.accessors[size_t(accessor)];
+  if (acc.minValues.size() != 3 || acc.maxValues.size() != 3) {
+    warnings.push_back(at + " POSITION: accessor " + std::to_string(accessor) +
+                       " has no min/max, which glTF requires; the bounds are taken from the data (MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS)");
+    return;
+  }
+  if (positions.empty()) return;
+  glm::vec3 lo(positions[0]), hi(positions[0]);
+  for (const glm::vec4& p : positions) {
+    lo = glm::min(lo, glm::vec3(p));
+    hi = glm::max(hi, glm::vec3(p));
+  }
+  // As the validator compares them: the declared values rounded to float against the data's.
+  for (int c = 0; c < 3; ++c)
+    if (float(acc.minValues[size_t(c)]) != lo[c] || float(acc.maxValues[size_t(c)]) != hi[c]) {
+      warnings.push_back(at + " POSITION: accessor " + std::to_string(accessor) +
+                         "'s declared min/max differ from its data; the data's bounds are used (ACCESSOR_MIN_MISMATCH, ACCESSOR_MAX_MISMATCH)");
+      return;
+    }
+}
+
+}  // namespace raybudget::gltf
