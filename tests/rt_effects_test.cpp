@@ -622,6 +622,44 @@ std::vector<Picked> orbitSelections(Renderer& renderer, const Camera& start, uin
   return out;
 }
 
+// setBudget changes T from the next frame on and forgets nothing (an engine adapting its
+// budget to its frame time); a bad budget is refused.
+TEST(RtBudget, SetBudgetChangesTFromTheNextFrameAndKeepsTheLearnedModel) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s;
+  s.width = 160;
+  s.height = 96;
+  s.validation = true;
+  s.policy = Policy::Density;
+  s.budgetMs = 0.5f;
+  Renderer renderer(scene, s);
+  const Camera camera = defaultCamera(scene, 160.0f / 96.0f);
+  std::vector<FrameTiming> before;
+  for (int f = 0; f < 4; ++f)
+    for (const FrameTiming& t : renderer.render(camera)) before.push_back(t);
+  for (const FrameTiming& t : renderer.finish()) before.push_back(t);
+  const CostModel learned = renderer.costModel();
+  renderer.setBudget(500.0f);
+  EXPECT_EQ(renderer.costModel(), learned) << "nothing learned is forgotten";
+  std::vector<FrameTiming> after;
+  for (int f = 0; f < 3; ++f)
+    for (const FrameTiming& t : renderer.render(camera)) after.push_back(t);
+  for (const FrameTiming& t : renderer.finish()) after.push_back(t);
+  ASSERT_EQ(before.size(), 4u);
+  ASSERT_EQ(after.size(), 3u);
+  uint32_t mostBefore = 0;
+  for (const FrameTiming& t : before) {
+    EXPECT_EQ(t.budgetMs, 0.5);
+    mostBefore = std::max(mostBefore, t.selectedObjects);
+  }
+  for (const FrameTiming& t : after) {
+    EXPECT_EQ(t.budgetMs, 500.0);
+    EXPECT_GT(t.selectedObjects, mostBefore) << "a thousand times the budget selects more";
+  }
+  for (float bad : {0.0f, -1.0f, std::nanf("")}) EXPECT_THROW(renderer.setBudget(bad), Error) << bad;
+  test::expectValidationClean(renderer.validationMessages());
+}
+
 // restartSelection forgets S and the learned work per pixel: with the time scale frozen,
 // after another policy ran (budgeted or not), a restarted renderer selects exactly what a
 // new one does, frame by frame.

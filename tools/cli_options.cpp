@@ -15,6 +15,9 @@ usage:
   raybudget render SCENE.gltf|SCENE.glb [options]   render frames, write images and stats
   raybudget sweep SCENE.gltf|SCENE.glb [options]    run time against error over policies and
                                                     budgets (raybudget sweep --help)
+  raybudget soak SCENE.gltf|SCENE.glb [options]     a long run with T as a square wave and a CPU
+                                                    load: memory, NaN and adherence
+                                                    (raybudget soak --help)
   raybudget devices                                 list the Vulkan devices
   raybudget --help
 

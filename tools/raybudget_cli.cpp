@@ -7,6 +7,7 @@
 
 #include "cli_options.h"
 #include "explain.h"
+#include "soak.h"
 #include "sweep.h"
 #include "raybudget/raybudget.h"
 
@@ -102,6 +103,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (args[0] == "sweep") return raybudget::cli::runSweep(raybudget::cli::parseSweep({args.begin() + 1, args.end()}));
+    if (args[0] == "soak" && args.size() > 1 && (args[1] == "--help" || args[1] == "-h")) {
+      std::cout << raybudget::cli::kSoakUsage;
+      return 0;
+    }
+    if (args[0] == "soak") return raybudget::cli::runSoak(raybudget::cli::parseSoak({args.begin() + 1, args.end()}));
     std::cerr << "raybudget: unknown command '" << args[0] << "'\n\n" << raybudget::cli::kUsage;
     return 2;
   } catch (const std::exception& e) {

@@ -10,6 +10,7 @@
 #include "raybudget/testing.h"
 #include "vk/check.h"
 #include "vk/context.h"
+#include "vk/memory_budget.h"
 #include "vk/resources.h"
 
 namespace raybudget {
@@ -236,6 +237,13 @@ SceneEffects Renderer::sceneEffects() const { return impl_->core.sceneEffects();
 std::vector<std::string> Renderer::builtPipelines() const { return impl_->core.builtPipelines(); }
 
 std::string Renderer::deviceName() const { return impl_->device->properties().deviceName; }
+
+DeviceMemoryUsage Renderer::deviceMemoryUsage() const { return vk::memoryUsage(impl_->device->physicalDevice()); }
+
+void Renderer::setBudget(float budgetMs) {
+  impl_->core.setBudget(budgetMs);
+  impl_->settings.budgetMs = budgetMs;
+}
 
 std::vector<std::string> Renderer::validationMessages() const { return impl_->device->validationMessages(); }
 

@@ -154,6 +154,9 @@ class Context {
   // restartSelection); every recorded frame has completed (collect their timings first with
   // completedFrames(true)). Throws Error on a bad budget.
   void restartSelection(Policy policy, float budgetMs, BenefitAblation ablation = BenefitAblation::None, ItemRate rate = ItemRate::Full);
+  // T from the next recorded frame on, keeping what the selection learned (S, work per
+  // pixel, the cost model). Throws Error on a bad budget.
+  void setBudget(float budgetMs);
   CostModel costModel() const;
   void setCostModel(const CostModel& model);  // throws Error on negative or non-finite values
   // From the next frame on (the editor, animation); throws Error on a bad ID or transform.

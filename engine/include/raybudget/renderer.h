@@ -36,6 +36,14 @@ struct FrameImages {
   std::vector<uint32_t> tracedMask;     // core::FrameOutputs::tracedMask: the effects traced per pixel
 };
 
+// The device memory the process uses and the budget the driver gives it, summed over the
+// device's heaps (VK_EXT_memory_budget; `known` is false where the device lacks it).
+struct DeviceMemoryUsage {
+  uint64_t usedBytes = 0;
+  uint64_t budgetBytes = 0;
+  bool known = false;
+};
+
 namespace testing {
 struct Checks;
 }
@@ -71,6 +79,9 @@ class Renderer {
   std::vector<FrameTiming> restartSelection(Policy policy, float budgetMs, BenefitAblation ablation = BenefitAblation::None,
                                             ItemRate rate = ItemRate::Full);
 
+  // T from the next frame on, keeping what the selection learned (an engine adapting its
+  // budget to its frame time). Throws Error on a bad budget.
+  void setBudget(float budgetMs);
   // The cost model as learned so far (the current policy's unit included), and a way to
   // start from a saved one: a benchmark gives every configuration the same learned state,
   // so that its results do not depend on what ran before. setCostModel applies from the
@@ -101,6 +112,7 @@ class Renderer {
   // reduced ray rates): pipelines are built when a frame first needs them.
   std::vector<std::string> builtPipelines() const;
   std::string deviceName() const;
+  DeviceMemoryUsage deviceMemoryUsage() const;
   std::vector<std::string> validationMessages() const;
   float aspect() const;
 

@@ -389,6 +389,13 @@ void Context::restartSelection(Policy policy, float budgetMs, BenefitAblation ab
   impl_->restartSelection(policy, budgetMs, ablation, rate);
 }
 
+void Context::setBudget(float budgetMs) {
+  RenderSettings next = impl_->settings;
+  next.budgetMs = budgetMs;
+  validateSettings(next);
+  impl_->settings.budgetMs = budgetMs;
+}
+
 CostModel Context::costModel() const { return impl_->selection.costModel(); }
 
 void Context::setCostModel(const CostModel& model) { impl_->setCostModel(model); }

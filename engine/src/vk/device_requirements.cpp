@@ -130,6 +130,8 @@ core::DeviceSetup deviceSetup(const DeviceCapabilities& c) {
   s.queueFamily = c.queueFamily.value_or(0);
   s.extensions.push_back(VK_KHR_SHADER_CLOCK_EXTENSION_NAME);
   s.shaderClock.shaderSubgroupClock = VK_TRUE;
+  // Optional: lets Renderer::deviceMemoryUsage report the driver's figures.
+  if (c.hasExtension(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME)) s.extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
   s.vulkan13.dynamicRendering = VK_TRUE;
   s.vulkan13.synchronization2 = VK_TRUE;
   s.vulkan13.maintenance4 = VK_TRUE;
