@@ -29,7 +29,20 @@ mesa_from_backports() {
   dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null | grep -q bpo
 }
 
+# Node.js runs the Khronos glTF-Validator, the loader's oracle (tests/validator).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then missing+=(nodejs npm); fi
+# The Khronos glTF-Validator (npm), the loader's oracle, into tests/validator.
+install_validator() {
+  local validator
+  validator="$(dirname "$0")/../tests/validator"
+  [ -d "$validator/node_modules/gltf-validator" ] && return 0
+  echo "setup-deps: installing the glTF-Validator (npm) into tests/validator"
+  npm install --prefix "$validator" --no-audit --no-fund --no-package-lock --silent ||
+    echo "setup-deps: could not install the glTF-Validator; its test will be skipped"
+}
+
 if [ ${#missing[@]} -eq 0 ] && mesa_from_backports; then
+  install_validator
   exit 0
 fi
 
@@ -55,3 +68,4 @@ if ! mesa_from_backports; then
   echo "setup-deps: installing mesa-vulkan-drivers from bookworm-backports"
   sudo_ apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
 fi
+install_validator

@@ -18,6 +18,8 @@ usage:
   raybudget soak SCENE.gltf|SCENE.glb [options]     a long run with T as a square wave and a CPU
                                                     load: memory, NaN and adherence
                                                     (raybudget soak --help)
+  raybudget check SCENE.gltf|SCENE.glb [--strict]   load only: what the loader repairs, or why it
+                                                    refuses the file (docs/ROBUSTNESS.md)
   raybudget devices                                 list the Vulkan devices
   raybudget --help
 

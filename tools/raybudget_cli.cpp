@@ -81,6 +81,25 @@ int render(const raybudget::cli::RenderCommand& c) {
   return messages.empty() ? 0 : 3;
 }
 
+// `raybudget check SCENE [--strict]`: loads the scene only, prints what the loader repaired;
+// exit 0 when it loads, 1 when it is refused.
+int check(const std::vector<std::string>& args) {
+  raybudget::LoadOptions options;
+  std::string scene;
+  for (const std::string& a : args) {
+    if (a == "--strict") options.strict = true;
+    else if (!a.empty() && a[0] == '-') throw raybudget::Error("unknown option " + a + " (check takes SCENE and --strict)");
+    else if (scene.empty()) scene = a;
+    else throw raybudget::Error("more than one scene given: '" + scene + "' and '" + a + "'");
+  }
+  if (scene.empty()) throw raybudget::Error("check needs a scene file");
+  const raybudget::Scene s = raybudget::loadScene(scene, options);
+  for (const std::string& w : s.warnings) std::cout << "warning: " << w << '\n';
+  std::cout << scene << ": loads: " << s.objects.size() << " objects, " << s.stats.triangles << " triangles, " << s.warnings.size()
+            << " repairs\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -97,6 +116,7 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
+    if (args[0] == "check") return check({args.begin() + 1, args.end()});
     if (args[0] == "render") return render(raybudget::cli::parseRender({args.begin() + 1, args.end()}));
     if (args[0] == "sweep" && args.size() > 1 && (args[1] == "--help" || args[1] == "-h")) {
       std::cout << raybudget::cli::kSweepUsage;

@@ -204,6 +204,7 @@ int runSoak(const SoakCommand& c) {
                     double(samples.back().hostBytes) / 1048576.0,
                     samples.back().device.known ? (std::to_string(samples.back().device.usedBytes / 1048576) + " MiB").c_str() : "unknown",
                     nanPixels, nanRecords);
+      std::fflush(stdout);  // progress shows when the output goes to a log
     }
   }
   load.set(false);

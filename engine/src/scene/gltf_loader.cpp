@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -46,8 +47,10 @@ int textureIndex(const tinygltf::Model& model, int index, int texCoord, const st
   return image >= 0 && !scene.images[size_t(image)].rgba.empty() ? index : -1;
 }
 
+// `v` as a float; beyond float range counts as not finite (a light colour of 1e40 is infinite
+// once it reaches the GPU).
 float finiteOr(double v, const std::string& what) {
-  if (!std::isfinite(v)) throw Error(what + " is not finite");
+  if (!std::isfinite(v) || !std::isfinite(float(v))) throw Error(what + " is not finite (or beyond float range)");
   return float(v);
 }
 
@@ -232,7 +235,11 @@ std::vector<glm::mat4> gpuInstances(const tinygltf::Model& model, const tinygltf
   const tinygltf::Value& attrs = ext->Get("attributes");
   auto attr = [&](const char* key, glm::vec4 fill) {
     std::vector<glm::vec4> v;
-    if (attrs.Has(key) && attrs.Get(key).IsInt()) v = gltf::readVec4(model, attrs.Get(key).GetNumberAsInt(), at + " instancing " + key, fill);
+    if (attrs.Has(key) && attrs.Get(key).IsInt()) {
+      const int index = attrs.Get(key).GetNumberAsInt();
+      gltf::checkInstanceAttributeFormat(model, index, key, at + " instancing " + key);
+      v = gltf::readVec4(model, index, at + " instancing " + key, fill);
+    }
     return v;
   };
   const auto t = attr("TRANSLATION", glm::vec4(0.0f)), r = attr("ROTATION", glm::vec4(0, 0, 0, 1)), s = attr("SCALE", glm::vec4(1.0f));
@@ -306,9 +313,27 @@ Scene loadAndRepair(const std::filesystem::path& path) {
   char magic[4] = {};
   probe.read(magic, 4);
   const bool binary = probe.gcount() == 4 && std::string(magic, 4) == "glTF";
+  std::string json;  // the file's JSON text, for the index check tinygltf cannot make
+  if (binary) {
+    // The header's total length must be the file's (tinygltf tolerates a mismatch).
+    uint32_t header[4] = {};  // version, length; the first chunk's length and type
+    probe.read(reinterpret_cast<char*>(header), sizeof(header));
+    const auto size = std::filesystem::file_size(path);
+    if (probe.gcount() >= 8 && header[1] != size)
+      throw Error(file + ": the GLB header declares " + std::to_string(header[1]) + " bytes, the file has " + std::to_string(size) +
+                  " (GLB_LENGTH_MISMATCH)");
+    if (probe.gcount() == sizeof(header) && header[3] == 0x4E4F534Au && header[2] <= size - 20) {
+      json.resize(header[2]);
+      probe.read(json.data(), std::streamsize(json.size()));
+    }
+  } else {
+    std::ifstream text(path, std::ios::binary);
+    json.assign(std::istreambuf_iterator<char>(text), std::istreambuf_iterator<char>());
+  }
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file) : loader.LoadASCIIFromFile(&model, &err, &warn, file);
   if (!ok || !err.empty()) throw Error(file + ": not a valid glTF file: " + (err.empty() ? "parse failed" : err));
 
+  gltf::checkIndicesInJson(json, file);
   gltf::checkAssetVersion(model, file);
   gltf::checkSharedVertexBufferViews(model, file);
   Scene scene;
@@ -336,7 +361,10 @@ Scene loadAndRepair(const std::filesystem::path& path) {
   // Roots: the default scene's nodes; without scenes, every node that is nobody's child.
   std::vector<int> roots;
   if (!model.scenes.empty()) {
-    const int s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? model.defaultScene : 0;
+    if (model.defaultScene >= 0 && size_t(model.defaultScene) >= model.scenes.size())
+      throw Error(file + ": scene " + std::to_string(model.defaultScene) + " does not exist (the file has " + std::to_string(model.scenes.size()) +
+                  ") (UNRESOLVED_REFERENCE)");
+    const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
     roots = model.scenes[size_t(s)].nodes;
   } else {
     std::vector<bool> isChild(model.nodes.size(), false);

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "raybudget/error.h"
@@ -125,6 +126,63 @@ void checkVertexAttribute(const tinygltf::Model& model, int index, const std::st
 
 }  // namespace
 
+namespace {
+
+bool isIndexKey(const std::string& key) {
+  static const char* keys[] = {"scene", "mesh", "camera", "skin", "material", "indices", "bufferView", "buffer", "source", "sampler",
+                               "index", "light", "node", "input", "output"};
+  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
+}
+
+void requireIndex(const nlohmann::json& v, const std::string& where, const std::string& file) {
+  if (!v.is_number_integer() || v.get<int64_t>() < 0)
+    throw Error(file + ": " + where + " is " + v.dump().substr(0, 40) + ", not a non-negative integer (INVALID_INDEX, TYPE_MISMATCH)");
+}
+
+// Sizes, offsets and enumerations: whole numbers (tinygltf truncates 1.5 and skips a string).
+bool isCountKey(const std::string& key) {
+  static const char* keys[] = {"byteOffset", "byteLength", "byteStride", "count", "componentType", "mode", "target"};
+  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
+}
+
+void scanIndices(const nlohmann::json& node, const std::string& where, const std::string& file) {
+  if (node.is_object()) {
+    for (const auto& [key, value] : node.items()) {
+      if (key == "extras") continue;  // the application's own data
+      const std::string at = where + "/" + key;
+      if ((isIndexKey(key) || (isCountKey(key) && where.rfind("/extensions") == std::string::npos)) && !value.is_object() &&
+          !value.is_array())
+        requireIndex(value, at, file);
+      // A node's transform: numbers only (tinygltf drops an array holding anything else).
+      if ((key == "matrix" || key == "translation" || key == "rotation" || key == "scale") && value.is_array() &&
+          where.rfind("/nodes/", 0) == 0) {
+        for (size_t i = 0; i < value.size(); ++i)
+          if (!value[i].is_number())
+            throw Error(file + ": " + at + "/" + std::to_string(i) + " is " + value[i].dump().substr(0, 40) + ", not a number (ARRAY_TYPE_MISMATCH)");
+      }
+      if (key == "attributes" && value.is_object()) {
+        for (const auto& [name, index] : value.items()) requireIndex(index, at + "/" + name, file);
+      }
+      // Lists of node indices: a scene's roots, a node's children, a skin's joints (the top-level
+      // `nodes` holds objects).
+      if ((key == "children" || key == "joints" || (key == "nodes" && !where.empty())) && value.is_array()) {
+        for (size_t i = 0; i < value.size(); ++i) requireIndex(value[i], at + "/" + std::to_string(i), file);
+      }
+      scanIndices(value, at, file);
+    }
+  } else if (node.is_array()) {
+    for (size_t i = 0; i < node.size(); ++i) scanIndices(node[i], where + "/" + std::to_string(i), file);
+  }
+}
+
+}  // namespace
+
+void checkIndicesInJson(const std::string& json, const std::string& file) {
+  const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
+  if (doc.is_discarded()) return;  // tinygltf reports the syntax error
+  scanIndices(doc, "", file);
+}
+
 void checkAssetVersion(const tinygltf::Model& model, const std::string& file) {
   auto major = [](const std::string& v) {
     const size_t dot = v.find('.');
@@ -169,6 +227,23 @@ void checkPrimitiveFormats(const tinygltf::Model& model, const tinygltf::Primiti
   if (acc.bufferView >= 0 && model.bufferViews[size_t(acc.bufferView)].byteStride != 0)
     throw Error(name + ": its bufferView " + std::to_string(acc.bufferView) +
                 " has a byteStride, which glTF forbids for indices (MESH_PRIMITIVE_INDICES_ACCESSOR_WITH_BYTESTRIDE)");
+}
+
+void checkInstanceAttributeFormat(const tinygltf::Model& model, int index, const std::string& semantic, const std::string& at) {
+  accessorCount(model, index, at);
+  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  using F = Format;
+  const std::vector<Format> allowed =
+      semantic == "ROTATION"
+          ? std::vector<Format>{F{TINYGLTF_TYPE_VEC4, kFloat, false}, F{TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_BYTE, true},
+                                F{TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_SHORT, true}}
+          : std::vector<Format>{F{TINYGLTF_TYPE_VEC3, kFloat, false}};
+  if (std::none_of(allowed.begin(), allowed.end(), [&](const Format& f) {
+        return f.type == acc.type && f.componentType == acc.componentType && f.normalized == acc.normalized;
+      }))
+    throw Error(at + ": accessor " + std::to_string(index) + " is " + formatName(acc.type, acc.componentType, acc.normalized) +
+                "; EXT_mesh_gpu_instancing allows " + semantic + " only as " +
+                (semantic == "ROTATION" ? "VEC4 FLOAT, BYTE normalized or SHORT normalized" : "VEC3 FLOAT"));
 }
 
 void checkSharedVertexBufferViews(const tinygltf::Model& model, const std::string& file) {

@@ -17,6 +17,12 @@ struct Primitive;
 
 namespace raybudget::gltf {
 
+// Every index in the file's JSON (mesh, material, accessor, bufferView, node... references,
+// `children`, the primitives' attributes) is a non-negative integer where present: tinygltf
+// reads a negative one as "absent", which would silently drop a mesh or turn an accessor into
+// zeros (INVALID_INDEX). `json` is the file's JSON text (a GLB's JSON chunk).
+void checkIndicesInJson(const std::string& json, const std::string& file);
+
 // asset.version (and minVersion) must name glTF 2.x.
 void checkAssetVersion(const tinygltf::Model& model, const std::string& file);
 
@@ -25,6 +31,11 @@ void checkAssetVersion(const tinygltf::Model& model, const std::string& file);
 // semantic allows, 4-byte aligned; its indices an unsigned scalar, not normalized, in a
 // bufferView without byteStride. Accessor indices are range-checked first.
 void checkPrimitiveFormats(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& at);
+
+// An EXT_mesh_gpu_instancing attribute (`semantic`: TRANSLATION, ROTATION, SCALE) in the
+// format the extension allows: VEC3 float for TRANSLATION and SCALE; VEC4 float, or normalized
+// byte or short, for ROTATION.
+void checkInstanceAttributeFormat(const tinygltf::Model& model, int accessor, const std::string& semantic, const std::string& at);
 
 // Two or more accessors that hold vertex attributes in one bufferView need its byteStride.
 void checkSharedVertexBufferViews(const tinygltf::Model& model, const std::string& file);
