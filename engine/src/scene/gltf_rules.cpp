@@ -145,7 +145,9 @@ bool isCountKey(const std::string& key) {
   return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
 }
 
-void scanIndices(const nlohmann::json& node, const std::string& where, const std::string& file) {
+// `depth` bounds the recursion: glTF nests about ten levels; deeper is an extension's data.
+void scanIndices(const nlohmann::json& node, const std::string& where, const std::string& file, int depth = 0) {
+  if (depth > 32) return;
   if (node.is_object()) {
     for (const auto& [key, value] : node.items()) {
       if (key == "extras") continue;  // the application's own data
@@ -168,10 +170,10 @@ void scanIndices(const nlohmann::json& node, const std::string& where, const std
       if ((key == "children" || key == "joints" || (key == "nodes" && !where.empty())) && value.is_array()) {
         for (size_t i = 0; i < value.size(); ++i) requireIndex(value[i], at + "/" + std::to_string(i), file);
       }
-      scanIndices(value, at, file);
+      scanIndices(value, at, file, depth + 1);
     }
   } else if (node.is_array()) {
-    for (size_t i = 0; i < node.size(); ++i) scanIndices(node[i], where + "/" + std::to_string(i), file);
+    for (size_t i = 0; i < node.size(); ++i) scanIndices(node[i], where + "/" + std::to_string(i), file, depth + 1);
   }
 }
 
