@@ -139,6 +139,12 @@ float parsePositive(const std::string& option, const std::string& value) {
   return *v;
 }
 
+void sceneArgument(const std::string& arg, std::string& scene, const std::string& hint) {
+  if (!arg.empty() && arg[0] == '-') throw Error("unknown option " + arg + hint);
+  if (!scene.empty()) throw Error("more than one scene given: '" + scene + "' and '" + arg + "'");
+  scene = arg;
+}
+
 Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount) {
   if (path == "orbit") return orbitCamera(start, frame, frameCount);
   if (path == "flythrough") return flythroughCamera(start, frame, frameCount);
@@ -204,9 +210,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
-    else if (!a.empty() && a[0] == '-') throw Error("unknown option " + a + " (see raybudget --help)");
-    else if (c.scene.empty()) c.scene = a;
-    else throw Error("more than one scene given: '" + c.scene + "' and '" + a + "'");
+    else sceneArgument(a, c.scene, " (see raybudget --help)");
   }
   if (c.scene.empty()) throw Error("render needs a scene file (see raybudget --help)");
   return c;

@@ -33,6 +33,10 @@ Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame
 
 // `option`'s value as a whole number in lo..hi, or a positive finite number; throws
 // raybudget::Error naming the option otherwise.
+// An argument no option took: the scene, once. An unknown option (named with `hint`, e.g.
+// the command's usage) or a second scene throws raybudget::Error.
+void sceneArgument(const std::string& arg, std::string& scene, const std::string& hint);
+
 uint32_t parseUint(const std::string& option, const std::string& value, uint32_t lo, uint32_t hi);
 float parsePositive(const std::string& option, const std::string& value);
 

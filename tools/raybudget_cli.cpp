@@ -88,9 +88,7 @@ int check(const std::vector<std::string>& args) {
   std::string scene;
   for (const std::string& a : args) {
     if (a == "--strict") options.strict = true;
-    else if (!a.empty() && a[0] == '-') throw raybudget::Error("unknown option " + a + " (check takes SCENE and --strict)");
-    else if (scene.empty()) scene = a;
-    else throw raybudget::Error("more than one scene given: '" + scene + "' and '" + a + "'");
+    else raybudget::cli::sceneArgument(a, scene, " (check takes SCENE and --strict)");
   }
   if (scene.empty()) throw raybudget::Error("check needs a scene file");
   const raybudget::Scene s = raybudget::loadScene(scene, options);

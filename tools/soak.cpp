@@ -139,9 +139,7 @@ SoakCommand parseSoak(const std::vector<std::string>& args) {
     } else if (a == "--rate") c.rate = parseItemRate(value());
     else if (a == "--device") c.device = value();
     else if (a == "--validation") c.validation = true;
-    else if (!a.empty() && a[0] == '-') throw Error("unknown option " + a + "\n" + kSoakUsage);
-    else if (c.scene.empty()) c.scene = a;
-    else throw Error("more than one scene given: '" + c.scene + "' and '" + a + "'");
+    else sceneArgument(a, c.scene, std::string("\n") + kSoakUsage);
   }
   if (c.scene.empty()) throw Error(std::string("soak needs a scene file\n") + kSoakUsage);
   if (c.warmup >= c.frames) throw Error("--warmup must be below --frames");

@@ -270,9 +270,7 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       for (const std::string& p : c.paths)
         if (p != "orbit" && p != "flythrough") throw Error("--paths takes orbit and flythrough, got '" + p + "'");
       if (c.paths.empty()) throw Error("--paths needs at least one path");
-    } else if (!a.empty() && a[0] == '-') throw Error("unknown option " + a + "\n" + kSweepUsage);
-    else if (c.scene.empty()) c.scene = a;
-    else throw Error("more than one scene given: '" + c.scene + "' and '" + a + "'");
+    } else sceneArgument(a, c.scene, std::string("\n") + kSweepUsage);
   }
   if (c.scene.empty()) throw Error(std::string("sweep needs a scene file\n") + kSweepUsage);
   return c;
