@@ -245,11 +245,13 @@ int runSoak(const SoakCommand& c) {
   adherence([&](uint32_t, const FrameTiming& t) { return t.budgetMs == double(budgets[0]); }, "low T");
   adherence([&](uint32_t, const FrameTiming& t) { return t.budgetMs == double(budgets[1]); }, "high T");
   adherence([&](uint32_t f, const FrameTiming&) { return f % c.period < 5; }, "first 5 frames after a step");
-  const bool deviceKnown = !samples.empty() && samples.back().device.known;
+  // On a CPU device the driver's figures are the whole system's: host RSS is the measure.
+  const bool deviceKnown = !samples.empty() && samples.back().device.known && !samples.back().device.cpuDevice;
   std::printf("memory from frame %u to %u: host RSS %+.2f%% (peak %+.2f%%), device %s\n", baseline != samples.end() ? baseline->frame : 0,
               samples.empty() ? 0 : samples.back().frame, 100.0 * hostGrowth, 100.0 * hostPeak,
               deviceKnown ? (std::to_string(100.0 * deviceGrowth).substr(0, 5) + "% (peak " + std::to_string(100.0 * devicePeak).substr(0, 5) + "%)").c_str()
-                          : "unknown (no VK_EXT_memory_budget)");
+                          : (!samples.empty() && samples.back().device.cpuDevice ? "not judged (a CPU device: its memory is the host RSS above)"
+                                                                                   : "unknown (no VK_EXT_memory_budget)"));
   std::printf("scans: %zu, non-finite pixels %zu, non-finite selection records %zu\n", scans, nanPixels, nanRecords);
   const auto messages = renderer.validationMessages();
   for (const std::string& m : messages) std::cerr << m << '\n';

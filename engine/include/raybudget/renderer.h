@@ -38,10 +38,14 @@ struct FrameImages {
 
 // The device memory the process uses and the budget the driver gives it, summed over the
 // device's heaps (VK_EXT_memory_budget; `known` is false where the device lacks it).
+// `cpuDevice`: the device is the CPU (lavapipe), whose heaps are system memory: there the
+// figures are the whole system's (they rise and fall with other processes) and the process's
+// resident memory is the measure of what it holds.
 struct DeviceMemoryUsage {
   uint64_t usedBytes = 0;
   uint64_t budgetBytes = 0;
   bool known = false;
+  bool cpuDevice = false;
 };
 
 namespace testing {

@@ -13,6 +13,9 @@ DeviceMemoryUsage memoryUsage(VkPhysicalDevice physicalDevice) {
   bool supported = false;
   for (const VkExtensionProperties& e : extensions) supported = supported || std::strcmp(e.extensionName, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME) == 0;
   DeviceMemoryUsage usage;
+  VkPhysicalDeviceProperties properties0;
+  vkGetPhysicalDeviceProperties(physicalDevice, &properties0);
+  usage.cpuDevice = properties0.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   if (!supported) return usage;
   VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
   VkPhysicalDeviceMemoryProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2, &budget};
