@@ -2,7 +2,7 @@
 # Fuzzes the glTF loader with libFuzzer (clang) under ASan + UBSan for SECONDS (default 60):
 #   bash scripts/fuzz.sh [SECONDS]
 # Seeds: the default scene (.gltf with its .bin, and as .glb) and a one-triangle file. A
-# finding stops the run with the input saved in build-fuzz/work/ (crash-*, timeout-*, oom-*).
+# finding stops the run with the input saved in build-fuzz/run/ (crash-*, timeout-*, oom-*).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -11,7 +11,7 @@ if [ ! -f build-fuzz/build.ninja ]; then
   CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYBUDGET_FUZZ=ON -DRAYBUDGET_BUILD_TESTS=OFF
 fi
 cmake --build build-fuzz --target gltf_fuzzer
-work=build-fuzz/work
+work=build-fuzz/run
 mkdir -p "$work/corpus" "$work/seeds"
 cp data/default/court.gltf data/default/court.bin "$work/"
 cp data/default/court.gltf "$work/seeds/"
