@@ -37,6 +37,7 @@ int componentCount(int type) {
 // A checked view of an accessor's bytes: element i starts at data + i * stride.
 struct View {
   const uint8_t* data = nullptr;  // null: no bufferView, every element is zero
+  size_t offset = 0;              // data's byte in its buffer
   size_t count = 0;
   size_t stride = 0;
   int componentType = 0;
@@ -96,7 +97,8 @@ View checkedView(const tinygltf::Model& model, int index, const std::string& whe
                   std::to_string(acc.byteOffset) + ") runs past the end of its bufferView (" +
                   std::to_string(bv.byteLength) + " bytes)");
   }
-  v.data = buf.data.data() + bv.byteOffset + acc.byteOffset;
+  v.offset = bv.byteOffset + acc.byteOffset;
+  v.data = buf.data.data() + v.offset;
   return v;
 }
 
@@ -133,8 +135,9 @@ float componentAsFloat(const uint8_t* p, int componentType, bool normalized) {
 
 }  // namespace
 
-size_t accessorCount(const tinygltf::Model& model, int accessor, const std::string& where) {
-  return checkedView(model, accessor, where).count;
+AccessorLayout accessorLayout(const tinygltf::Model& model, int accessor, const std::string& where) {
+  const View v = checkedView(model, accessor, where);
+  return {v.count, v.data ? v.offset : 0, v.data ? v.stride : 0};
 }
 
 std::vector<glm::vec4> readVec4(const tinygltf::Model& model, int accessor, const std::string& where,

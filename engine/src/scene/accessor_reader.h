@@ -22,7 +22,14 @@ std::vector<glm::vec4> readVec4(const tinygltf::Model& model, int accessor, cons
 // Reads an index accessor (unsigned byte, short or int).
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor, const std::string& where);
 
-// Element count of an accessor after its index and range checks.
-size_t accessorCount(const tinygltf::Model& model, int accessor, const std::string& where);
+// Where an accessor's elements lie, after its index, range and alignment checks: their
+// count, the first one's byte in its buffer and the bytes from one to the next (an accessor
+// without a bufferView, all zeros, has offset and stride 0).
+struct AccessorLayout {
+  size_t count = 0;
+  size_t byteOffset = 0;
+  size_t stride = 0;
+};
+AccessorLayout accessorLayout(const tinygltf::Model& model, int accessor, const std::string& where);
 
 }  // namespace raybudget::gltf

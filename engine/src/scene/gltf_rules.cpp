@@ -83,50 +83,32 @@ std::pair<std::string, int> splitSemantic(const std::string& name) {
 
 bool indexedSemantic(const std::string& base) { return base == "TEXCOORD" || base == "COLOR" || base == "JOINTS" || base == "WEIGHTS"; }
 
-size_t componentBytes(int componentType) {
-  return componentType == kUByte || componentType == TINYGLTF_COMPONENT_TYPE_BYTE         ? 1
-         : componentType == kUShort || componentType == TINYGLTF_COMPONENT_TYPE_SHORT ? 2
-                                                                                       : 4;
-}
-
-size_t typeComponents(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4:
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 1;
+// The accessor `index` in one of the formats `allowed` for `use` (a semantic), else an Error
+// naming them and the validator's `code`.
+const tinygltf::Accessor& requireFormat(const tinygltf::Model& model, int index, const std::vector<Format>& allowed, const std::string& use,
+                                        const std::string& name, const char* code) {
+  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  if (std::none_of(allowed.begin(), allowed.end(), [&](const Format& f) {
+        return f.type == acc.type && f.componentType == acc.componentType && f.normalized == acc.normalized;
+      })) {
+    std::string list;
+    for (const Format& f : allowed) list += (list.empty() ? "" : ", ") + formatName(f.type, f.componentType, f.normalized);
+    throw Error(name + " is " + formatName(acc.type, acc.componentType, acc.normalized) + "; glTF allows " + use + " only as " + list + " (" +
+                code + ")");
   }
+  return acc;
 }
 
 void checkVertexAttribute(const tinygltf::Model& model, int index, const std::string& semantic, const std::string& at) {
   const std::string where = at + " " + semantic;
-  accessorCount(model, index, where);  // the accessor's own checks: it exists, it fits, it is aligned
-  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  const AccessorLayout layout = accessorLayout(model, index, where);  // the accessor's own checks: it exists, it fits, it is aligned
   const std::string name = where + ": accessor " + std::to_string(index);
-  const std::vector<Format> allowed = allowedFormats(splitSemantic(semantic).first);
-  const bool ok = std::any_of(allowed.begin(), allowed.end(), [&](const Format& f) {
-    return f.type == acc.type && f.componentType == acc.componentType && f.normalized == acc.normalized;
-  });
-  if (!ok) {
-    std::string list;
-    for (const Format& f : allowed) list += (list.empty() ? "" : ", ") + formatName(f.type, f.componentType, f.normalized);
-    throw Error(name + " is " + formatName(acc.type, acc.componentType, acc.normalized) + "; glTF allows " + semantic + " only as " +
-                list + " (MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT)");
-  }
-  if (acc.bufferView < 0) return;
-  const tinygltf::BufferView& bv = model.bufferViews[size_t(acc.bufferView)];
-  const size_t stride = bv.byteStride != 0 ? bv.byteStride : componentBytes(acc.componentType) * typeComponents(acc.type);
-  if ((bv.byteOffset + acc.byteOffset) % 4 != 0 || stride % 4 != 0)
-    throw Error(name + " starts at byte " + std::to_string(bv.byteOffset + acc.byteOffset) + " of its buffer with elements " +
-                std::to_string(stride) + " bytes apart; vertex attributes must be aligned to 4 bytes (MESH_PRIMITIVE_ACCESSOR_UNALIGNED)");
+  requireFormat(model, index, allowedFormats(splitSemantic(semantic).first), semantic, name, "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT");
+  if (layout.byteOffset % 4 != 0 || layout.stride % 4 != 0)
+    throw Error(name + " starts at byte " + std::to_string(layout.byteOffset) + " of its buffer with elements " +
+                std::to_string(layout.stride) + " bytes apart; vertex attributes must be aligned to 4 bytes (MESH_PRIMITIVE_ACCESSOR_UNALIGNED)");
 }
 
-}  // namespace
-
-namespace {
 
 bool isIndexKey(const std::string& key) {
   static const char* keys[] = {"scene", "mesh", "camera", "skin", "material", "indices", "bufferView", "buffer", "source", "sampler",
@@ -219,33 +201,27 @@ void checkPrimitiveFormats(const tinygltf::Model& model, const tinygltf::Primiti
                   " without gaps (MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY)");
   if (primitive.indices < 0) return;
   const std::string where = at + " indices";
-  accessorCount(model, primitive.indices, where);
-  const tinygltf::Accessor& acc = model.accessors[size_t(primitive.indices)];
+  accessorLayout(model, primitive.indices, where);
   const std::string name = where + ": accessor " + std::to_string(primitive.indices);
-  const bool unsignedInt = acc.componentType == kUByte || acc.componentType == kUShort || acc.componentType == kUInt;
-  if (acc.type != TINYGLTF_TYPE_SCALAR || !unsignedInt || acc.normalized)
-    throw Error(name + " is " + formatName(acc.type, acc.componentType, acc.normalized) +
-                "; glTF allows indices only as SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT (MESH_PRIMITIVE_INDICES_ACCESSOR_INVALID_FORMAT)");
+  const tinygltf::Accessor& acc =
+      requireFormat(model, primitive.indices,
+                    {{TINYGLTF_TYPE_SCALAR, kUByte, false}, {TINYGLTF_TYPE_SCALAR, kUShort, false}, {TINYGLTF_TYPE_SCALAR, kUInt, false}},
+                    "indices", name, "MESH_PRIMITIVE_INDICES_ACCESSOR_INVALID_FORMAT");
   if (acc.bufferView >= 0 && model.bufferViews[size_t(acc.bufferView)].byteStride != 0)
     throw Error(name + ": its bufferView " + std::to_string(acc.bufferView) +
                 " has a byteStride, which glTF forbids for indices (MESH_PRIMITIVE_INDICES_ACCESSOR_WITH_BYTESTRIDE)");
 }
 
 void checkInstanceAttributeFormat(const tinygltf::Model& model, int index, const std::string& semantic, const std::string& at) {
-  accessorCount(model, index, at);
-  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  accessorLayout(model, index, at);
   using F = Format;
   const std::vector<Format> allowed =
       semantic == "ROTATION"
           ? std::vector<Format>{F{TINYGLTF_TYPE_VEC4, kFloat, false}, F{TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_BYTE, true},
                                 F{TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_SHORT, true}}
           : std::vector<Format>{F{TINYGLTF_TYPE_VEC3, kFloat, false}};
-  if (std::none_of(allowed.begin(), allowed.end(), [&](const Format& f) {
-        return f.type == acc.type && f.componentType == acc.componentType && f.normalized == acc.normalized;
-      }))
-    throw Error(at + ": accessor " + std::to_string(index) + " is " + formatName(acc.type, acc.componentType, acc.normalized) +
-                "; EXT_mesh_gpu_instancing allows " + semantic + " only as " +
-                (semantic == "ROTATION" ? "VEC4 FLOAT, BYTE normalized or SHORT normalized" : "VEC3 FLOAT"));
+  requireFormat(model, index, allowed, "EXT_mesh_gpu_instancing " + semantic, at + ": accessor " + std::to_string(index),
+                "EXT_mesh_gpu_instancing");
 }
 
 void checkSharedVertexBufferViews(const tinygltf::Model& model, const std::string& file) {
