@@ -3,9 +3,11 @@
 // KHR_lights_punctual, cameras and extras.raybudget. Every reference is range-checked.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <fstream>
 #include <iterator>
+#include <string_view>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -309,28 +311,26 @@ Scene loadAndRepair(const std::filesystem::path& path) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
-  std::ifstream probe(path, std::ios::binary);
-  char magic[4] = {};
-  probe.read(magic, 4);
-  const bool binary = probe.gcount() == 4 && std::string(magic, 4) == "glTF";
-  std::string json;  // the file's JSON text, for the index check tinygltf cannot make
+  // Read once: tinygltf parses the bytes, and the index check reads the same JSON.
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  std::string_view json = bytes;  // the file's JSON text (a GLB's JSON chunk)
   if (binary) {
     // The header's total length must be the file's (tinygltf tolerates a mismatch).
     uint32_t header[4] = {};  // version, length; the first chunk's length and type
-    probe.read(reinterpret_cast<char*>(header), sizeof(header));
-    const auto size = std::filesystem::file_size(path);
-    if (probe.gcount() >= 8 && header[1] != size)
-      throw Error(file + ": the GLB header declares " + std::to_string(header[1]) + " bytes, the file has " + std::to_string(size) +
+    const size_t got = std::min(sizeof(header), bytes.size() - 4);
+    std::memcpy(header, bytes.data() + 4, got);
+    if (got >= 8 && header[1] != bytes.size())
+      throw Error(file + ": the GLB header declares " + std::to_string(header[1]) + " bytes, the file has " + std::to_string(bytes.size()) +
                   " (GLB_LENGTH_MISMATCH)");
-    if (probe.gcount() == sizeof(header) && header[3] == 0x4E4F534Au && header[2] <= size - 20) {
-      json.resize(header[2]);
-      probe.read(json.data(), std::streamsize(json.size()));
-    }
-  } else {
-    std::ifstream text(path, std::ios::binary);
-    json.assign(std::istreambuf_iterator<char>(text), std::istreambuf_iterator<char>());
+    const bool jsonChunk = got == sizeof(header) && header[3] == 0x4E4F534Au && header[2] <= bytes.size() - 20;
+    json = jsonChunk ? std::string_view(bytes).substr(20, header[2]) : std::string_view();
   }
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file) : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+  const std::string baseDir = path.parent_path().string();  // where external buffers and images are
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                       static_cast<unsigned int>(bytes.size()), baseDir)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), baseDir);
   if (!ok || !err.empty()) throw Error(file + ": not a valid glTF file: " + (err.empty() ? "parse failed" : err));
 
   gltf::checkIndicesInJson(json, file);

@@ -161,8 +161,8 @@ void scanIndices(const nlohmann::json& node, const std::string& where, const std
 
 }  // namespace
 
-void checkIndicesInJson(const std::string& json, const std::string& file) {
-  const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
+void checkIndicesInJson(std::string_view json, const std::string& file) {
+  const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   if (doc.is_discarded()) return;  // tinygltf reports the syntax error
   scanIndices(doc, "", file);
 }

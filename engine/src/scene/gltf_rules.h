@@ -6,6 +6,7 @@
 // them with what is repaired instead.
 #pragma once
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,7 +22,7 @@ namespace raybudget::gltf {
 // `children`, the primitives' attributes) is a non-negative integer where present: tinygltf
 // reads a negative one as "absent", which would silently drop a mesh or turn an accessor into
 // zeros (INVALID_INDEX). `json` is the file's JSON text (a GLB's JSON chunk).
-void checkIndicesInJson(const std::string& json, const std::string& file);
+void checkIndicesInJson(std::string_view json, const std::string& file);
 
 // asset.version (and minVersion) must name glTF 2.x.
 void checkAssetVersion(const tinygltf::Model& model, const std::string& file);
