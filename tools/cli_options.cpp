@@ -1,5 +1,6 @@
 #include "cli_options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cmath>
@@ -137,6 +138,12 @@ float parsePositive(const std::string& option, const std::string& value) {
   const std::optional<float> v = parseFinite(value);
   if (!v || *v <= 0.0f) throw Error(option + " needs a positive number, got '" + value + "'");
   return *v;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 void sceneArgument(const std::string& arg, std::string& scene, const std::string& hint) {

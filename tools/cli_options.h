@@ -33,6 +33,9 @@ Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame
 
 // `option`'s value as a whole number in lo..hi, or a positive finite number; throws
 // raybudget::Error naming the option otherwise.
+// The median (the mean of the two middle values for an even count); 0 when empty.
+double median(std::vector<double> values);
+
 // An argument no option took: the scene, once. An unknown option (named with `hint`, e.g.
 // the command's usage) or a second scene throws raybudget::Error.
 void sceneArgument(const std::string& arg, std::string& scene, const std::string& hint);

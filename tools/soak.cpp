@@ -97,12 +97,6 @@ struct MemorySample {
   DeviceMemoryUsage device;
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 double growth(uint64_t from, uint64_t to) { return from == 0 ? 0.0 : (double(to) - double(from)) / double(from); }
 
 }  // namespace

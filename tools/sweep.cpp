@@ -78,12 +78,6 @@ double meanSquaredError(const std::vector<float>& a, const std::vector<float>& b
   return a.empty() ? 0.0 : sum / double(a.size());
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 std::string frameFile(size_t frame) {
   char name[32];
   std::snprintf(name, sizeof(name), "%04zu.png", frame);
