@@ -626,11 +626,7 @@ std::vector<Picked> orbitSelections(Renderer& renderer, const Camera& start, uin
 // budget to its frame time); a bad budget is refused.
 TEST(RtBudget, SetBudgetChangesTFromTheNextFrameAndKeepsTheLearnedModel) {
   const Scene scene = loadScene(test::defaultScenePath());
-  RenderSettings s;
-  s.width = 160;
-  s.height = 96;
-  s.validation = true;
-  s.policy = Policy::Density;
+  RenderSettings s = test::settingsFor(Policy::Density, 160, 96);
   s.budgetMs = 0.5f;
   Renderer renderer(scene, s);
   const Camera camera = defaultCamera(scene, 160.0f / 96.0f);
