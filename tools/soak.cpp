@@ -240,12 +240,14 @@ int runSoak(const SoakCommand& c) {
   adherence([&](uint32_t, const FrameTiming& t) { return t.budgetMs == double(budgets[1]); }, "high T");
   adherence([&](uint32_t f, const FrameTiming&) { return f % c.period < 5; }, "first 5 frames after a step");
   // On a CPU device the driver's figures are the whole system's: host RSS is the measure.
-  const bool deviceKnown = !samples.empty() && samples.back().device.known && !samples.back().device.cpuDevice;
+  const DeviceMemoryUsage lastDevice = samples.empty() ? DeviceMemoryUsage{} : samples.back().device;
+  const bool deviceKnown = lastDevice.known && !lastDevice.cpuDevice;
+  char deviceText[96];
+  if (deviceKnown) std::snprintf(deviceText, sizeof(deviceText), "%+.2f%% (peak %+.2f%%)", 100.0 * deviceGrowth, 100.0 * devicePeak);
+  else std::snprintf(deviceText, sizeof(deviceText), "%s", lastDevice.cpuDevice ? "not judged (a CPU device: its memory is the host RSS above)"
+                                                                                 : "unknown (no VK_EXT_memory_budget)");
   std::printf("memory from frame %u to %u: host RSS %+.2f%% (peak %+.2f%%), device %s\n", baseline != samples.end() ? baseline->frame : 0,
-              samples.empty() ? 0 : samples.back().frame, 100.0 * hostGrowth, 100.0 * hostPeak,
-              deviceKnown ? (std::to_string(100.0 * deviceGrowth).substr(0, 5) + "% (peak " + std::to_string(100.0 * devicePeak).substr(0, 5) + "%)").c_str()
-                          : (!samples.empty() && samples.back().device.cpuDevice ? "not judged (a CPU device: its memory is the host RSS above)"
-                                                                                   : "unknown (no VK_EXT_memory_budget)"));
+              samples.empty() ? 0 : samples.back().frame, 100.0 * hostGrowth, 100.0 * hostPeak, deviceText);
   std::printf("scans: %zu, non-finite pixels %zu, non-finite selection records %zu\n", scans, nanPixels, nanRecords);
   const auto messages = renderer.validationMessages();
   for (const std::string& m : messages) std::cerr << m << '\n';
