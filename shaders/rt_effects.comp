@@ -237,16 +237,37 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
   }
 }
 
+// Which of the pixel's paths (x reflection, y transmission) its items trace here this frame
+// (selected and traced at their rate, or probed), and which a reduced rate leaves to the fill.
+void pathsHere(uint objectId, ivec2 pixel, out bvec2 traced, out bvec2 skipped) {
+  bvec2 selected = bvec2(itemSelected(objectId, RB_ITEM_REFLECTIONS), itemSelected(objectId, RB_ITEM_REFRACTIONS));
+  bvec2 rateHere = bvec2(itemTracedHere(objectId, RB_ITEM_REFLECTIONS, pixel), itemTracedHere(objectId, RB_ITEM_REFRACTIONS, pixel));
+  traced = bvec2((selected.x && rateHere.x) || (!selected.x && itemProbed(objectId, RB_ITEM_REFLECTIONS, pixel)),
+                 (selected.y && rateHere.y) || (!selected.y && itemProbed(objectId, RB_ITEM_REFRACTIONS, pixel)));
+  skipped = bvec2(selected.x && !rateHere.x, selected.y && !rateHere.y);
+}
+
 void main() {
   ivec2 pixel = tilePixel();
   bool fills = fillsInPass();
   if (fills) clearFillSlot(pixel);
+  // A pixel whose items trace nothing here reads no more of the G-buffer than its object (and,
+  // where a reduced rate skipped it, what its fill needs: readFillSurface).
   Surface s;
-  bool lit = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) && readSurface(pixel, s) && !s.unlit && s.objectId != RB_NO_OBJECT;
-  traceEffects(pixel, lit, s);
+  bvec2 pending = bvec2(false);
+  uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
+  if (objectId != RB_NO_OBJECT) {
+    bvec2 traced, skipped;
+    pathsHere(objectId, pixel, traced, skipped);
+    if (any(traced)) {
+      bool lit = readSurface(pixel, s) && !s.unlit;
+      traceEffects(pixel, lit, s);
+      if (lit) pending = pendingPaths(s, pixel);
+    } else if (fills && any(skipped) && readFillSurface(pixel, objectId, s)) {
+      pending = pendingPaths(s, pixel);
+    }
+  }
   if (!fills) return;
   barrier();
-  if (!lit) return;
-  bvec2 pending = pendingPaths(s, pixel);
   if (any(pending)) fillPending(pixel, s, pending);
 }

@@ -32,24 +32,33 @@ uint lightByte(float visible) { return visible < 0.0 ? RB_FILL_NONE : uint(round
 
 uint fillLight(uint slot, uint light) { return (fillLights[slot * (RB_MAX_LIGHTS / 4) + light / 4u] >> (8u * (light & 3u))) & 0xFFu; }
 
-// Traces the pixel's shadow rays; true when a reduced rate left some light pending here.
-bool traceShadows(ivec2 pixel, bool fills) {
-  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return false;
+// Traces the pixel's shadow rays and shares them for the tile's fill. A pixel its item's
+// reduced rate skips this frame reads only what its fill needs (gbuffer.glsl's readFillSurface) and
+// runs no light loop, classifier or counters before the barrier: on lavapipe those cost about
+// as much per pixel as a quarter rate's rays, so a skipped pixel that ran them made a rate
+// save little. `skipped` returns that pixel's fill centre (object RB_NO_OBJECT: nothing to fill).
+void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
+  skipped.objectId = RB_NO_OBJECT;
+  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
+  uint objectId = texelFetch(gObjectId, pixel, 0).r;
+  if (objectId == RB_NO_OBJECT) return;
+  bool probe = !itemSelected(objectId, RB_ITEM_SHADOWS);
+  if (probe && !itemProbed(objectId, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
+  uint rate = probe ? RB_RATE_FULL : itemRate(objectId, RB_ITEM_SHADOWS);
+  bool share = fills && rate != RB_RATE_FULL;
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit) return false;
-  bool probe = !itemSelected(s.objectId, RB_ITEM_SHADOWS);
-  if (probe && !itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel)) return false;  // the lighting pass reads no mask there
-  // A reduced rate traces some pixels this frame and leaves the rest pending for the tile's
-  // fill; lights the classifier finds certain need no ray and are written anyway.
-  uint rate = probe ? RB_RATE_FULL : itemRate(s.objectId, RB_ITEM_SHADOWS);
-  bool traces = rateTraces(rate, pixel);
+  if (!rateTraces(rate, pixel)) {
+    if (readFillSurface(pixel, objectId, s)) skipped = fillCentre(objectId, s.position, s.normal);
+    return;
+  }
+  if (!readSurface(pixel, s) || s.unlit) return;
+  // Lights the classifier finds certain need no ray.
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
   vec3 origin = offsetRay(p, ng);
   bool classify = (frame.rayTracing.w & RB_RT_CLASSIFY_SHADOWS) != 0u;
   bool shorten = (frame.rayTracing.w & RB_RT_SHORTEN_SHADOW_RAYS) != 0u;
-  bool share = fills && rate != RB_RATE_FULL;
   uint work = 0u, word = 0u;
   bool traced = false;  // some light's ray was traced here
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
@@ -59,7 +68,6 @@ bool traceShadows(ivec2 pixel, bool fills) {
     if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) {
       float mapped;
       if (classify && shadowMapCertain(lights[i], s.position, s.normal, frame.exposure.y, mapped)) visible = mapped;
-      else if (!traces) visible = RB_MASK_PENDING;
       else {
         visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);
         traced = true;
@@ -79,31 +87,33 @@ bool traceShadows(ivec2 pixel, bool fills) {
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
   // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
-  bool counted = probe || (rate != RB_RATE_FULL && traces);
+  bool counted = probe || rate != RB_RATE_FULL;
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
-  return share && !traces;
 }
 
-// Fills the lights left pending at `pixel`: the weighted mean of the light's visibility at
-// the tile's pixels that traced it or found the map certain, else the shadow map's.
-void fillPending(ivec2 pixel) {
-  uint self = fillIndex(pixel);
-  FillCentre c = fillCentre(fillObject[self], fillPosition[self], fillNormal[self]);
+// Fills a skipped pixel's lights: per light facing it, the weighted mean of the light's
+// visibility at the pixels around it that its item traced this frame (traced or found
+// certain by the classifier there), else the shadow map's.
+void fillPending(ivec2 pixel, FillCentre c) {
   float weights[9];
   uint slots[9];
-  // No rate test (RB_RATE_FULL): a skipped neighbour's lights the classifier found certain count too.
-  for (int k = 0; k < 9; ++k) weights[k] = fillWeight(c, RB_RATE_FULL, pixel, ivec2(k % 3 - 1, k / 3 - 1), slots[k]);
+  uint rate = itemRate(c.objectId, RB_ITEM_SHADOWS);
+  for (int k = 0; k < 9; ++k) weights[k] = fillWeight(c, rate, pixel, ivec2(k % 3 - 1, k / 3 - 1), slots[k]);
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
-    if (fillLight(self, i) != RB_FILL_NONE) continue;
-    float sum = 0.0, weight = 0.0;
-    for (int k = 0; k < 9; ++k) {
-      if (weights[k] <= 0.0) continue;
-      uint v = fillLight(slots[k], i);
-      if (v == RB_FILL_NONE) continue;
-      sum += weights[k] * float(v) / 254.0;
-      weight += weights[k];
+    vec3 L;
+    float dist, scale;
+    float visible = 0.0;
+    if (lightSample(lights[i], c.position, L, dist, scale) && dot(c.normal, L) > 0.0) {
+      float sum = 0.0, weight = 0.0;
+      for (int k = 0; k < 9; ++k) {
+        if (weights[k] <= 0.0) continue;
+        uint v = fillLight(slots[k], i);
+        if (v == RB_FILL_NONE) continue;
+        sum += weights[k] * float(v) / 254.0;
+        weight += weights[k];
+      }
+      visible = weight >= RB_FILL_MIN_WEIGHT ? sum / weight : shadowFromLight(lights[i], c.position, c.normal);
     }
-    float visible = weight >= RB_FILL_MIN_WEIGHT ? sum / weight : shadowFromLight(lights[i], worldFromDepth(pixel, texelFetch(gDepth, pixel, 0).r), c.normal);
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }
 }
@@ -112,8 +122,9 @@ void main() {
   ivec2 pixel = tilePixel();
   bool fills = fillsInPass();
   if (fills) clearFillSlot(pixel);
-  bool pending = traceShadows(pixel, fills);
+  FillCentre skipped;
+  traceShadows(pixel, fills, skipped);
   if (!fills) return;
   barrier();
-  if (pending) fillPending(pixel);
+  if (skipped.objectId != RB_NO_OBJECT) fillPending(pixel, skipped);
 }

@@ -48,6 +48,22 @@ bool readSurface(ivec2 pixel, out Surface s) {
   return true;
 }
 
+// The part of the surface a reduced rate's fill reads at a pixel it skipped (object,
+// position, normal, and the channels that say which effects the surface shows): four of the
+// seven fetches, where a skipped pixel's fetches are most of what it costs on lavapipe.
+bool readFillSurface(ivec2 pixel, uint objectId, out Surface s) {
+  s.objectId = objectId;
+  s.position = worldFromDepth(pixel, texelFetch(gDepth, pixel, 0).r);
+  s.normal = normalize(texelFetch(gNormal, pixel, 0).xyz);
+  s.metallic = texelFetch(gBaseMetal, pixel, 0).a;
+  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
+  s.roughness = rti.r;
+  s.transmission = rti.g;
+  s.ior = rti.b;
+  s.unlit = rti.a > 0.5;
+  return !s.unlit;
+}
+
 // The exact world position and the geometric normal (towards the viewer) of a pixel, for
 // secondary rays.
 void readExactSurface(ivec2 pixel, out vec3 position, out vec3 geometricNormal) {

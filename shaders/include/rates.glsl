@@ -25,10 +25,6 @@ bool rateTraces(uint rate, ivec2 pixel) {
   return true;
 }
 
-// The shadow mask where a reduced rate left a light's ray to the tile's fill
-// (include/tile_fill.glsl), which overwrites it in the same pass.
-#define RB_MASK_PENDING -1.0
-
 // Whether the pixel's selected item `effect` is traced here this frame.
 bool itemTracedHere(uint objectId, uint effect, ivec2 pixel) { return rateTraces(itemRate(objectId, effect), pixel); }
 
