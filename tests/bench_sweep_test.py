@@ -79,6 +79,11 @@ def main(raybudget, out):
     none_rmse = sum(float(r["rmse"]) for r in by_policy["none"]) / 6
     if not (none_flip > 0.0 and none_rmse > 0.0):
         fail(f"`none` should differ from the full-RT reference: flip {none_flip}, rmse {none_rmse}")
+    with open(out / "raw" / scenes[0].stem / "calibration.csv") as f:
+        calibration = next(csv.DictReader(f))
+    full_ms, budgets = float(calibration["full_rt_stage_ms"]), [float(b) for b in calibration["budgets_ms"].split(";")]
+    if len(budgets) != 2 or any(abs(b - share * full_ms) > 1e-3 * full_ms for b, share in zip(budgets, (0.25, 1.0))):
+        fail(f"two budgets are the headline's 25% and 100% of full RT's stage cost ({full_ms} ms): {budgets}")
     for r in by_policy["density"]:
         if float(r["budget_ms"]) <= 0.0 or float(r["optimal_value_bound"]) < float(r["selected_value"]) * (1 - 1e-5):
             fail(f"density row without a budget or above the optimal bound: {r}")

@@ -1,7 +1,7 @@
 // `raybudget sweep`: run time against error for one scene. On an orbit and a fly-through it
 // renders the full-RT reference (`all`), the raster-only frame (`none`) and every budgeted
-// policy at log-spaced budgets from twice the ray-tracing stage's fixed cost to the full-RT
-// stage cost, in repeats whose configurations run in a shuffled order, `all` and `none`
+// policy at budgets that include 10, 25, 50 and 100% of the full-RT stage cost (the shares
+// bench/run.py's headline reads), in repeats whose configurations run in a shuffled order, `all` and `none`
 // among them. Every configuration starts from the same learned cost model (calibrated once
 // per path at the full budget) and warms up on its own, so its results do not depend on what
 // ran before. Writes one CSV row per frame with GPU times per pass, the selection's stats
@@ -34,7 +34,7 @@ struct SweepCommand {
   uint32_t width = 640, height = 360;
   uint32_t frames = 4;   // recorded per camera path and configuration, after the warm-up
   uint32_t warmup = 8;   // frames on the path's first camera at the configuration's budget, not recorded
-  uint32_t budgets = 6;  // log-spaced points (unless budgetList is given)
+  uint32_t budgets = 6;  // the headline shares of full RT, then more (unless budgetList is given)
   uint32_t repeats = 3;  // each repeat runs every configuration once; every repeat is imaged
   uint32_t orderSeed = 1;  // shuffles each repeat's configurations; 0: all, none, then budgets ascending
   std::vector<float> budgetList;  // explicit budgets in ms instead of the calibrated sweep
