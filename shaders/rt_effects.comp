@@ -148,27 +148,27 @@ bvec2 pendingPaths(Surface s, ivec2 pixel) {
 // cost about as much as the fill's gather on lavapipe).
 void fillPending(ivec2 pixel, Surface s, bvec2 pending) {
   FillCentre c = fillCentre(s.objectId, s.position, s.normal);
-  // Both paths' items may run at different rates: a neighbour counts where either traced.
-  uint rates[2] = uint[2](pending.x ? itemRate(s.objectId, RB_ITEM_REFLECTIONS) : RB_RATE_QUARTER,
-                          pending.y ? itemRate(s.objectId, RB_ITEM_REFRACTIONS) : RB_RATE_QUARTER);
-  uint rate = min(rates[0], rates[1]);  // the denser of the two (RB_RATE_HALF < RB_RATE_QUARTER)
+  // Both paths' items may run at different rates: the denser rate's neighbours are read (the
+  // rates nest, so they hold the sparser one's samples near the pixel), each where either traced.
+  uint rates[2] = uint[2](pending.x ? itemRate(s.objectId, RB_ITEM_REFLECTIONS) : RB_RATE_SIXTEENTH,
+                          pending.y ? itemRate(s.objectId, RB_ITEM_REFRACTIONS) : RB_RATE_SIXTEENTH);
+  uint rate = min(rates[0], rates[1]);  // the denser of the two (the codes grow as the rate falls)
   vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0));
   vec2 weights = vec2(0.0);
-  for (int y = -RB_FILL_RADIUS; y <= RB_FILL_RADIUS; ++y)
-    for (int x = -RB_FILL_RADIUS; x <= RB_FILL_RADIUS; ++x) {
-      uint slot;
-      float w = fillWeight(c, rate, pixel, ivec2(x, y), slot);
-      if (w <= 0.0) continue;
-      uint paths = fillPaths[slot];
-      if (pending.x && (paths & 1u) != 0u) {
-        sum[0] += w * fillReflection[slot];
-        weights.x += w;
-      }
-      if (pending.y && (paths & 2u) != 0u) {
-        sum[1] += w * fillRefraction[slot];
-        weights.y += w;
-      }
+  for (int k = 0; k < fillCandidates(rate); ++k) {
+    uint slot;
+    float w = fillWeight(c, rate, pixel, fillOffset(rate, pixel, k), slot);
+    if (w <= 0.0) continue;
+    uint paths = fillPaths[slot];
+    if (pending.x && (paths & 1u) != 0u) {
+      sum[0] += w * fillReflection[slot];
+      weights.x += w;
     }
+    if (pending.y && (paths & 2u) != 0u) {
+      sum[1] += w * fillRefraction[slot];
+      weights.y += w;
+    }
+  }
   if (all(lessThan(weights, vec2(RB_FILL_MIN_WEIGHT)))) return;
   vec3 change = (weights.x >= RB_FILL_MIN_WEIGHT ? sum[0] / weights.x : vec3(0.0)) + (weights.y >= RB_FILL_MIN_WEIGHT ? sum[1] / weights.y : vec3(0.0));
   imageStore(indirectImage, pixel, vec4(imageLoad(indirectImage, pixel).rgb + change, 1.0));

@@ -98,14 +98,15 @@ void fillPending(ivec2 pixel, FillCentre c) {
   float weights[9];
   uint slots[9];
   uint rate = itemRate(c.objectId, RB_ITEM_SHADOWS);
-  for (int k = 0; k < 9; ++k) weights[k] = fillWeight(c, rate, pixel, ivec2(k % 3 - 1, k / 3 - 1), slots[k]);
+  int candidates = fillCandidates(rate);
+  for (int k = 0; k < candidates; ++k) weights[k] = fillWeight(c, rate, pixel, fillOffset(rate, pixel, k), slots[k]);
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
     float dist, scale;
     float visible = 0.0;
     if (lightSample(lights[i], c.position, L, dist, scale) && dot(c.normal, L) > 0.0) {
       float sum = 0.0, weight = 0.0;
-      for (int k = 0; k < 9; ++k) {
+      for (int k = 0; k < candidates; ++k) {
         if (weights[k] <= 0.0) continue;
         uint v = fillLight(slots[k], i);
         if (v == RB_FILL_NONE) continue;

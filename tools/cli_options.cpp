@@ -62,11 +62,12 @@ render options:
                         benefit and classified: every pixel of a traced shadow item traces
   --full-shadow-rays    benefit and classified: shadow rays run to the light, not ending just
                         past the nearest blocker the shadow map holds around the point
-  --rate full|half|quarter|auto
+  --rate full|half|quarter|sixteenth|auto
                         benefit, all and classified: trace every selected item on all its
-                        pixels, a checkerboard or one pixel per 2x2 quad each frame, and fill
-                        the others from traced neighbours on the same object (default full);
-                        auto: benefit chooses a rate per item
+                        pixels, a checkerboard, one pixel per 2x2 quad or per 4x4 block each
+                        frame, and fill the others from traced neighbours on the same object
+                        (default full); auto: benefit chooses a rate per item (1/16, 1/4 or
+                        full for reflections and refractions, full for shadows)
   --explain[=frames]    print the pass plan: per pass the frames it ran in and its median
                         time, the frames it was left out of and why; the effects the scene can
                         show, the pipelines built, the pixels per effect that could take rays

@@ -17,7 +17,9 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-double rateShare(ItemRate rate) { return rate == ItemRate::Half ? 0.5 : rate == ItemRate::Quarter ? 0.25 : 1.0; }
+double rateShare(ItemRate rate) {
+  return rate == ItemRate::Half ? 0.5 : rate == ItemRate::Quarter ? 0.25 : rate == ItemRate::Sixteenth ? 0.0625 : 1.0;
+}
 
 std::string formatted(const char* format, auto... values) {
   char buffer[256];

@@ -88,12 +88,14 @@ float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 // refractions the classifier's counts; none for an effect the frame does not trace or a
 // scene without lights. cost_model.cpp's itemPixels is the CPU reference.
 // The share of an item's full-rate cost a ray rate costs (shared/selection.h; cost_model.cpp's rateShare).
-float rateShare(uint rate) { return rate == RB_RATE_HALF ? RB_COST_HALF : (rate == RB_RATE_QUARTER ? RB_COST_QUARTER : 1.0); }
+float rateShare(uint rate) {
+  return rate == RB_RATE_HALF ? RB_COST_HALF : (rate == RB_RATE_QUARTER ? RB_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_COST_SIXTEENTH : 1.0));
+}
 
 // RB_RATE_AUTO's segments of an item of `effect` (shared/selection.h): how many, and segment
 // k's share of the item's full-rate cost and value and the rate it reaches
 // (cost_model.cpp's rateSegment is the CPU reference).
-uint rateSegments(uint effect) { return effect == RB_ITEM_SHADOWS ? 1u : 2u; }
+uint rateSegments(uint effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
 void rateSegment(uint effect, uint k, out float costShare, out float valueShare, out uint rate) {
   if (effect == RB_ITEM_SHADOWS) {
     costShare = 1.0;
@@ -102,10 +104,19 @@ void rateSegment(uint effect, uint k, out float costShare, out float valueShare,
     return;
   }
   bool reflections = effect == RB_ITEM_REFLECTIONS;
-  costShare = k == 0u ? RB_COST_QUARTER : RB_COST_QUARTER_TO_FULL;
-  if (k == 0u) valueShare = reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS;
-  else valueShare = reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS;
-  rate = k == 0u ? RB_RATE_QUARTER : RB_RATE_FULL;
+  if (k == 0u) {
+    costShare = RB_COST_SIXTEENTH;
+    valueShare = reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS;
+    rate = RB_RATE_SIXTEENTH;
+  } else if (k == 1u) {
+    costShare = RB_COST_SIXTEENTH_TO_QUARTER;
+    valueShare = reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS;
+    rate = RB_RATE_QUARTER;
+  } else {
+    costShare = RB_COST_QUARTER_TO_FULL;
+    valueShare = reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS;
+    rate = RB_RATE_FULL;
+  }
 }
 
 // Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.

@@ -1,20 +1,20 @@
 // The fill of reduced ray rates (include/rates.glsl), inside the trace passes: after the
 // pixels a rate traces this frame have traced, each shares what it traced in the workgroup's
 // shared memory, the workgroup waits at a barrier, and every pixel its item skipped this frame
-// takes the weighted mean of the values traced within RB_FILL_RADIUS pixels in the same 8x8
-// tile on the same object (never another object's), each weighted by
-//   distance  exp(-d^2 / 2), d in pixels;
+// takes the weighted mean of the values traced around it (fillOffset) in the same 8x8 tile on
+// the same object (never another object's), each weighted by
+//   distance  exp(-d^2 / 2), d in pixels (exp(-d^2 / 8) for 1/16's sparser samples);
 //   depth     max(0, 1 - h / (RB_FILL_PLANE * r)), h the neighbour's distance from the
 //             pixel's tangent plane, r the pixel's distance from the camera;
 //   normal    max(0, n . n')^RB_FILL_NORMAL_POWER.
-// Radius 1 always holds the pixel's own 2x2 quad, which 1/4 traces one pixel of and 1/2 two;
-// neighbours across the tile's edge are left out (a pass of its own reading them from images
+// For 1/2 and 1/4 the 3x3 pixels around it, which always hold its own 2x2 quad (1/4 traces one
+// pixel of it, 1/2 two); for 1/16 the tile's four pixels it traced, one per 4x4 block, up to
+// three pixels away on each axis. Neighbours across the tile's edge are left out (a pass of its own reading them from images
 // cost as much as the tracing it saved on lavapipe). Where no neighbour qualifies the
 // fallback stays. The includer includes bindings.glsl.
 #ifndef RB_TILE_FILL_GLSL
 #define RB_TILE_FILL_GLSL
 
-#define RB_FILL_RADIUS 1
 #define RB_FILL_PLANE 0.02
 #define RB_FILL_NORMAL_POWER 16  // (fillWeight squares four times)
 // Below this summed weight no neighbour qualifies.
@@ -58,8 +58,15 @@ FillCentre fillCentre(uint objectId, vec3 position, vec3 normal) {
   return FillCentre(objectId, position, normal, 1.0 / (RB_FILL_PLANE * max(length(position - frame.cameraPositionNear.xyz), 1e-6)));
 }
 
+// The neighbours a pixel's fill reads at `rate`: how many, and the k-th one's offset.
+int fillCandidates(uint rate) { return rate == RB_RATE_SIXTEENTH ? 4 : 9; }
+ivec2 fillOffset(uint rate, ivec2 pixel, int k) {
+  if (rate != RB_RATE_SIXTEENTH) return ivec2(k % 3 - 1, k / 3 - 1);
+  return (pixel & ~(RB_TILE_SIZE - 1)) + ivec2(sixteenthOffset(frame.sizeLightsFrame.w)) + ivec2(k & 1, k >> 1) * 4 - pixel;
+}
+
 // The slot of the neighbour at `offset` from `pixel` and its weight; 0 where the item's `rate`
-// did not trace it this frame (1 to 4 of the 9 are left: tested first, the cheap way, as
+// did not trace it this frame (1 to 4 of 1/4's 9 are left: tested first, the cheap way, as
 // shared memory is slow to gather from on lavapipe), outside the tile, on another object or
 // where nothing was shared.
 float fillWeight(FillCentre c, uint rate, ivec2 pixel, ivec2 offset, out uint slot) {
@@ -76,7 +83,8 @@ float fillWeight(FillCentre c, uint rate, ivec2 pixel, ivec2 offset, out uint sl
   facing *= facing;
   facing *= facing;
   int d2 = offset.x * offset.x + offset.y * offset.y;
-  return (d2 == 0 ? 1.0 : (d2 == 1 ? 0.60653066 : 0.36787944)) * plane * facing;  // exp(-d2 / 2)
+  float near = rate == RB_RATE_SIXTEENTH ? exp(-0.125 * float(d2)) : (d2 == 0 ? 1.0 : (d2 == 1 ? 0.60653066 : 0.36787944));  // exp(-d2 / 2)
+  return near * plane * facing;
 }
 
 #endif

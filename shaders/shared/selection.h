@@ -79,42 +79,47 @@ struct GpuObjectCost {
 #define RB_PROBE_SHIFT 3u
 #define RB_PROBE_MAX_STRIDE 256u
 
-// Ray rates: the share of a selected item's pixels traced this frame: all, a checkerboard (1/2)
-// or one pixel of each 2x2 quad (1/4), rotating over frames (shaders/include/rates.glsl); the
+// Ray rates: the share of a selected item's pixels traced this frame: all, a checkerboard (1/2),
+// one pixel of each 2x2 quad (1/4) or of each 4x4 block (1/16), rotating over frames (shaders/include/rates.glsl); the
 // others are filled from traced neighbours on the same object (shaders/include/tile_fill.glsl). The
 // frame's selection holds an item's rate in 2 bits at RB_RATE_SHIFT + 2 * effect (0: full).
 #define RB_RATE_SHIFT 6u
 #define RB_RATE_FULL 0u
 #define RB_RATE_HALF 1u
 #define RB_RATE_QUARTER 2u
+#define RB_RATE_SIXTEENTH 3u
 // `benefit` chooses each item's rate (SelectPush::walk.w): the multiple-choice knapsack over
 // the items' rate options, greedy on each item's upper convex hull of (cost, value), one
 // candidate per hull segment: candidate ID item * RB_SEGMENT_SLOTS + k for segment k, which
 // may be taken only after segment k - 1 (docs/SELECTION.md).
-#define RB_RATE_AUTO 3u
+#define RB_RATE_AUTO 4u  // (a push constant's value beside the rate codes, not a code)
 #define RB_SEGMENT_SLOTS 4u
-// The share of an item's full-rate benefit a rate keeps: measured with a 3x3 upsample across
-// tile edges (the in-tile fill that replaced it differs by 0.002 on the court's mirror) against
-// full rate (mean display difference, tests/rates_test.cpp's metric), the median over the
-// court and the plaza, static and orbiting cameras, 480x270. Reflections keep 0.91 at 1/2
-// and 0.84 at 1/4, refractions 0.975 and 0.955, shadows 0.44 and 0.03 (shadows keep full rate
-// alone: at any cost share below, 1/2 and 1/4 lie under the line to full).
-#define RB_KEEP_QUARTER_REFLECTIONS 0.84
-#define RB_KEEP_QUARTER_REFRACTIONS 0.955
-#define RB_KEEP_FULL_GAIN_REFLECTIONS 0.16   // 1 - 0.84, a literal: glslang folds 1.0 - x in
-#define RB_KEEP_FULL_GAIN_REFRACTIONS 0.045  // double, C++ in float, and the two must round alike
+// The share of an item's full-rate benefit a rate keeps: its display difference from full rate
+// against the fallback's (mean over the image, tests/rates_test.cpp's metric), the effect alone
+// traced, the median over the court and the plaza from their default camera and 30 degrees
+// either way around, 480x270, with the in-tile fill. Reflections keep 0.89 at 1/2, 0.78 at 1/4
+// and 0.60 at 1/16, refractions 0.95, 0.90 and 0.78. Shadows kept 0.44 at 1/2 and 0.03 at 1/4
+// (blocky edges of thin shadows lose to the maps): they keep full rate alone.
+#define RB_KEEP_SIXTEENTH_REFLECTIONS 0.6
+#define RB_KEEP_SIXTEENTH_REFRACTIONS 0.78
+#define RB_KEEP_QUARTER_GAIN_REFLECTIONS 0.18  // 0.78 - 0.6, a literal: glslang folds a
+#define RB_KEEP_QUARTER_GAIN_REFRACTIONS 0.12  // difference in double, C++ in float, and
+#define RB_KEEP_FULL_GAIN_REFLECTIONS 0.22     // the two must round alike
+#define RB_KEEP_FULL_GAIN_REFRACTIONS 0.1
 // The share of an item's full-rate cost a rate costs: not the share of its rays, as every
 // pixel of the item still reads its surface and the skipped ones are filled (include/
-// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, the effects pass at 1/2 and 1/4
-// over full on orbits (5-6 frames, one run each): the court 0.59 and 0.36, the plaza 0.65 and
-// 0.43, the WaterBottle 0.82 and 0.51. (Shadows keep full rate, below.)
+// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, the effects pass at 1/2, 1/4 and
+// 1/16 over full on orbits (12 frames, one run each): the court 0.57, 0.34 and 0.20, the plaza
+// 0.63, 0.37 and 0.21, the WaterBottle 0.76, 0.55 and 0.37.
 #define RB_COST_HALF 0.7
+#define RB_COST_SIXTEENTH 0.25
+#define RB_COST_SIXTEENTH_TO_QUARTER 0.2  // RB_COST_QUARTER - RB_COST_SIXTEENTH
 #define RB_COST_QUARTER 0.45
 #define RB_COST_QUARTER_TO_FULL 0.55  // 1 - RB_COST_QUARTER
-// At these costs 1/2 lies under the line from 1/4 to full for both effects (reflections
-// 0.91 < 0.84 + 0.16 * 0.25 / 0.55, refractions 0.975 < 0.955 + 0.045 * 0.25 / 0.55): each hull
-// is 1/4, full, two segments: skip -> 1/4 (cost RB_COST_QUARTER, value RB_KEEP_QUARTER_*) and
-// 1/4 -> full (the rest of both).
+// Each hull is 1/16, 1/4, full: three segments, skip -> 1/16, 1/16 -> 1/4, 1/4 -> full, at
+// value per cost 2.4, 0.9 and 0.4 for reflections, 3.1, 0.6 and 0.18 for refractions. 1/2 lies
+// on the line from 1/4 to full within 0.01 of value (reflections 0.89 against 0.88, refractions
+// 0.95 against 0.945) and is left out of the hull.
 
 // 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /

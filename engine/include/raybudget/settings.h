@@ -42,7 +42,7 @@ const char* tracerName(Tracer tracer);
 // each frame (1/2), one pixel of each 2x2 quad rotating each frame (1/4); the others are
 // filled from traced neighbours on the same object, weighted by depth and normal. Auto:
 // `benefit` chooses per item (the multiple-choice knapsack; the other policies trace at full).
-enum class ItemRate { Full, Half, Quarter, Auto };
+enum class ItemRate { Full, Half, Quarter, Sixteenth, Auto };
 const char* itemRateName(ItemRate rate);
 ItemRate parseItemRate(const std::string& name);  // throws Error naming the choices
 

@@ -49,6 +49,7 @@ const char* itemRateName(ItemRate rate) {
   switch (rate) {
     case ItemRate::Half: return "half";
     case ItemRate::Quarter: return "quarter";
+    case ItemRate::Sixteenth: return "sixteenth";
     case ItemRate::Auto: return "auto";
     case ItemRate::Full: break;
   }
@@ -56,9 +57,9 @@ const char* itemRateName(ItemRate rate) {
 }
 
 ItemRate parseItemRate(const std::string& name) {
-  for (ItemRate r : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter, ItemRate::Auto})
+  for (ItemRate r : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter, ItemRate::Sixteenth, ItemRate::Auto})
     if (name == itemRateName(r)) return r;
-  throw Error("unknown ray rate '" + name + "' (full, half, quarter, auto)");
+  throw Error("unknown ray rate '" + name + "' (full, half, quarter, sixteenth, auto)");
 }
 
 const char* passSkipText(PassSkip skip) {

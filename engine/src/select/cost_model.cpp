@@ -29,25 +29,41 @@ uint32_t rateCode(ItemRate rate) {
   switch (rate) {
     case ItemRate::Half: return RB_RATE_HALF;
     case ItemRate::Quarter: return RB_RATE_QUARTER;
+    case ItemRate::Sixteenth: return RB_RATE_SIXTEENTH;
     case ItemRate::Auto: return RB_RATE_AUTO;
     case ItemRate::Full: break;
   }
   return RB_RATE_FULL;
 }
 
-float rateShare(uint32_t code) { return code == RB_RATE_HALF ? float(RB_COST_HALF) : (code == RB_RATE_QUARTER ? float(RB_COST_QUARTER) : 1.0f); }
+ItemRate itemRateOfCode(uint32_t code) {
+  switch (code) {
+    case RB_RATE_HALF: return ItemRate::Half;
+    case RB_RATE_QUARTER: return ItemRate::Quarter;
+    case RB_RATE_SIXTEENTH: return ItemRate::Sixteenth;
+    default: return ItemRate::Full;
+  }
+}
 
-uint32_t rateSegments(uint32_t effect) { return effect == RB_ITEM_SHADOWS ? 1u : 2u; }
+float rateShare(uint32_t code) {
+  switch (code) {
+    case RB_RATE_HALF: return float(RB_COST_HALF);
+    case RB_RATE_QUARTER: return float(RB_COST_QUARTER);
+    case RB_RATE_SIXTEENTH: return float(RB_COST_SIXTEENTH);
+    default: return 1.0f;
+  }
+}
+
+uint32_t rateSegments(uint32_t effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
 
 RateSegment rateSegment(uint32_t effect, uint32_t k) {
   if (effect == RB_ITEM_SHADOWS) return {1.0f, 1.0f, RB_RATE_FULL};
   const bool reflections = effect == RB_ITEM_REFLECTIONS;
-  RateSegment s;
-  s.costShare = float(k == 0 ? RB_COST_QUARTER : RB_COST_QUARTER_TO_FULL);
-  if (k == 0) s.valueShare = float(reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS);
-  else s.valueShare = float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS);
-  s.rate = k == 0 ? RB_RATE_QUARTER : RB_RATE_FULL;
-  return s;
+  if (k == 0)
+    return {float(RB_COST_SIXTEENTH), float(reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS), RB_RATE_SIXTEENTH};
+  if (k == 1)
+    return {float(RB_COST_SIXTEENTH_TO_QUARTER), float(reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS), RB_RATE_QUARTER};
+  return {float(RB_COST_QUARTER_TO_FULL), float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS), RB_RATE_FULL};
 }
 
 float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {

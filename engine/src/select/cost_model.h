@@ -20,6 +20,7 @@ namespace raybudget::select {
 // A ray rate's code in the frame's selection (RB_RATE_*), and the share of an item's full-rate
 // cost it costs (RB_COST_*: a single rounded multiply, alike on the GPU).
 uint32_t rateCode(ItemRate rate);
+ItemRate itemRateOfCode(uint32_t code);
 float rateShare(uint32_t code);
 // RB_RATE_AUTO's segments of an item (shared/selection.h; select_common.glsl's rateSegment):
 // how many an effect's item offers, and segment k's share of the item's full-rate cost and

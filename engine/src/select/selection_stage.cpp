@@ -393,7 +393,7 @@ struct SelectionStage::Impl {
       out[i].selectedItems = selected[i] & RB_ITEMS_ALL;
       for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
         const uint32_t rate = selectedRate(selected[i], e);
-        out[i].itemRate[e] = rate == RB_RATE_HALF ? ItemRate::Half : (rate == RB_RATE_QUARTER ? ItemRate::Quarter : ItemRate::Full);
+        out[i].itemRate[e] = itemRateOfCode(rate);
       }
       for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
         const gpu::GpuItemCost& item = items[i * RB_ITEMS_PER_OBJECT + e];
