@@ -63,8 +63,8 @@ def parse_args(argv):
     a = p.parse_args(argv)
     if a.ablations:
         a.policies = ",".join([a.policies] + ABLATIONS)
-    full = dict(budgets=5, frames=3, warmup=6, repeats=2, size="640x360")
-    quick = dict(budgets=4, frames=3, warmup=5, repeats=2, size="320x180")
+    full = dict(budgets=6, frames=3, warmup=6, repeats=2, size="640x360")
+    quick = dict(budgets=5, frames=3, warmup=5, repeats=2, size="320x180")
     for k, v in (quick if a.quick else full).items():
         if getattr(a, k) is None:
             setattr(a, k, v)
