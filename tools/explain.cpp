@@ -6,16 +6,12 @@
 #include <map>
 #include <string>
 
+#include "cli_options.h"
+
 namespace raybudget::cli {
 namespace {
 
 const char* const kEffects[] = {"shadows", "reflections", "refractions"};
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 double rateShare(ItemRate rate) {
   return rate == ItemRate::Half ? 0.5 : rate == ItemRate::Quarter ? 0.25 : rate == ItemRate::Sixteenth ? 0.0625 : 1.0;
