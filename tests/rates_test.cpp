@@ -190,6 +190,29 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   EXPECT_GT(reduced, 0u) << "under a third of the budget some mirror should be traced at a reduced rate";
 }
 
+// With rates in the frame the trace passes hand a tile's pixels out in another order (1/16's
+// first, shaders/include/tile_pixel.glsl): a permutation, so with every item chosen at full
+// rate the image is full RT's, pixel for pixel.
+TEST(Rates, HandingOutPixelsForRatesLeavesNoneOut) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const std::vector<Camera> frames(3, defaultCamera(scene, 320.0f / 192.0f));
+  RenderSettings all = test::settingsFor(Policy::All, 320, 192);
+  RenderSettings chosen = test::settingsFor(Policy::Benefit, 320, 192);
+  chosen.rayTracing.rate = ItemRate::Auto;
+  chosen.rayTracing.classifyShadows = false;  // as `all`: every shadow ray traced, to the light
+  chosen.rayTracing.shortenShadowRays = false;
+  chosen.probeShare = 0.0f;
+  chosen.budgetMs = 1e6f;
+  const test::RenderedFrames reference = test::renderFrames(scene, all, frames), reordered = test::renderFrames(scene, chosen, frames);
+  uint32_t reduced = 0;
+  for (const ObjectMetrics& m : reordered.metrics)
+    for (int e = 0; e < 3; ++e) reduced += ((m.selectedItems >> e) & 1u) && m.itemRate[size_t(e)] != ItemRate::Full;
+  ASSERT_EQ(reduced, 0u) << "under an unbounded budget every item is traced at full rate";
+  size_t differing = 0;
+  for (size_t i = 0; i < reference.images.ldrRgba8.size(); ++i) differing += reference.images.ldrRgba8[i] != reordered.images.ldrRgba8[i] ? 1 : 0;
+  EXPECT_EQ(differing, 0u) << "channels differing from full RT's image";
+}
+
 TEST(Rates, UnknownRateNamesAreRefusedNamingTheChoices) {
   EXPECT_EQ(parseItemRate("quarter"), ItemRate::Quarter);
   EXPECT_EQ(parseItemRate("sixteenth"), ItemRate::Sixteenth);
