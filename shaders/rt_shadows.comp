@@ -23,12 +23,12 @@
 // written for the lighting pass to measure, which still shows the shadow maps there.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
-// Each light's visibility at each pixel of the tile for the fill (include/tile_fill.glsl), a
-// byte per light: 0..254 the value written to the mask, 255 none (pending, or nothing there).
-#define RB_FILL_NONE 255u
+// Each light's visibility at each traced pixel of the tile for the fill (include/tile_fill.glsl),
+// a byte per light: the value written to the mask in 0..254 (a traced pixel writes every light;
+// the fill reads only the slots of traced pixels on its object).
 shared uint fillLights[RB_TILE_PIXELS * (RB_MAX_LIGHTS / 4)];
 
-uint lightByte(float visible) { return visible < 0.0 ? RB_FILL_NONE : uint(round(clamp(visible, 0.0, 1.0) * 254.0)); }
+uint lightByte(float visible) { return uint(round(clamp(visible, 0.0, 1.0) * 254.0)); }
 
 uint fillLight(uint slot, uint light) { return (fillLights[slot * (RB_MAX_LIGHTS / 4) + light / 4u] >> (8u * (light & 3u))) & 0xFFu; }
 
@@ -52,7 +52,6 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
     return;
   }
   if (!readSurface(pixel, s) || s.unlit) return;
-  // Lights the classifier finds certain need no ray.
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
@@ -61,6 +60,7 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
   bool shorten = (frame.rayTracing.w & RB_RT_SHORTEN_SHADOW_RAYS) != 0u;
   uint work = 0u, word = 0u;
   bool traced = false;  // some light's ray was traced here
+  // Lights the classifier finds certain need no ray.
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
     float dist, scale;
@@ -108,9 +108,7 @@ void fillPending(ivec2 pixel, FillCentre c) {
       float sum = 0.0, weight = 0.0;
       for (int k = 0; k < candidates; ++k) {
         if (weights[k] <= 0.0) continue;
-        uint v = fillLight(slots[k], i);
-        if (v == RB_FILL_NONE) continue;
-        sum += weights[k] * float(v) / 254.0;
+        sum += weights[k] * float(fillLight(slots[k], i)) / 254.0;
         weight += weights[k];
       }
       visible = weight >= RB_FILL_MIN_WEIGHT ? sum / weight : shadowFromLight(lights[i], c.position, c.normal);
