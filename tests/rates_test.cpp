@@ -216,6 +216,9 @@ TEST(Rates, HandingOutPixelsForRatesLeavesNoneOut) {
 TEST(Rates, UnknownRateNamesAreRefusedNamingTheChoices) {
   EXPECT_EQ(parseItemRate("quarter"), ItemRate::Quarter);
   EXPECT_EQ(parseItemRate("sixteenth"), ItemRate::Sixteenth);
+  RenderSettings s;
+  s.rayTracing.rate = ItemRate(9);  // an integer cast in, as from a host's configuration
+  test::expectRefusedNaming(Scene{}, s, "rayTracing.rate");
   try {
     parseItemRate("third");
     FAIL() << "accepted an unknown rate";

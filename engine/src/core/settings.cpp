@@ -129,6 +129,9 @@ void validateSettings(const RenderSettings& s) {
       s.rayTracing.shadowUncertaintyTexels > 64.0f)
     throw Error("the shadow-map uncertainty reach (shadowUncertaintyTexels) must be within 0..64 texels, got " +
                 std::to_string(s.rayTracing.shadowUncertaintyTexels));
+  if (uint32_t(s.rayTracing.rate) > uint32_t(ItemRate::Auto))
+    throw Error("the ray rate (rayTracing.rate) must be full, half, quarter, sixteenth or auto, got value " +
+                std::to_string(uint32_t(s.rayTracing.rate)));
   if (s.rayTracing.depth < 1 || s.rayTracing.depth > RB_RT_MAX_DEPTH)
     throw Error("ray-tracing depth must be within 1.." + std::to_string(RB_RT_MAX_DEPTH));
 }
