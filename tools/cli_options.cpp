@@ -141,6 +141,30 @@ float parsePositive(const std::string& option, const std::string& value) {
   return *v;
 }
 
+const std::string& optionValue(const std::vector<std::string>& args, size_t& i) {
+  if (i + 1 >= args.size()) throw Error(args[i] + " needs a value");
+  return args[++i];
+}
+
+bool RenderTarget::parse(const std::vector<std::string>& args, size_t& i) {
+  const std::string& a = args[i];
+  if (a == "--width") width = parseUint(a, optionValue(args, i), 16, 16384);
+  else if (a == "--height") height = parseUint(a, optionValue(args, i), 16, 16384);
+  else if (a == "--device") device = optionValue(args, i);
+  else if (a == "--validation") validation = true;
+  else return false;
+  return true;
+}
+
+RenderSettings RenderTarget::settings() const {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.device = device;
+  s.validation = validation;
+  return s;
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -163,10 +187,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
   RenderCommand c;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(a + " needs a value");
-      return args[++i];
-    };
+    auto value = [&]() -> const std::string& { return optionValue(args, i); };
     if (a == "--frames") c.frames = parseUint(a, value(), 1, 1000000);
     else if (a == "--width") c.settings.width = parseUint(a, value(), 1, 16384);
     else if (a == "--height") c.settings.height = parseUint(a, value(), 1, 16384);

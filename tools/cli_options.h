@@ -31,8 +31,6 @@ extern const char* kUsage;
 // "flythrough", or anything else the start itself (static).
 Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount);
 
-// `option`'s value as a whole number in lo..hi, or a positive finite number; throws
-// raybudget::Error naming the option otherwise.
 // The median (the mean of the two middle values for an even count); 0 when empty.
 double median(std::vector<double> values);
 
@@ -40,7 +38,25 @@ double median(std::vector<double> values);
 // the command's usage) or a second scene throws raybudget::Error.
 void sceneArgument(const std::string& arg, std::string& scene, const std::string& hint);
 
+// `option`'s value as a whole number in lo..hi, or a positive finite number; throws
+// raybudget::Error naming the option otherwise.
 uint32_t parseUint(const std::string& option, const std::string& value, uint32_t lo, uint32_t hi);
 float parsePositive(const std::string& option, const std::string& value);
+
+// The value after the option at args[i], moving i onto it; throws raybudget::Error naming the
+// option when none follows.
+const std::string& optionValue(const std::vector<std::string>& args, size_t& i);
+
+// The image size and device options the sweep and the soak share, and the settings they
+// start from.
+struct RenderTarget {
+  uint32_t width = 640, height = 360;
+  std::string device;
+  bool validation = false;
+  // Takes --width, --height (16..16384), --device or --validation at args[i]; false for any
+  // other argument.
+  bool parse(const std::vector<std::string>& args, size_t& i);
+  RenderSettings settings() const;  // size, device and validation; the rest default
+};
 
 }  // namespace raybudget::cli

@@ -105,13 +105,9 @@ SoakCommand parseSoak(const std::vector<std::string>& args) {
   SoakCommand c;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(a + " needs a value");
-      return args[++i];
-    };
+    auto value = [&]() -> const std::string& { return optionValue(args, i); };
+    if (c.target.parse(args, i)) continue;
     if (a == "--frames") c.frames = parseUint(a, value(), 1, 10000000);
-    else if (a == "--width") c.width = parseUint(a, value(), 16, 16384);
-    else if (a == "--height") c.height = parseUint(a, value(), 16, 16384);
     else if (a == "--period") c.period = parseUint(a, value(), 1, 1000000);
     else if (a == "--path-frames") c.pathFrames = parseUint(a, value(), 2, 1000000);
     else if (a == "--scan-every") c.scanEvery = parseUint(a, value(), 1, 1000000);
@@ -131,8 +127,6 @@ SoakCommand parseSoak(const std::vector<std::string>& args) {
       c.policy = parsePolicy(value());
       if (!isBudgeted(c.policy)) throw Error("--policy takes a budgeted policy (paper, density, nearest, random, benefit)");
     } else if (a == "--rate") c.rate = parseItemRate(value());
-    else if (a == "--device") c.device = value();
-    else if (a == "--validation") c.validation = true;
     else sceneArgument(a, c.scene, std::string("\n") + kSoakUsage);
   }
   if (c.scene.empty()) throw Error(std::string("soak needs a scene file\n") + kSoakUsage);
@@ -142,11 +136,7 @@ SoakCommand parseSoak(const std::vector<std::string>& args) {
 
 int runSoak(const SoakCommand& c) {
   const Scene scene = loadScene(c.scene);
-  RenderSettings s;
-  s.width = c.width;
-  s.height = c.height;
-  s.device = c.device;
-  s.validation = c.validation;
+  RenderSettings s = c.target.settings();
   s.objectMetrics = true;  // the per-object records the scans read
   s.policy = Policy::All;
   Renderer renderer(scene, s);
@@ -170,7 +160,7 @@ int runSoak(const SoakCommand& c) {
   }
   renderer.restartSelection(c.policy, budgets[0], BenefitAblation::None, c.rate);
   std::printf("%s: %zu objects, %ux%u on %s, %s, %u frames; T %.2f / %.2f ms every %u frames; CPU load %.0f%% of the time\n", c.scene.c_str(),
-              scene.objects.size(), c.width, c.height, renderer.deviceName().c_str(), policyName(c.policy), c.frames, double(budgets[0]),
+              scene.objects.size(), c.target.width, c.target.height, renderer.deviceName().c_str(), policyName(c.policy), c.frames, double(budgets[0]),
               double(budgets[1]), c.period, 100.0 * c.loadShare);
 
   const uint32_t warmup = c.warmup > 0 ? c.warmup : std::max(c.frames / 10, std::min(c.scanEvery, c.frames - 1));

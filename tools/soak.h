@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_options.h"
 #include "raybudget/settings.h"
 
 namespace raybudget::cli {
@@ -18,7 +19,7 @@ namespace raybudget::cli {
 struct SoakCommand {
   std::string scene;
   uint32_t frames = 10000;
-  uint32_t width = 320, height = 180;
+  RenderTarget target{320, 180};
   uint32_t period = 100;        // frames per half-wave of the budget
   uint32_t pathFrames = 1000;   // frames per camera path before switching to the other
   float loadShare = 0.25f;      // share of each load cycle (4 periods) with the CPU load running
@@ -27,8 +28,6 @@ struct SoakCommand {
   std::vector<float> budgets;   // low, high in ms (empty: 0.25 and 0.75 of the measured full-RT stage cost)
   Policy policy = Policy::Benefit;
   ItemRate rate = ItemRate::Auto;
-  std::string device;
-  bool validation = false;
 };
 
 SoakCommand parseSoak(const std::vector<std::string>& args);  // after the word "soak"; throws Error

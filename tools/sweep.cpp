@@ -248,21 +248,15 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
   SweepCommand c;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(a + " needs a value");
-      return args[++i];
-    };
+    auto value = [&]() -> const std::string& { return optionValue(args, i); };
+    if (c.target.parse(args, i)) continue;
     if (a == "--out") c.out = value();
-    else if (a == "--width") c.width = parseUint(a, value(), 16, 16384);
-    else if (a == "--height") c.height = parseUint(a, value(), 16, 16384);
     else if (a == "--frames") c.frames = parseUint(a, value(), 1, 100000);
     else if (a == "--warmup") c.warmup = parseUint(a, value(), 0, 1000);
     else if (a == "--budgets") c.budgets = parseUint(a, value(), 2, 64);
     else if (a == "--repeats") c.repeats = parseUint(a, value(), 1, 100);
     else if (a == "--order-seed") c.orderSeed = parseUint(a, value(), 0, 0x7FFFFFFF);
     else if (a == "--prior-time-scale") c.priorTimeScale = true;
-    else if (a == "--device") c.device = value();
-    else if (a == "--validation") c.validation = true;
     else if (a == "--budget-list") {
       c.budgetList.clear();
       for (const std::string& b : splitList(value())) c.budgetList.push_back(parsePositive(a, b));
@@ -288,11 +282,7 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
 
 int runSweep(const SweepCommand& c) {
   const Scene scene = loadScene(c.scene);
-  RenderSettings s;
-  s.width = c.width;
-  s.height = c.height;
-  s.device = c.device;
-  s.validation = c.validation;
+  RenderSettings s = c.target.settings();
   s.optimalBound = true;
   s.learnTimeScale = !c.priorTimeScale;
   s.policy = Policy::All;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_options.h"
 #include "raybudget/renderer.h"
 
 namespace raybudget::cli {
@@ -31,7 +32,7 @@ struct SweepPolicy {
 struct SweepCommand {
   std::string scene;
   std::string out = "sweep";
-  uint32_t width = 640, height = 360;
+  RenderTarget target;  // 640x360 unless told
   uint32_t frames = 4;   // recorded per camera path and configuration, after the warm-up
   uint32_t warmup = 8;   // frames on the path's first camera at the configuration's budget, not recorded
   uint32_t budgets = 6;  // the headline shares of full RT, then more (unless budgetList is given)
@@ -42,8 +43,6 @@ struct SweepCommand {
   std::vector<SweepPolicy> policies{{Policy::Paper}, {Policy::Density}, {Policy::Nearest}, {Policy::Random}, {Policy::Benefit}};
   bool classified = true;  // run `classified` beside all and none
   std::vector<std::string> paths{"orbit", "flythrough"};
-  std::string device;
-  bool validation = false;
 };
 
 // Parses a budgeted policy's name: paper, density, nearest, random, benefit, benefit with a
