@@ -72,12 +72,7 @@ bool built(const Renderer& r, const std::string& pipeline) {
 }
 
 // Two frames of `scene` under `policy`; the renderer stays for its pipelines.
-std::vector<FrameTiming> twoFrames(Renderer& r, const Scene& scene) {
-  std::vector<FrameTiming> t = r.render(defaultCamera(scene, r.aspect()));
-  for (const FrameTiming& f : r.render(defaultCamera(scene, r.aspect()))) t.push_back(f);
-  for (const FrameTiming& f : r.finish()) t.push_back(f);
-  return t;
-}
+std::vector<FrameTiming> twoFrames(Renderer& r, const Scene& scene) { return test::renderStill(r, defaultCamera(scene, r.aspect()), 2); }
 
 void expectLeftOut(const FrameTiming& t, Pass p, PassSkip why) {
   EXPECT_FALSE(t.passMs[size_t(p)].has_value()) << passName(p) << " has a time";

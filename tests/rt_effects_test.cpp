@@ -325,10 +325,7 @@ TEST(RtPolicy, TracesTheTilesOfSelectedObjectsOnACrowdedGrid) {
   ASSERT_GT(first[0].predictedTraceMs, 0.0);
   // An eighth of that: the budget selects some objects, not all.
   renderer.restartSelection(Policy::Density, float(first[0].predictedTraceMs / 8.0));
-  std::vector<FrameTiming> t;
-  for (int f = 0; f < 3; ++f)
-    for (const FrameTiming& x : renderer.render(camera)) t.push_back(x);
-  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  const std::vector<FrameTiming> t = test::renderStill(renderer, camera, 3);
   ASSERT_EQ(t.size(), 3u);
   const FrameImages img = renderer.readback();
   const std::vector<ObjectMetrics> metrics = renderer.objectMetrics();
@@ -587,10 +584,7 @@ TEST(RtBudget, SelectedValueStaysUnderTheOptimalBound) {
     s.learnTimeScale = false;
     Renderer renderer(scene, s);
     const Camera cam = defaultCamera(scene, 160.0f / 96.0f);
-    std::vector<FrameTiming> t;
-    for (int f = 0; f < 4; ++f)
-      for (const FrameTiming& x : renderer.render(cam)) t.push_back(x);
-    for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+    const std::vector<FrameTiming> t = test::renderStill(renderer, cam, 4);
     test::expectValidationClean(renderer.validationMessages());
     ASSERT_EQ(t.size(), 4u);
     for (const FrameTiming& f : t) {
@@ -630,17 +624,11 @@ TEST(RtBudget, SetBudgetChangesTFromTheNextFrameAndKeepsTheLearnedModel) {
   s.budgetMs = 0.5f;
   Renderer renderer(scene, s);
   const Camera camera = defaultCamera(scene, 160.0f / 96.0f);
-  std::vector<FrameTiming> before;
-  for (int f = 0; f < 4; ++f)
-    for (const FrameTiming& t : renderer.render(camera)) before.push_back(t);
-  for (const FrameTiming& t : renderer.finish()) before.push_back(t);
+  const std::vector<FrameTiming> before = test::renderStill(renderer, camera, 4);
   const CostModel learned = renderer.costModel();
   renderer.setBudget(500.0f);
   EXPECT_EQ(renderer.costModel(), learned) << "nothing learned is forgotten";
-  std::vector<FrameTiming> after;
-  for (int f = 0; f < 3; ++f)
-    for (const FrameTiming& t : renderer.render(camera)) after.push_back(t);
-  for (const FrameTiming& t : renderer.finish()) after.push_back(t);
+  const std::vector<FrameTiming> after = test::renderStill(renderer, camera, 3);
   ASSERT_EQ(before.size(), 4u);
   ASSERT_EQ(after.size(), 3u);
   uint32_t mostBefore = 0;
@@ -750,11 +738,7 @@ TEST(RtBudget, ABudgetBelowTheStagesFixedCostTracesNothingAndSaysSo) {
   const Camera camera = defaultCamera(scene, 160.0f / 96.0f);
   Renderer renderer(scene, s);
   auto still = [&](Renderer& r) {  // four frames from the default view
-    std::vector<FrameTiming> t;
-    for (int f = 0; f < 4; ++f)
-      for (const FrameTiming& x : r.render(camera)) t.push_back(x);
-    for (const FrameTiming& x : r.finish()) t.push_back(x);
-    return t;
+    return test::renderStill(r, camera, 4);
   };
   renderer.setCostModel({0.0, 0.0, 0.5, 0.3});
   std::vector<FrameTiming> below = still(renderer);

@@ -23,6 +23,16 @@ struct RenderResult {
   Camera camera;
 };
 
+// `frames` frames of `renderer` from one camera, and the timings of every frame, those still
+// in flight included (Renderer::finish).
+inline std::vector<FrameTiming> renderStill(Renderer& renderer, const Camera& camera, uint32_t frames) {
+  std::vector<FrameTiming> t;
+  for (uint32_t f = 0; f < frames; ++f)
+    for (const FrameTiming& x : renderer.render(camera)) t.push_back(x);
+  for (const FrameTiming& x : renderer.finish()) t.push_back(x);
+  return t;
+}
+
 inline RenderResult renderWithValidation(const Scene& scene, uint32_t width, uint32_t height, uint32_t frames) {
   RenderSettings settings;
   settings.width = width;
