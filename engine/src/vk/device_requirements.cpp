@@ -16,16 +16,6 @@ constexpr uint32_t kSharedMemoryBytes = 1024 * 8;
 const char* const kRayQueryExtensions[] = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, VK_KHR_RAY_QUERY_EXTENSION_NAME,
                                            VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
 
-std::vector<std::string> extensionNames(VkPhysicalDevice device) {
-  uint32_t n = 0;
-  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, nullptr));
-  std::vector<VkExtensionProperties> exts(n);
-  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, exts.data()));
-  std::vector<std::string> names;
-  for (const VkExtensionProperties& e : exts) names.push_back(e.extensionName);
-  return names;
-}
-
 std::optional<uint32_t> timestampQueueFamily(VkPhysicalDevice device) {
   uint32_t n = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &n, nullptr);
@@ -40,6 +30,16 @@ std::optional<uint32_t> timestampQueueFamily(VkPhysicalDevice device) {
 std::string versionText(uint32_t v) { return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)); }
 
 }  // namespace
+
+std::vector<std::string> extensionNames(VkPhysicalDevice device) {
+  uint32_t n = 0;
+  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, nullptr));
+  std::vector<VkExtensionProperties> exts(n);
+  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &n, exts.data()));
+  std::vector<std::string> names;
+  for (const VkExtensionProperties& e : exts) names.push_back(e.extensionName);
+  return names;
+}
 
 bool DeviceCapabilities::hasExtension(const char* ext) const { return std::find(extensions.begin(), extensions.end(), ext) != extensions.end(); }
 

@@ -36,6 +36,9 @@ struct DescriptorNeeds {
 
 DeviceCapabilities queryCapabilities(VkPhysicalDevice device);
 
+// The device extensions the physical device offers.
+std::vector<std::string> extensionNames(VkPhysicalDevice device);
+
 // One line per unmet requirement, naming it and what the device has (empty: usable).
 std::vector<std::string> missingRequirements(const DeviceCapabilities& caps, const DescriptorNeeds& needs);
 

@@ -1,17 +1,14 @@
 #include "vk/memory_budget.h"
 
-#include <cstring>
-#include <vector>
+#include <algorithm>
+
+#include "vk/device_requirements.h"
 
 namespace raybudget::vk {
 
 DeviceMemoryUsage memoryUsage(VkPhysicalDevice physicalDevice) {
-  uint32_t count = 0;
-  vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, nullptr);
-  std::vector<VkExtensionProperties> extensions(count);
-  vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, extensions.data());
-  bool supported = false;
-  for (const VkExtensionProperties& e : extensions) supported = supported || std::strcmp(e.extensionName, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME) == 0;
+  const std::vector<std::string> extensions = extensionNames(physicalDevice);
+  const bool supported = std::find(extensions.begin(), extensions.end(), VK_EXT_MEMORY_BUDGET_EXTENSION_NAME) != extensions.end();
   DeviceMemoryUsage usage;
   VkPhysicalDeviceProperties properties0;
   vkGetPhysicalDeviceProperties(physicalDevice, &properties0);
