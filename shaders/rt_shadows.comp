@@ -23,14 +23,18 @@
 // written for the lighting pass to measure, which still shows the shadow maps there.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
-// Each light's visibility at each traced pixel of the tile for the fill (include/tile_fill.glsl),
-// a byte per light: the value written to the mask in 0..254 (a traced pixel writes every light;
-// the fill reads only the slots of traced pixels on its object).
+// Each light's correction of the shadow map at each traced pixel of the tile for the fill
+// (include/tile_fill.glsl): the traced visibility minus the map's there, a byte per light
+// (-1..1 as 0..254; a traced pixel writes every light; the fill reads only the slots of traced
+// pixels on its object).
 shared uint fillLights[RB_TILE_PIXELS * (RB_MAX_LIGHTS / 4)];
 
-uint lightByte(float visible) { return uint(round(clamp(visible, 0.0, 1.0) * 254.0)); }
+uint correctionByte(float correction) { return uint(round((clamp(correction, -1.0, 1.0) + 1.0) * 127.0)); }
 
-uint fillLight(uint slot, uint light) { return (fillLights[slot * (RB_MAX_LIGHTS / 4) + light / 4u] >> (8u * (light & 3u))) & 0xFFu; }
+float fillCorrection(uint slot, uint light) {
+  uint byte = (fillLights[slot * (RB_MAX_LIGHTS / 4) + light / 4u] >> (8u * (light & 3u))) & 0xFFu;
+  return float(byte) / 127.0 - 1.0;
+}
 
 // Traces the pixel's shadow rays and shares them for the tile's fill. A pixel its item's
 // reduced rate skips this frame reads only what its fill needs (gbuffer.glsl's readFillSurface) and
@@ -64,18 +68,18 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
     float dist, scale;
-    float visible = 0.0;
+    float visible = 0.0, mapped = 0.0;
     if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) {
-      float mapped;
       if (classify && shadowMapCertain(lights[i], s.position, s.normal, frame.exposure.y, mapped)) visible = mapped;
       else {
+        if (share && !classify) mapped = shadowFromLight(lights[i], s.position, s.normal);
         visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);
         traced = true;
       }
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
     if (share) {
-      word |= lightByte(visible) << (8u * (i & 3u));
+      word |= correctionByte(visible - mapped) << (8u * (i & 3u));
       if ((i & 3u) == 3u || i + 1u == frame.sizeLightsFrame.z) {
         fillLights[fillIndex(pixel) * (RB_MAX_LIGHTS / 4) + i / 4u] = word;
         word = 0u;
@@ -91,9 +95,12 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
 }
 
-// Fills a skipped pixel's lights: per light facing it, the weighted mean of the light's
-// visibility at the pixels around it that its item traced this frame (traced or found
-// certain by the classifier there), else the shadow map's.
+// Fills a skipped pixel's lights: per light facing it, the shadow map's visibility there
+// corrected by the weighted mean of the map's error at the pixels around it that its item
+// traced this frame (0 where the classifier found the map certain), else the map's alone.
+// Filling the correction, not the visibility, keeps the map's shadow edges at the map's
+// resolution where the rays agree with it, where a filled visibility makes every edge a
+// staircase of the rate's blocks.
 void fillPending(ivec2 pixel, FillCentre c) {
   float weights[9];
   uint slots[9];
@@ -108,10 +115,11 @@ void fillPending(ivec2 pixel, FillCentre c) {
       float sum = 0.0, weight = 0.0;
       for (int k = 0; k < candidates; ++k) {
         if (weights[k] <= 0.0) continue;
-        sum += weights[k] * float(fillLight(slots[k], i)) / 254.0;
+        sum += weights[k] * fillCorrection(slots[k], i);
         weight += weights[k];
       }
-      visible = weight >= RB_FILL_MIN_WEIGHT ? sum / weight : shadowFromLight(lights[i], c.position, c.normal);
+      float mapped = shadowFromLight(lights[i], c.position, c.normal);
+      visible = weight >= RB_FILL_MIN_WEIGHT ? clamp(mapped + sum / weight, 0.0, 1.0) : mapped;
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }

@@ -98,8 +98,9 @@ struct GpuObjectCost {
 // against the fallback's (mean over the image, tests/rates_test.cpp's metric), the effect alone
 // traced, the median over the court and the plaza from their default camera and 30 degrees
 // either way around, 480x270, with the in-tile fill. Reflections keep 0.89 at 1/2, 0.78 at 1/4
-// and 0.60 at 1/16, refractions 0.95, 0.90 and 0.78. Shadows kept 0.44 at 1/2 and 0.03 at 1/4
-// (blocky edges of thin shadows lose to the maps): they keep full rate alone.
+// and 0.60 at 1/16, refractions 0.95, 0.90 and 0.78. Shadows, their fill correcting the map,
+// keep 0.41-0.84 of the FLIP gap at 1/4 but cost 0.55-0.69 of full rate with the classifier on
+// lavapipe (docs/SELECTION.md): under full rate's value per cost, they keep full rate alone.
 #define RB_KEEP_SIXTEENTH_REFLECTIONS 0.6
 #define RB_KEEP_SIXTEENTH_REFRACTIONS 0.78
 #define RB_KEEP_QUARTER_GAIN_REFLECTIONS 0.18  // 0.78 - 0.6, a literal: glslang folds a

@@ -267,8 +267,9 @@ struct Context::Impl {
       selection.recordSelect(fc, s, settings);
     });
     tracedMaskWritten = traced != 0;
-    // With a budgeted policy unselected objects keep the shadow maps.
-    const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All;
+    // With a budgeted policy unselected objects keep the shadow maps; at a reduced rate the
+    // shadow fill corrects the maps (rt_shadows.comp).
+    const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All && !reducedRates();
     run(Pass::ShadowMaps, !shadowMaps ? PassSkip::NoLights : everyPixelTracesShadows ? PassSkip::EveryPixelTracesShadows : PassSkip::None,
         [&] { shadowMaps->record(fc); });
     run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
