@@ -191,6 +191,29 @@ TEST_F(GltfRules, ATransformArrayHoldingANonNumberIsRefused) {
   expectLoadError(f.write(dir, "translation"), "ARRAY_TYPE_MISMATCH");
 }
 
+// Fields nothing renders, of the wrong type: ignored with a warning naming the field, as the
+// Khronos validator's TYPE_MISMATCH errors they are; an extensionsRequired entry that is not a
+// name is refused (what the file requires cannot be known).
+TEST_F(GltfRules, WrongTypesInFieldsNothingRendersAreIgnoredWithAWarning) {
+  GltfFixture name = GltfFixture::oneTriangle();
+  name.json["meshes"][0]["name"] = 7;
+  expectRepair(name, "name", "/meshes/0/name is 7, not a string; ignored (TYPE_MISMATCH)");
+  GltfFixture used = GltfFixture::oneTriangle();
+  used.json["extensionsUsed"] = nlohmann::json::array({"KHR_materials_ior", 3});
+  expectRepair(used, "used", "/extensionsUsed/1 is 3, not an extension's name");
+  const GltfFixture indexed = GltfFixture::triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
+  GltfFixture bounds = indexed;
+  const int indices = bounds.json["meshes"][0]["primitives"][0]["indices"].get<int>();
+  bounds.json["accessors"][size_t(indices)]["min"] = nlohmann::json::array({0.5});
+  expectRepair(bounds, "bounds", "/min/0 is 0.5, not an integer for an integer component type");
+  GltfFixture bad = indexed;
+  bad.json["accessors"][size_t(indices)]["max"] = "all";
+  expectRepair(bad, "bad", "/max is \"all\", not an array");
+  GltfFixture required = GltfFixture::oneTriangle();
+  required.json["extensionsRequired"] = nlohmann::json::array({false});
+  expectLoadError(required.write(dir, "required"), "/extensionsRequired/0 is false, not an extension's name (TYPE_MISMATCH)");
+}
+
 TEST_F(GltfRules, ALightBeyondFloatRangeIsRefused) {
   GltfFixture f = GltfFixture::oneTriangle();
   f.json["extensionsUsed"] = {"KHR_lights_punctual"};

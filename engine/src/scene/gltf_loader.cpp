@@ -333,10 +333,10 @@ Scene loadAndRepair(const std::filesystem::path& path) {
                          : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), baseDir);
   if (!ok || !err.empty()) throw Error(file + ": not a valid glTF file: " + (err.empty() ? "parse failed" : err));
 
-  gltf::checkIndicesInJson(json, file);
+  Scene scene;
+  gltf::checkIndicesInJson(json, file, scene.warnings);
   gltf::checkAssetVersion(model, file);
   gltf::checkSharedVertexBufferViews(model, file);
-  Scene scene;
   scene.path = path;
   if (!warn.empty()) scene.warnings.push_back(file + ": " + warn);
   for (const std::string& ext : model.extensionsRequired) {

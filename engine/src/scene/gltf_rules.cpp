@@ -159,12 +159,79 @@ void scanIndices(const nlohmann::json& node, const std::string& where, const std
   }
 }
 
+std::string ignoredValue(const std::string& file, const std::string& at, const nlohmann::json& v, const char* wanted) {
+  return file + ": " + at + " is " + v.dump().substr(0, 40) + ", not " + wanted + "; ignored (TYPE_MISMATCH)";
+}
+
+// The `name` of every glTF object (not inside extras or extensions: the application's data).
+void scanNames(const nlohmann::json& node, const std::string& where, const std::string& file, std::vector<std::string>& warnings, int depth = 0) {
+  if (depth > 32) return;
+  if (node.is_object()) {
+    for (const auto& [key, value] : node.items()) {
+      if (key == "extras" || key == "extensions") continue;
+      const std::string at = where + "/" + key;
+      if (key == "name" && !value.is_string()) warnings.push_back(ignoredValue(file, at, value, "a string"));
+      scanNames(value, at, file, warnings, depth + 1);
+    }
+  } else if (node.is_array()) {
+    for (size_t i = 0; i < node.size(); ++i) scanNames(node[i], where + "/" + std::to_string(i), file, warnings, depth + 1);
+  }
+}
+
+// An accessor's `min` and `max`: arrays of numbers, whole ones for an integer component type.
+void checkAccessorBounds(const nlohmann::json& doc, const std::string& file, std::vector<std::string>& warnings) {
+  const auto accessors = doc.find("accessors");
+  if (accessors == doc.end() || !accessors->is_array()) return;
+  for (size_t i = 0; i < accessors->size(); ++i) {
+    const nlohmann::json& a = (*accessors)[i];
+    if (!a.is_object()) continue;
+    const auto type = a.find("componentType");
+    const bool integer = type != a.end() && type->is_number_integer() && type->get<int64_t>() != 5126;  // all but FLOAT
+    for (const char* key : {"min", "max"}) {
+      const auto bound = a.find(key);
+      if (bound == a.end()) continue;
+      const std::string at = "/accessors/" + std::to_string(i) + "/" + key;
+      if (!bound->is_array()) {
+        warnings.push_back(ignoredValue(file, at, *bound, "an array"));
+        continue;
+      }
+      for (size_t k = 0; k < bound->size(); ++k) {
+        const nlohmann::json& v = (*bound)[k];
+        const bool whole = v.is_number_integer() || (v.is_number_float() && std::isfinite(v.get<double>()) && std::floor(v.get<double>()) == v.get<double>());
+        if (!v.is_number() || (integer && !whole)) {
+          warnings.push_back(ignoredValue(file, at + "/" + std::to_string(k), v, integer ? "an integer for an integer component type" : "a number"));
+          break;
+        }
+      }
+    }
+  }
+}
+
+// extensionsUsed and extensionsRequired: arrays of strings.
+void checkExtensionLists(const nlohmann::json& doc, const std::string& file, std::vector<std::string>& warnings) {
+  for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
+    const auto list = doc.find(key);
+    if (list == doc.end()) continue;
+    const bool required = std::string(key) == "extensionsRequired";
+    const std::vector<nlohmann::json> entries = list->is_array() ? list->get<std::vector<nlohmann::json>>() : std::vector<nlohmann::json>{*list};
+    for (size_t i = 0; i < entries.size(); ++i) {
+      if (entries[i].is_string()) continue;
+      const std::string at = "/" + std::string(key) + (list->is_array() ? "/" + std::to_string(i) : "");
+      if (required) throw Error(file + ": " + at + " is " + entries[i].dump().substr(0, 40) + ", not an extension's name (TYPE_MISMATCH)");
+      warnings.push_back(ignoredValue(file, at, entries[i], "an extension's name"));
+    }
+  }
+}
+
 }  // namespace
 
-void checkIndicesInJson(std::string_view json, const std::string& file) {
+void checkIndicesInJson(std::string_view json, const std::string& file, std::vector<std::string>& warnings) {
   const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
-  if (doc.is_discarded()) return;  // tinygltf reports the syntax error
+  if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf reports the syntax error
   scanIndices(doc, "", file);
+  checkExtensionLists(doc, file, warnings);
+  scanNames(doc, "", file, warnings);
+  checkAccessorBounds(doc, file, warnings);
 }
 
 void checkAssetVersion(const tinygltf::Model& model, const std::string& file) {
