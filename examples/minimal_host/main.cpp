@@ -247,23 +247,28 @@ int main(int argc, char** argv) {
       raybudget::core::Context core(host.lend(), scene, settings);
       const float aspect = float(w) / float(h);
       const raybudget::Camera camera = raybudget::defaultCamera(scene, aspect);
-      const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
+      // The G-buffer holds positions in the core's render space (world minus its origin).
+      const glm::vec3 origin = core.renderOrigin();
+      const raybudget::Camera rendered = raybudget::inRenderSpace(camera, origin);
+      const glm::mat4 viewProj = rendered.projection(aspect) * rendered.view();
 
-      // The host's geometry: each object's vertices in world space, one draw per primitive.
+      // The host's geometry: each object's vertices in render space, one draw per primitive.
       std::vector<WorldVertex> vertices;
       std::vector<uint32_t> indices;
       std::vector<Draw> draws;
       for (const raybudget::Object& o : scene.objects) {
         const raybudget::Mesh& mesh = scene.meshes[o.mesh];
         const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(o.transform));
+        glm::mat4 model = o.transform;
+        model[3] -= glm::vec4(origin, 0.0f);
         const uint32_t base = uint32_t(vertices.size());
         for (const raybudget::Vertex& v : mesh.vertices)
-          vertices.push_back({glm::vec3(o.transform * glm::vec4(v.position, 1.0f)), normalMatrix * v.normal, v.color});
+          vertices.push_back({glm::vec3(model * glm::vec4(v.position, 1.0f)), normalMatrix * v.normal, v.color});
         for (const raybudget::Primitive& p : mesh.primitives) {
           const raybudget::Material m = p.material >= 0 ? scene.materials[size_t(p.material)] : raybudget::Material{};
           draws.push_back({uint32_t(indices.size()), p.indexCount,
                            {viewProj, m.baseColorFactor, {m.metallic, m.roughness, m.transmission, m.ior}, {m.emissive, m.unlit ? 1.0f : 0.0f},
-                            {o.id, uint32_t(std::max(p.material, 0)), m.doubleSided ? 1u : 0u, 0u}, glm::vec4(camera.position, 1.0f)}});
+                            {o.id, uint32_t(std::max(p.material, 0)), m.doubleSided ? 1u : 0u, 0u}, glm::vec4(rendered.position, 1.0f)}});
           for (uint32_t i = 0; i < p.indexCount; ++i) indices.push_back(base + mesh.indices[p.firstIndex + i]);
         }
       }

@@ -85,7 +85,8 @@ struct GBuffer {
   VkImageView emissive = VK_NULL_HANDLE;       // R16G16B16A16_SFLOAT: emitted radiance rgb
   VkImageView objectId = VK_NULL_HANDLE;       // R32_UINT: the scene's object ID, 0xFFFFFFFF where none (clear to it)
   VkImageView materialId = VK_NULL_HANDLE;     // R32_UINT: the scene's material index
-  // R32G32B32A32_SFLOAT: world position xyz, and in w the geometric (triangle plane) normal
+  // R32G32B32A32_SFLOAT: position xyz in render space (world minus Context::renderOrigin(),
+  // which is zero for a scene within kRebaseDistance of the origin), and in w the geometric (triangle plane) normal
   // turned towards the camera, octahedron-encoded by packSnorm2x16 (secondary rays start at
   // the exact point and are offset along it: depth reconstruction is a few ulps off).
   VkImageView position = VK_NULL_HANDLE;
@@ -159,8 +160,14 @@ class Context {
   void setBudget(float budgetMs);
   CostModel costModel() const;
   void setCostModel(const CostModel& model);  // throws Error on negative or non-finite values
-  // From the next frame on (the editor, animation); throws Error on a bad ID or transform.
+  // From the next frame on (the editor, animation), in world space; throws Error on a bad ID or
+  // transform.
   void setObjectTransform(uint32_t objectId, const glm::mat4& transform);
+  // The render space's origin in world space (raybudget::renderOrigin: the scene's centre
+  // where that lies more than kRebaseDistance from the world's origin, else zero). The core
+  // works in render space, world minus this origin; cameras and transforms are given in
+  // world space, but a host G-buffer's positions must be in render space.
+  glm::vec3 renderOrigin() const;
   // An object's K, Q and I from the next frame on (absent values derived as at load: K 1,
   // I 0.5, Q from its materials and the lights); S carries over. Throws Error naming the
   // object on a bad ID or a negative, non-finite or absurd value, and changes nothing then.

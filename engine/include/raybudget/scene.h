@@ -158,6 +158,17 @@ struct LoadOptions {
 // Scene::warnings (with LoadOptions::strict, errors).
 Scene loadScene(const std::filesystem::path& path, const LoadOptions& options = {});
 
+// The render space's origin in world space: the centre of the scene's bounds where that lies
+// more than kRebaseDistance from the world's origin, else the world's origin. The frame works
+// in float in render space (world minus the origin), so that a scene far from the world's
+// origin keeps the precision it has near it (docs/ROBUSTNESS.md).
+inline constexpr float kRebaseDistance = 1000.0f;
+glm::vec3 renderOrigin(const Scene& scene);
+// `scene` in render space: objects (and their bounds), lights and the camera moved by -origin.
+Scene inRenderSpace(const Scene& scene, const glm::vec3& origin);
+// A world-space camera in render space.
+Camera inRenderSpace(const Camera& camera, const glm::vec3& origin);
+
 // The camera to render with: the scene's own, else one framing its bounds.
 Camera defaultCamera(const Scene& scene, float aspect);
 

@@ -73,6 +73,7 @@ struct Context::Impl {
   bool tracedMaskWritten = true;  // the traced mask may hold marks (at first: undefined contents)
   bool objectsMoved = false;
   std::vector<FrameTiming> completed;  // collected, not yet returned
+  glm::vec3 origin{0.0f};  // the render space's origin in world space (raybudget::renderOrigin)
 
   Impl(const HostDevice& host, const Scene& s, const RenderSettings& rs, const testing::Checks& checks)
       : settings(rs),
@@ -348,13 +349,15 @@ Context::Context(const HostDevice& host, const Scene& scene, const RenderSetting
 
 Context::Context(const HostDevice& host, const Scene& scene, const RenderSettings& settings, const testing::Checks& checks) {
   validateSettings(settings);
-  impl_ = std::make_unique<Impl>(host, scene, settings, checks);
+  const glm::vec3 origin = raybudget::renderOrigin(scene);
+  impl_ = std::make_unique<Impl>(host, inRenderSpace(scene, origin), settings, checks);
+  impl_->origin = origin;
 }
 
 Context::~Context() = default;
 
 void Context::recordFrame(VkCommandBuffer commandBuffer, const Camera& camera, const GBuffer* gbuffer) {
-  impl_->recordFrame(commandBuffer, camera, gbuffer);
+  impl_->recordFrame(commandBuffer, inRenderSpace(camera, impl_->origin), gbuffer);
 }
 
 std::vector<FrameTiming> Context::completedFrames(bool everyRecordedFrameCompleted) {
@@ -418,8 +421,12 @@ RayBudgetParams Context::objectParams(uint32_t objectId) const {
   return {p.K, p.Q, p.I};
 }
 
+glm::vec3 Context::renderOrigin() const { return impl_->origin; }
+
 void Context::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
-  raybudget::setObjectTransform(impl_->scene.shell, objectId, transform);
+  glm::mat4 rendered = transform;
+  rendered[3] -= glm::vec4(impl_->origin, 0.0f);
+  raybudget::setObjectTransform(impl_->scene.shell, objectId, rendered);
   impl_->objectsMoved = true;
 }
 

@@ -60,6 +60,33 @@ void validateTransform(const glm::mat4& transform, const std::string& where) {
   if (!std::isfinite(det) || std::fabs(det) < 1e-30f) throw Error(where + ": singular transform");
 }
 
+glm::vec3 renderOrigin(const Scene& scene) {
+  const glm::vec3 centre = 0.5f * (scene.boundsMin + scene.boundsMax);
+  return glm::length(centre) > kRebaseDistance ? centre : glm::vec3(0.0f);
+}
+
+// The translation column alone moves: a translation near the origin subtracts exactly
+// (Sterbenz), so the object keeps its precision relative to its neighbours.
+Scene inRenderSpace(const Scene& scene, const glm::vec3& origin) {
+  if (origin == glm::vec3(0.0f)) return scene;
+  Scene s = scene;
+  for (Object& o : s.objects) {
+    o.transform[3] -= glm::vec4(origin, 0.0f);
+    worldBounds(s.meshes[o.mesh], o.transform, o.boundsMin, o.boundsMax);
+  }
+  for (Light& l : s.lights) l.position -= origin;
+  if (s.camera) s.camera = inRenderSpace(*s.camera, origin);
+  updateSceneBounds(s);
+  return s;
+}
+
+Camera inRenderSpace(const Camera& camera, const glm::vec3& origin) {
+  Camera c = camera;
+  c.position -= origin;
+  c.target -= origin;
+  return c;
+}
+
 void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform) {
   if (id >= scene.objects.size()) throw Error("setObjectTransform: object " + std::to_string(id) + " does not exist");
   validateTransform(transform, "setObjectTransform: object " + std::to_string(id));
