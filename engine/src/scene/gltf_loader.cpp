@@ -334,7 +334,7 @@ Scene loadAndRepair(const std::filesystem::path& path) {
   if (!ok || !err.empty()) throw Error(file + ": not a valid glTF file: " + (err.empty() ? "parse failed" : err));
 
   Scene scene;
-  gltf::checkIndicesInJson(json, file, scene.warnings);
+  gltf::checkJson(json, file, scene.warnings);
   gltf::checkAssetVersion(model, file);
   gltf::checkSharedVertexBufferViews(model, file);
   scene.path = path;

@@ -225,7 +225,7 @@ void checkExtensionLists(const nlohmann::json& doc, const std::string& file, std
 
 }  // namespace
 
-void checkIndicesInJson(std::string_view json, const std::string& file, std::vector<std::string>& warnings) {
+void checkJson(std::string_view json, const std::string& file, std::vector<std::string>& warnings) {
   const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf reports the syntax error
   scanIndices(doc, "", file);

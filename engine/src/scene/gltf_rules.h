@@ -18,16 +18,16 @@ struct Primitive;
 
 namespace raybudget::gltf {
 
-// Every index in the file's JSON (mesh, material, accessor, bufferView, node... references,
+// The rules tinygltf's reading hides, checked on the file's JSON text (`json`: a GLB's JSON
+// chunk). Every index (mesh, material, accessor, bufferView, node... references,
 // `children`, the primitives' attributes) is a non-negative integer where present: tinygltf
 // reads a negative one as "absent", which would silently drop a mesh or turn an accessor into
-// zeros (INVALID_INDEX). `json` is the file's JSON text (a GLB's JSON chunk).
-// Values of the wrong type in fields raybudget does not render are warned about and ignored
-// (TYPE_MISMATCH): a `name` that is not a string, an `extensionsUsed` entry that is not a
-// string, an accessor's `min` or `max` that is not an array of numbers (integers for an integer
-// component type). An `extensionsRequired` entry that is not a string is an error: what the
-// file requires cannot be known.
-void checkIndicesInJson(std::string_view json, const std::string& file, std::vector<std::string>& warnings);
+// zeros (INVALID_INDEX). Values of the wrong type in fields raybudget does not render are
+// ignored with a warning (TYPE_MISMATCH): a `name` or an `extensionsUsed` entry that is not a
+// string, an accessor's `min` or `max` that is not an array of numbers (integers for an
+// integer component type). An `extensionsRequired` entry that is not a string is an error:
+// what the file requires cannot be known.
+void checkJson(std::string_view json, const std::string& file, std::vector<std::string>& warnings);
 
 // asset.version (and minVersion) must name glTF 2.x.
 void checkAssetVersion(const tinygltf::Model& model, const std::string& file);
