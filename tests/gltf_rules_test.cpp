@@ -214,6 +214,22 @@ TEST_F(GltfRules, WrongTypesInFieldsNothingRendersAreIgnoredWithAWarning) {
   expectLoadError(required.write(dir, "required"), "/extensionsRequired/0 is false, not an extension's name (TYPE_MISMATCH)");
 }
 
+// A node transform that is not an array, or a material factor of the wrong type: tinygltf
+// drops them (the object renders untransformed, white or at the default roughness), so they
+// are refused naming the field.
+TEST_F(GltfRules, TransformsAndMaterialFactorsOfTheWrongTypeAreRefused) {
+  GltfFixture node = GltfFixture::oneTriangle();
+  node.json["nodes"][0]["translation"] = "far";
+  expectLoadError(node.write(dir, "node"), "/nodes/0/translation is \"far\", not an array of numbers (TYPE_MISMATCH)");
+  GltfFixture color = GltfFixture::oneTriangle();
+  color.json["materials"] = nlohmann::json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.5, "red", 1.0}}}}}});
+  color.json["meshes"][0]["primitives"][0]["material"] = 0;
+  expectLoadError(color.write(dir, "color"), "/materials/0/pbrMetallicRoughness/baseColorFactor/2 is \"red\", not a number (ARRAY_TYPE_MISMATCH)");
+  GltfFixture rough = color;
+  rough.json["materials"][0]["pbrMetallicRoughness"] = {{"roughnessFactor", "smooth"}};
+  expectLoadError(rough.write(dir, "rough"), "/materials/0/pbrMetallicRoughness/roughnessFactor is \"smooth\", not a number (TYPE_MISMATCH)");
+}
+
 TEST_F(GltfRules, ALightBeyondFloatRangeIsRefused) {
   GltfFixture f = GltfFixture::oneTriangle();
   f.json["extensionsUsed"] = {"KHR_lights_punctual"};

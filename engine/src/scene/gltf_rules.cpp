@@ -127,6 +127,25 @@ bool isCountKey(const std::string& key) {
   return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
 }
 
+bool isColorFactorKey(const std::string& key) {
+  static const char* keys[] = {"baseColorFactor", "emissiveFactor", "attenuationColor", "specularColorFactor", "sheenColorFactor"};
+  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
+}
+
+bool isScalarFactorKey(const std::string& key) {
+  static const char* keys[] = {"metallicFactor",   "roughnessFactor",     "alphaCutoff",      "ior",           "transmissionFactor",
+                               "thicknessFactor",  "attenuationDistance", "emissiveStrength", "specularFactor", "intensity",
+                               "innerConeAngle",   "outerConeAngle",      "strength"};
+  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
+}
+
+void requireNumbers(const nlohmann::json& v, const std::string& at, const std::string& file) {
+  if (!v.is_array()) throw Error(file + ": " + at + " is " + v.dump().substr(0, 40) + ", not an array of numbers (TYPE_MISMATCH)");
+  for (size_t i = 0; i < v.size(); ++i)
+    if (!v[i].is_number())
+      throw Error(file + ": " + at + "/" + std::to_string(i) + " is " + v[i].dump().substr(0, 40) + ", not a number (ARRAY_TYPE_MISMATCH)");
+}
+
 // `depth` bounds the recursion: glTF nests about ten levels; deeper is an extension's data.
 void scanIndices(const nlohmann::json& node, const std::string& where, const std::string& file, int depth = 0) {
   if (depth > 32) return;
@@ -137,13 +156,14 @@ void scanIndices(const nlohmann::json& node, const std::string& where, const std
       if ((isIndexKey(key) || (isCountKey(key) && where.rfind("/extensions") == std::string::npos)) && !value.is_object() &&
           !value.is_array())
         requireIndex(value, at, file);
-      // A node's transform: numbers only (tinygltf drops an array holding anything else).
-      if ((key == "matrix" || key == "translation" || key == "rotation" || key == "scale") && value.is_array() &&
-          where.rfind("/nodes/", 0) == 0) {
-        for (size_t i = 0; i < value.size(); ++i)
-          if (!value[i].is_number())
-            throw Error(file + ": " + at + "/" + std::to_string(i) + " is " + value[i].dump().substr(0, 40) + ", not a number (ARRAY_TYPE_MISMATCH)");
-      }
+      // A node's transform and a material's colour factors: arrays of numbers (tinygltf drops
+      // anything else, and the object would render untransformed or white).
+      if (((key == "matrix" || key == "translation" || key == "rotation" || key == "scale") && where.rfind("/nodes/", 0) == 0) ||
+          isColorFactorKey(key))
+        requireNumbers(value, at, file);
+      // A material's and a light's scalar factors: numbers (tinygltf keeps the default).
+      if (isScalarFactorKey(key) && !value.is_number())
+        throw Error(file + ": " + at + " is " + value.dump().substr(0, 40) + ", not a number (TYPE_MISMATCH)");
       if (key == "attributes" && value.is_object()) {
         for (const auto& [name, index] : value.items()) requireIndex(index, at + "/" + name, file);
       }
