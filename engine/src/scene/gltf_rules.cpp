@@ -158,11 +158,13 @@ void scanIndices(const nlohmann::json& node, const std::string& where, const std
         requireIndex(value, at, file);
       // A node's transform and a material's colour factors: arrays of numbers (tinygltf drops
       // anything else, and the object would render untransformed or white).
+      // (Materials and KHR_lights_punctual only: another extension's data may use the names.)
+      const bool material = where.rfind("/materials/", 0) == 0, light = where.rfind("/extensions/KHR_lights_punctual/", 0) == 0;
       if (((key == "matrix" || key == "translation" || key == "rotation" || key == "scale") && where.rfind("/nodes/", 0) == 0) ||
-          isColorFactorKey(key))
+          (material && isColorFactorKey(key)) || (light && key == "color"))
         requireNumbers(value, at, file);
       // A material's and a light's scalar factors: numbers (tinygltf keeps the default).
-      if (isScalarFactorKey(key) && !value.is_number())
+      if ((material || light) && isScalarFactorKey(key) && !value.is_number())
         throw Error(file + ": " + at + " is " + value.dump().substr(0, 40) + ", not a number (TYPE_MISMATCH)");
       if (key == "attributes" && value.is_object()) {
         for (const auto& [name, index] : value.items()) requireIndex(index, at + "/" + name, file);
