@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <set>
 
@@ -109,53 +110,56 @@ void checkVertexAttribute(const tinygltf::Model& model, int index, const std::st
                 std::to_string(layout.stride) + " bytes apart; vertex attributes must be aligned to 4 bytes (MESH_PRIMITIVE_ACCESSOR_UNALIGNED)");
 }
 
+bool oneOf(const std::string& key, std::initializer_list<const char*> keys) {
+  return std::any_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; });
+}
+
+// "FILE: AT is VALUE": how every rule below names the value it found.
+std::string found(const std::string& file, const std::string& at, const nlohmann::json& v) { return file + ": " + at + " is " + v.dump().substr(0, 40); }
 
 bool isIndexKey(const std::string& key) {
-  static const char* keys[] = {"scene", "mesh", "camera", "skin", "material", "indices", "bufferView", "buffer", "source", "sampler",
-                               "index", "light", "node", "input", "output"};
-  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
+  return oneOf(key, {"scene", "mesh", "camera", "skin", "material", "indices", "bufferView", "buffer", "source", "sampler", "index", "light",
+                     "node", "input", "output"});
 }
 
 void requireIndex(const nlohmann::json& v, const std::string& where, const std::string& file) {
-  if (!v.is_number_integer() || v.get<int64_t>() < 0)
-    throw Error(file + ": " + where + " is " + v.dump().substr(0, 40) + ", not a non-negative integer (INVALID_INDEX, TYPE_MISMATCH)");
+  if (!v.is_number_integer() || v.get<int64_t>() < 0) throw Error(found(file, where, v) + ", not a non-negative integer (INVALID_INDEX, TYPE_MISMATCH)");
 }
 
 // Sizes, offsets and enumerations: whole numbers (tinygltf truncates 1.5 and skips a string).
-bool isCountKey(const std::string& key) {
-  static const char* keys[] = {"byteOffset", "byteLength", "byteStride", "count", "componentType", "mode", "target"};
-  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
-}
+bool isCountKey(const std::string& key) { return oneOf(key, {"byteOffset", "byteLength", "byteStride", "count", "componentType", "mode", "target"}); }
 
 bool isColorFactorKey(const std::string& key) {
-  static const char* keys[] = {"baseColorFactor", "emissiveFactor", "attenuationColor", "specularColorFactor", "sheenColorFactor"};
-  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
+  return oneOf(key, {"baseColorFactor", "emissiveFactor", "attenuationColor", "specularColorFactor", "sheenColorFactor"});
 }
 
 bool isScalarFactorKey(const std::string& key) {
-  static const char* keys[] = {"metallicFactor",   "roughnessFactor",     "alphaCutoff",      "ior",           "transmissionFactor",
-                               "thicknessFactor",  "attenuationDistance", "emissiveStrength", "specularFactor", "intensity",
-                               "innerConeAngle",   "outerConeAngle",      "strength"};
-  return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
+  return oneOf(key, {"metallicFactor", "roughnessFactor", "alphaCutoff", "ior", "transmissionFactor", "thicknessFactor", "attenuationDistance",
+                     "emissiveStrength", "specularFactor", "intensity", "innerConeAngle", "outerConeAngle", "strength"});
 }
 
 void requireNumbers(const nlohmann::json& v, const std::string& at, const std::string& file) {
-  if (!v.is_array()) throw Error(file + ": " + at + " is " + v.dump().substr(0, 40) + ", not an array of numbers (TYPE_MISMATCH)");
+  if (!v.is_array()) throw Error(found(file, at, v) + ", not an array of numbers (TYPE_MISMATCH)");
   for (size_t i = 0; i < v.size(); ++i)
-    if (!v[i].is_number())
-      throw Error(file + ": " + at + "/" + std::to_string(i) + " is " + v[i].dump().substr(0, 40) + ", not a number (ARRAY_TYPE_MISMATCH)");
+    if (!v[i].is_number()) throw Error(found(file, at + "/" + std::to_string(i), v[i]) + ", not a number (ARRAY_TYPE_MISMATCH)");
 }
 
-// `depth` bounds the recursion: glTF nests about ten levels; deeper is an extension's data.
-void scanIndices(const nlohmann::json& node, const std::string& where, const std::string& file, int depth = 0) {
+std::string ignoredValue(const std::string& file, const std::string& at, const nlohmann::json& v, const char* wanted) {
+  return found(file, at, v) + ", not " + wanted + "; ignored (TYPE_MISMATCH)";
+}
+
+// The rules on single values, over the whole document. `depth` bounds the recursion: glTF
+// nests about ten levels; deeper is an extension's data.
+void scanValues(const nlohmann::json& node, const std::string& where, const std::string& file, std::vector<std::string>& warnings, int depth = 0) {
   if (depth > 32) return;
   if (node.is_object()) {
     for (const auto& [key, value] : node.items()) {
       if (key == "extras") continue;  // the application's own data
       const std::string at = where + "/" + key;
-      if ((isIndexKey(key) || (isCountKey(key) && where.rfind("/extensions") == std::string::npos)) && !value.is_object() &&
-          !value.is_array())
-        requireIndex(value, at, file);
+      const bool inExtension = where.rfind("/extensions") != std::string::npos;
+      if ((isIndexKey(key) || (isCountKey(key) && !inExtension)) && !value.is_object() && !value.is_array()) requireIndex(value, at, file);
+      // A glTF object's name (not an extension's: its own data).
+      if (key == "name" && !inExtension && !value.is_string()) warnings.push_back(ignoredValue(file, at, value, "a string"));
       // A node's transform and a material's colour factors: arrays of numbers (tinygltf drops
       // anything else, and the object would render untransformed or white).
       // (Materials and KHR_lights_punctual only: another extension's data may use the names.)
@@ -164,8 +168,7 @@ void scanIndices(const nlohmann::json& node, const std::string& where, const std
           (material && isColorFactorKey(key)) || (light && key == "color"))
         requireNumbers(value, at, file);
       // A material's and a light's scalar factors: numbers (tinygltf keeps the default).
-      if ((material || light) && isScalarFactorKey(key) && !value.is_number())
-        throw Error(file + ": " + at + " is " + value.dump().substr(0, 40) + ", not a number (TYPE_MISMATCH)");
+      if ((material || light) && isScalarFactorKey(key) && !value.is_number()) throw Error(found(file, at, value) + ", not a number (TYPE_MISMATCH)");
       if (key == "attributes" && value.is_object()) {
         for (const auto& [name, index] : value.items()) requireIndex(index, at + "/" + name, file);
       }
@@ -174,29 +177,10 @@ void scanIndices(const nlohmann::json& node, const std::string& where, const std
       if ((key == "children" || key == "joints" || (key == "nodes" && !where.empty())) && value.is_array()) {
         for (size_t i = 0; i < value.size(); ++i) requireIndex(value[i], at + "/" + std::to_string(i), file);
       }
-      scanIndices(value, at, file, depth + 1);
+      scanValues(value, at, file, warnings, depth + 1);
     }
   } else if (node.is_array()) {
-    for (size_t i = 0; i < node.size(); ++i) scanIndices(node[i], where + "/" + std::to_string(i), file, depth + 1);
-  }
-}
-
-std::string ignoredValue(const std::string& file, const std::string& at, const nlohmann::json& v, const char* wanted) {
-  return file + ": " + at + " is " + v.dump().substr(0, 40) + ", not " + wanted + "; ignored (TYPE_MISMATCH)";
-}
-
-// The `name` of every glTF object (not inside extras or extensions: the application's data).
-void scanNames(const nlohmann::json& node, const std::string& where, const std::string& file, std::vector<std::string>& warnings, int depth = 0) {
-  if (depth > 32) return;
-  if (node.is_object()) {
-    for (const auto& [key, value] : node.items()) {
-      if (key == "extras" || key == "extensions") continue;
-      const std::string at = where + "/" + key;
-      if (key == "name" && !value.is_string()) warnings.push_back(ignoredValue(file, at, value, "a string"));
-      scanNames(value, at, file, warnings, depth + 1);
-    }
-  } else if (node.is_array()) {
-    for (size_t i = 0; i < node.size(); ++i) scanNames(node[i], where + "/" + std::to_string(i), file, warnings, depth + 1);
+    for (size_t i = 0; i < node.size(); ++i) scanValues(node[i], where + "/" + std::to_string(i), file, warnings, depth + 1);
   }
 }
 
@@ -219,7 +203,8 @@ void checkAccessorBounds(const nlohmann::json& doc, const std::string& file, std
       }
       for (size_t k = 0; k < bound->size(); ++k) {
         const nlohmann::json& v = (*bound)[k];
-        const bool whole = v.is_number_integer() || (v.is_number_float() && std::isfinite(v.get<double>()) && std::floor(v.get<double>()) == v.get<double>());
+        const double d = v.is_number() ? v.get<double>() : 0.0;
+        const bool whole = v.is_number_integer() || (std::isfinite(d) && std::floor(d) == d);
         if (!v.is_number() || (integer && !whole)) {
           warnings.push_back(ignoredValue(file, at + "/" + std::to_string(k), v, integer ? "an integer for an integer component type" : "a number"));
           break;
@@ -239,7 +224,7 @@ void checkExtensionLists(const nlohmann::json& doc, const std::string& file, std
     for (size_t i = 0; i < entries.size(); ++i) {
       if (entries[i].is_string()) continue;
       const std::string at = "/" + std::string(key) + (list->is_array() ? "/" + std::to_string(i) : "");
-      if (required) throw Error(file + ": " + at + " is " + entries[i].dump().substr(0, 40) + ", not an extension's name (TYPE_MISMATCH)");
+      if (required) throw Error(found(file, at, entries[i]) + ", not an extension's name (TYPE_MISMATCH)");
       warnings.push_back(ignoredValue(file, at, entries[i], "an extension's name"));
     }
   }
@@ -250,9 +235,8 @@ void checkExtensionLists(const nlohmann::json& doc, const std::string& file, std
 void checkJson(std::string_view json, const std::string& file, std::vector<std::string>& warnings) {
   const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf reports the syntax error
-  scanIndices(doc, "", file);
+  scanValues(doc, "", file, warnings);
   checkExtensionLists(doc, file, warnings);
-  scanNames(doc, "", file, warnings);
   checkAccessorBounds(doc, file, warnings);
 }
 
