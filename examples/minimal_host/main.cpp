@@ -259,8 +259,7 @@ int main(int argc, char** argv) {
       for (const raybudget::Object& o : scene.objects) {
         const raybudget::Mesh& mesh = scene.meshes[o.mesh];
         const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(o.transform));
-        glm::mat4 model = o.transform;
-        model[3] -= glm::vec4(origin, 0.0f);
+        const glm::mat4 model = raybudget::inRenderSpace(o.transform, origin);
         const uint32_t base = uint32_t(vertices.size());
         for (const raybudget::Vertex& v : mesh.vertices)
           vertices.push_back({glm::vec3(model * glm::vec4(v.position, 1.0f)), normalMatrix * v.normal, v.color});

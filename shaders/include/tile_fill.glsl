@@ -10,8 +10,8 @@
 // For 1/2 and 1/4 the 3x3 pixels around it, which always hold its own 2x2 quad (1/4 traces one
 // pixel of it, 1/2 two); for 1/16 the tile's four pixels it traced, one per 4x4 block, up to
 // three pixels away on each axis. Neighbours across the tile's edge are left out (a pass of
-// its own reading them from images cost as much as the tracing it saved on lavapipe). Where no neighbour qualifies the
-// fallback stays. The includer includes bindings.glsl.
+// its own reading them from images cost as much as the tracing it saved on lavapipe). Where no
+// neighbour qualifies the fallback stays. The includer includes bindings.glsl.
 #ifndef RB_TILE_FILL_GLSL
 #define RB_TILE_FILL_GLSL
 

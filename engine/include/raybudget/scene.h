@@ -166,8 +166,10 @@ inline constexpr float kRebaseDistance = 1000.0f;
 glm::vec3 renderOrigin(const Scene& scene);
 // `scene` in render space: objects (and their bounds), lights and the camera moved by -origin.
 Scene inRenderSpace(const Scene& scene, const glm::vec3& origin);
-// A world-space camera in render space.
+// A world-space camera, and an object's world transform, in render space (the transform's
+// translation alone moves: near the origin it subtracts exactly, Sterbenz).
 Camera inRenderSpace(const Camera& camera, const glm::vec3& origin);
+glm::mat4 inRenderSpace(const glm::mat4& transform, const glm::vec3& origin);
 
 // The camera to render with: the scene's own, else one framing its bounds.
 Camera defaultCamera(const Scene& scene, float aspect);

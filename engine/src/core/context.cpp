@@ -350,7 +350,8 @@ Context::Context(const HostDevice& host, const Scene& scene, const RenderSetting
 Context::Context(const HostDevice& host, const Scene& scene, const RenderSettings& settings, const testing::Checks& checks) {
   validateSettings(settings);
   const glm::vec3 origin = raybudget::renderOrigin(scene);
-  impl_ = std::make_unique<Impl>(host, inRenderSpace(scene, origin), settings, checks);
+  if (origin == glm::vec3(0.0f)) impl_ = std::make_unique<Impl>(host, scene, settings, checks);  // no copy
+  else impl_ = std::make_unique<Impl>(host, inRenderSpace(scene, origin), settings, checks);
   impl_->origin = origin;
 }
 
@@ -424,9 +425,7 @@ RayBudgetParams Context::objectParams(uint32_t objectId) const {
 glm::vec3 Context::renderOrigin() const { return impl_->origin; }
 
 void Context::setObjectTransform(uint32_t objectId, const glm::mat4& transform) {
-  glm::mat4 rendered = transform;
-  rendered[3] -= glm::vec4(impl_->origin, 0.0f);
-  raybudget::setObjectTransform(impl_->scene.shell, objectId, rendered);
+  raybudget::setObjectTransform(impl_->scene.shell, objectId, inRenderSpace(transform, impl_->origin));
   impl_->objectsMoved = true;
 }
 

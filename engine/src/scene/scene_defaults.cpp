@@ -65,13 +65,11 @@ glm::vec3 renderOrigin(const Scene& scene) {
   return glm::length(centre) > kRebaseDistance ? centre : glm::vec3(0.0f);
 }
 
-// The translation column alone moves: a translation near the origin subtracts exactly
-// (Sterbenz), so the object keeps its precision relative to its neighbours.
 Scene inRenderSpace(const Scene& scene, const glm::vec3& origin) {
   if (origin == glm::vec3(0.0f)) return scene;
   Scene s = scene;
   for (Object& o : s.objects) {
-    o.transform[3] -= glm::vec4(origin, 0.0f);
+    o.transform = inRenderSpace(o.transform, origin);
     worldBounds(s.meshes[o.mesh], o.transform, o.boundsMin, o.boundsMax);
   }
   for (Light& l : s.lights) l.position -= origin;
@@ -85,6 +83,12 @@ Camera inRenderSpace(const Camera& camera, const glm::vec3& origin) {
   c.position -= origin;
   c.target -= origin;
   return c;
+}
+
+glm::mat4 inRenderSpace(const glm::mat4& transform, const glm::vec3& origin) {
+  glm::mat4 t = transform;
+  t[3] -= glm::vec4(origin, 0.0f);
+  return t;
 }
 
 void setObjectTransform(Scene& scene, uint32_t id, const glm::mat4& transform) {
