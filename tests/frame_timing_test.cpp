@@ -1,5 +1,6 @@
-// Per-pass timestamps: every executed pass reports a time, the static environment only on
-// the first frame, and results arrive for every frame without the caller waiting on each.
+// Per-pass timestamps: every executed pass reports a time, the static environment and the
+// shadow maps of a static scene only on the first frame, and results arrive for every frame
+// without the caller waiting on each.
 #include <gtest/gtest.h>
 
 #include "support/gltf_fixture.h"
@@ -23,11 +24,12 @@ TEST(FrameTiming, EveryPassIsTimedAndTheEnvironmentOnlyOnce) {
   for (size_t i = 0; i < r.timings.size(); ++i) {
     const FrameTiming& t = r.timings[i];
     EXPECT_EQ(t.frame, i) << "timings arrive in frame order";
-    for (Pass p : {Pass::GBuffer, Pass::ShadowMaps, Pass::Lighting, Pass::EnvFallback, Pass::Compose}) {
+    for (Pass p : {Pass::GBuffer, Pass::Lighting, Pass::EnvFallback, Pass::Compose}) {
       ASSERT_TRUE(t.passMs[size_t(p)].has_value()) << passName(p) << " frame " << i;
       EXPECT_GE(*t.passMs[size_t(p)], 0.0);
     }
     EXPECT_EQ(t.passMs[size_t(Pass::Environment)].has_value(), i == 0) << "the static environment is built once";
+    EXPECT_EQ(t.passMs[size_t(Pass::ShadowMaps)].has_value(), i == 0) << "the shadow maps of a static scene are rendered once";
   }
 }
 
@@ -120,8 +122,9 @@ TEST(PassPlan, PolicyNoneTracesNothingAndBuildsNoTracePipeline) {
   ASSERT_EQ(frames.size(), 2u);
   for (const FrameTiming& t : frames) {
     for (Pass p : {Pass::Coverage, Pass::Select, Pass::TraceShadows, Pass::TraceEffects}) expectLeftOut(t, p, PassSkip::PolicyTracesNothing);
-    EXPECT_TRUE(t.passMs[size_t(Pass::ShadowMaps)].has_value());
   }
+  EXPECT_TRUE(frames[0].passMs[size_t(Pass::ShadowMaps)].has_value());
+  expectLeftOut(frames[1], Pass::ShadowMaps, PassSkip::ShadowMapsCurrent);
   expectLeftOut(frames[1], Pass::Environment, PassSkip::EnvironmentReady);
   EXPECT_FALSE(built(r, "trace_shadows") || built(r, "trace_effects"));
   // Switching the effects off leaves their pass out for that reason.

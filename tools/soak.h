@@ -4,8 +4,9 @@
 // an orbit and a fly-through; T is a square wave between two budgets; a competing CPU load
 // runs part of the time. Every --scan-every frames the output image and the per-object
 // selection records are read back and scanned for NaN and Inf, and host RSS and device memory
-// (VK_EXT_memory_budget) are sampled. Fails (exit 1) when either memory grew by 1% or more
-// after the warm-up, a NaN or Inf was found, or (3) the validation layer reported anything.
+// (VK_EXT_memory_budget) are sampled. Fails (exit 1) when either memory ends 1% or more above
+// its peak over the first half after the warm-up, a NaN or Inf was found, or (3) the
+// validation layer reported anything.
 #pragma once
 #include <cstdint>
 #include <string>

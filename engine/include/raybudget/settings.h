@@ -142,6 +142,7 @@ enum class PassSkip : uint8_t {
   EveryPixelTracesShadows,         // shadow maps under `all`
   EnvironmentReady,                // the static environment after the first frame
   HostGBuffer,                     // gbuffer: recordFrame reads the host's
+  ShadowMapsCurrent,               // shadow maps: no light's casters moved since they were rendered
 };
 const char* passSkipText(PassSkip skip);
 
@@ -150,6 +151,8 @@ struct FrameTiming {
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   uint32_t tracedTiles = 0;    // 8x8 tiles the trace passes ran over (0: none selected or nothing traced)
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
+  uint32_t shadowMapViews = 0;  // shadow-map layers and cube faces rendered (0: every map was current)
+  uint32_t shadowMapDraws = 0;  // draw calls into them (the casters inside each view)
   // Budgeted policies: the stage budget T, the part of it the selection got for the
   // candidates' work (T less the stage's learned fixed cost: coverage, select, the trace
   // passes' own; divided by the headroom of RenderSettings::budgetConfidence), the cost model's prediction for the trace passes (their fixed cost plus

@@ -45,6 +45,7 @@ struct Context::Impl {
     uint64_t frame = 0;
     std::array<PassSkip, kPassCount> skipped{};  // why each pass not recorded was left out
     double tlasRebuildMs = 0.0;
+    passes::ShadowMapPass::Recorded shadowMapsRecorded;
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
   };
 
@@ -93,7 +94,7 @@ struct Context::Impl {
         compose(ctx, layouts, kSpirv_compose_comp),
         traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows)),
         traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects)) {
-    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts);
+    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows);
     for (Slot& slot : slots) {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
       slot.gbuffer = targets.gbufferViews();
@@ -122,6 +123,8 @@ struct Context::Impl {
     FrameTiming t;
     t.frame = slot.frame;
     t.tlasRebuildMs = slot.tlasRebuildMs;
+    t.shadowMapViews = slot.shadowMapsRecorded.views;
+    t.shadowMapDraws = slot.shadowMapsRecorded.draws;
     t.skipped = slot.skipped;
     const uint32_t s = uint32_t(&slot - slots);
     const auto ms = timestamps.read(s);
@@ -198,11 +201,16 @@ struct Context::Impl {
 
   bool native() const { return scene.tracer->kind() == Tracer::Native; }
 
-  // The object records for the moved objects' new transforms (and their culling spheres).
+  // The object records for the moved objects' new transforms (and their culling spheres);
+  // the shadow maps that see a moved object before or after are rendered again.
   std::vector<gpu::GpuObject> refreshObjectRecords() {
     std::vector<gpu::GpuObject> objects;
     for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
-    for (size_t i = 0; i < objects.size(); ++i) scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+    for (size_t i = 0; i < objects.size(); ++i) {
+      const glm::vec4 before = scene.objectSpheres[i];
+      scene.objectSpheres[i] = objects[i].boundsCenterRadius;
+      if (shadowMaps && before != scene.objectSpheres[i]) shadowMaps->objectMoved(scene.shadows, before, scene.objectSpheres[i]);
+    }
     return objects;
   }
 
@@ -271,8 +279,13 @@ struct Context::Impl {
     // With a budgeted policy unselected objects keep the shadow maps; at a reduced rate the
     // shadow fill corrects the maps (rt_shadows.comp).
     const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All && !reducedRates();
-    run(Pass::ShadowMaps, !shadowMaps ? PassSkip::NoLights : everyPixelTracesShadows ? PassSkip::EveryPixelTracesShadows : PassSkip::None,
-        [&] { shadowMaps->record(fc); });
+    slot.shadowMapsRecorded = {};
+    run(Pass::ShadowMaps,
+        !shadowMaps                ? PassSkip::NoLights
+        : everyPixelTracesShadows  ? PassSkip::EveryPixelTracesShadows
+        : !shadowMaps->anyStale()  ? PassSkip::ShadowMapsCurrent
+                                   : PassSkip::None,
+        [&] { slot.shadowMapsRecorded = shadowMaps->record(fc); });
     run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
     environmentReady = true;
     // Items at a reduced ray rate are filled inside the trace passes (shaders/include/tile_fill.glsl).

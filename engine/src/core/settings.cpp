@@ -73,6 +73,7 @@ const char* passSkipText(PassSkip skip) {
     case PassSkip::EveryPixelTracesShadows: return "every pixel traces its shadows";
     case PassSkip::EnvironmentReady: return "the static environment is built";
     case PassSkip::HostGBuffer: return "the host rasterised the G-buffer";
+    case PassSkip::ShadowMapsCurrent: return "the maps are current: no caster in a light's view moved";
   }
   return "?";
 }

@@ -1,5 +1,7 @@
 #include "passes/shadow_maps.h"
 
+#include <algorithm>
+
 #include "shadow_frag.h"
 #include "shadow_vert.h"
 #include "shared/types.h"
@@ -13,7 +15,8 @@ constexpr VkAccessFlags2 kDepthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_REA
 
 }  // namespace
 
-ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts) : layout_(layouts.create({kSpirv_shadow_vert, kSpirv_shadow_frag})) {
+ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views)
+    : layout_(layouts.create({kSpirv_shadow_vert, kSpirv_shadow_frag})), stale_(views.mapLayers + 6 * views.pointCubes, true) {
   vk::GraphicsPipelineDesc d;
   d.vertex = kSpirv_shadow_vert;
   d.depthFormat = kDepthFormat;
@@ -29,7 +32,17 @@ void ShadowMapPass::initialize(VkCommandBuffer cmd, const FrameTargets& t) {
                      VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
-void ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uint32_t size, const glm::mat4& viewProj) const {
+void ShadowMapPass::objectMoved(const ShadowViews& views, const glm::vec4& before, const glm::vec4& after) {
+  auto sees = [&](const glm::mat4& viewProj) { return sphereInFrustum(viewProj, before) || sphereInFrustum(viewProj, after); };
+  for (uint32_t l = 0; l < views.mapLayers; ++l)
+    if (sees(views.mapViewProj[l])) stale_[l] = true;
+  for (uint32_t f = 0; f < 6 * views.pointCubes; ++f)
+    if (sees(views.cubeFaceViewProj[f])) stale_[views.mapLayers + f] = true;
+}
+
+bool ShadowMapPass::anyStale() const { return std::find(stale_.begin(), stale_.end(), true) != stale_.end(); }
+
+uint32_t ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uint32_t size, const glm::mat4& viewProj) const {
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = view;
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -44,8 +57,10 @@ void ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uint32_
   const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, {size, size}};
   VkPipeline bound = VK_NULL_HANDLE;
+  uint32_t draws = 0;
   for (const Draw& d : fc.scene.draws) {
     if (!sphereInFrustum(viewProj, fc.scene.objectSpheres[d.object])) continue;
+    ++draws;
     const VkPipeline want = d.alphaMask ? masked_.get() : opaque_.get();
     if (want != bound) {
       vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, want);
@@ -66,23 +81,34 @@ void ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uint32_
     vkCmdDrawIndexed(fc.cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
   }
   vkCmdEndRendering(fc.cmd);
+  return draws;
 }
 
-void ShadowMapPass::record(const FrameContext& fc) const {
+ShadowMapPass::Recorded ShadowMapPass::record(const FrameContext& fc) {
   const FrameTargets& t = fc.targets;
   const ShadowViews& views = fc.scene.shadows;
   std::vector<const vk::Image*> rendered;
   if (views.mapLayers > 0) rendered.push_back(&t.shadowMaps);
   if (views.pointCubes > 0) rendered.push_back(&t.pointShadows);
+  // From SHADER_READ_ONLY, not UNDEFINED: the views that stay current keep their depths.
   for (const vk::Image* img : rendered)
     vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, kDepthStages, kDepthAccess,
-                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-  for (uint32_t l = 0; l < views.mapLayers; ++l) renderView(fc, t.shadowMapLayers[l], t.shadowMapSize, views.mapViewProj[l]);
-  for (uint32_t f = 0; f < 6 * views.pointCubes; ++f) renderView(fc, t.pointShadowFaces[f], t.cubeSize, views.cubeFaceViewProj[f]);
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  Recorded out;
+  auto render = [&](VkImageView view, uint32_t size, const glm::mat4& viewProj) {
+    out.draws += renderView(fc, view, size, viewProj);
+    ++out.views;
+  };
+  for (uint32_t l = 0; l < views.mapLayers; ++l)
+    if (stale_[l]) render(t.shadowMapLayers[l], t.shadowMapSize, views.mapViewProj[l]);
+  for (uint32_t f = 0; f < 6 * views.pointCubes; ++f)
+    if (stale_[views.mapLayers + f]) render(t.pointShadowFaces[f], t.cubeSize, views.cubeFaceViewProj[f]);
   for (const vk::Image* img : rendered)
     vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  std::fill(stale_.begin(), stale_.end(), false);
+  return out;
 }
 
 }  // namespace raybudget::passes
