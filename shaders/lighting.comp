@@ -19,7 +19,10 @@
 // the sky. Writes directImage. With RB_RT_MEASURE_ITEMS, where shadows were traced it also
 // lights the pixel with the shadow maps and adds the display-space difference (with the
 // environment fallback's indirect term, written before) to the object's shadow item.
+// With RB_PASS_BEHIND_GLASS it lights the opaque frame that glass shows behind it: the
+// shadow maps alone, nothing measured.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+layout(push_constant) uniform PushBlock { DrawPush push; };
 
 // glTF KHR_lights_punctual range falloff: smooth window to zero at `range`.
 float rangeAttenuation(float d, float range) {
@@ -47,7 +50,8 @@ void main() {
   vec3 color = s.emissive;
   // Ray-traced visibility replaces the shadow maps where the shadow pass traced: pixels of
   // objects whose shadow item is selected. Where the probe traced, it is measured, not shown.
-  bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u;
+  bool behindGlassPass = push.objectMaterial.x == RB_PASS_BEHIND_GLASS;
+  bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && !behindGlassPass;
   bool rtShadows = rtEnabled && itemSelected(s.objectId, RB_ITEM_SHADOWS);
   bool probed = rtEnabled && !rtShadows && itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel);
   // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.
@@ -87,7 +91,7 @@ void main() {
   vec3 ambient = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission);
   color += ambient;
   imageStore(directImage, pixel, vec4(probed ? fallbackColor + ambient : color, 1.0));
-  if (measuringItems()) {
+  if (measuringItems() && !behindGlassPass) {
     vec3 indirect = imageLoad(indirectImage, pixel).rgb;
     float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
     addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0), uvec3(0u));

@@ -78,6 +78,12 @@ void markTraced(ivec2 pixel, uint effects) {
   if (effects != 0u) imageStore(tracedMask, pixel, uvec4(imageLoad(tracedMask, pixel).r | effects));
 }
 
+// The opaque frame, lit before transmissive surfaces are drawn over it (rgb radiance, a its
+// view distance at mip 0), with a mip chain: what glass shows behind it (env_fallback.glsl).
+layout(set = 0, binding = 41) uniform sampler2D behindGlass;
+layout(set = 0, binding = 42, rgba16f) uniform writeonly image2D behindGlassImage;  // mip 0
+bool behindGlassReady() { return frame.exposure.z > 0.5; }
+
 // The 8x8 tiles covering the screen.
 uint screenTileCount() {
   uvec2 size = frame.sizeLightsFrame.xy;

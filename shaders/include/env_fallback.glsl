@@ -1,5 +1,6 @@
 // The raster fallback for reflections and refractions, per path: the prefiltered environment
-// in the reflected direction (split-sum specular) and through the surface (Snell, with
+// in the reflected direction (split-sum specular), and through the surface the opaque frame
+// behind it (screen-space transmission, else the environment; Snell, with
 // KHR_materials_volume attenuation over the thickness). The env_fallback pass writes their
 // sum; the trace pass keeps the path it does not trace as this exactly, and measures the
 // path it traces against it.
@@ -16,6 +17,33 @@ vec3 envSpecularWeight(Surface s, vec3 V) {
 
 vec3 envReflection(Surface s, vec3 V) { return prefiltered(reflect(-V, s.normal), s.roughness) * envSpecularWeight(s, V); }
 
+// glTF's thickness is in the mesh's space, so the node's transform scales it: the faces of a
+// slab of local thickness t along the local normal lie t·|Mᵀn| apart for the world normal n.
+float worldThickness(Surface s, float thickness) {
+  return thickness * length(transpose(mat3(objects[s.objectId].model)) * s.normal);
+}
+
+// What a transmissive surface shows behind it, as Filament and three.js do it: the opaque
+// frame (lit before the transmissive surfaces were drawn) where the ray leaves the volume,
+// projected to the screen, blurred by a mip from roughness and IOR; the environment in the
+// ray's direction where that point is off the screen or the opaque frame there lies in front
+// of the surface.
+vec3 behindSurface(Surface s, vec3 exitPoint, vec3 exitDir) {
+  if (behindGlassReady()) {
+    vec4 clip = frame.viewProj * vec4(exitPoint, 1.0);
+    vec2 uv = clip.xy / max(clip.w, 1e-6) * 0.5 + 0.5;
+    if (clip.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
+      vec2 size = vec2(frame.sizeLightsFrame.xy);
+      float behind = texelFetch(behindGlass, ivec2(uv * size), 0).a;
+      if (behind > length(s.position - frame.cameraPositionNear.xyz)) {
+        float lod = log2(max(size.x, size.y)) * s.roughness * clamp(2.0 * s.ior - 2.0, 0.0, 1.0);
+        return textureLod(behindGlass, uv, lod).rgb;
+      }
+    }
+  }
+  return prefiltered(exitDir, s.roughness);
+}
+
 // Zero for opaque surfaces.
 vec3 envTransmission(Surface s, vec3 V) {
   float transmission = s.transmission * (1.0 - s.metallic);
@@ -23,13 +51,16 @@ vec3 envTransmission(Surface s, vec3 V) {
   vec3 N = s.normal;
   GpuMaterial m = materials[s.materialId];
   vec3 T = refract(-V, N, 1.0 / max(s.ior, 1.0));
-  float thickness = m.normalScaleThicknessFlags.y;
+  float thickness = worldThickness(s, m.normalScaleThicknessFlags.y);
   // Thick volumes bend the ray back on exit through a parallel surface: the exit direction
   // equals -V, offset; thin walls keep the refracted direction (glTF thin-walled model).
   vec3 dir = thickness > 0.0 ? -V : (dot(T, T) > 0.0 ? T : reflect(-V, N));
   if (thickness > 0.0 && dot(T, T) > 0.0) dir = normalize(mix(-V, T, 0.5));
-  vec3 transmitted = prefiltered(dir, s.roughness) * s.baseColor;
-  float distanceInside = thickness / max(dot(-T, -N), 0.05);
+  // The refracted ray crosses the volume's thickness at its angle to the inward normal; a thin
+  // wall lets the view ray through.
+  float distanceInside = thickness / max(dot(T, -N), 0.05);
+  vec3 exitPoint = thickness > 0.0 && dot(T, T) > 0.0 ? s.position + T * distanceInside : s.position;
+  vec3 transmitted = behindSurface(s, exitPoint, dir) * s.baseColor;
   if (m.attenuationColorDistance.w > 0.0 && thickness > 0.0)
     transmitted *= pow(m.attenuationColorDistance.rgb, vec3(distanceInside / m.attenuationColorDistance.w));
   return transmitted * transmission * (vec3(1.0) - envSpecularWeight(s, V));

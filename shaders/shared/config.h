@@ -43,6 +43,12 @@
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 
+// The lighting pass's argument (DrawPush.objectMaterial.x) when it lights the opaque frame
+// that transmissive surfaces show behind them: shadow maps only, nothing measured.
+#define RB_PASS_BEHIND_GLASS 1u
+// The behind-glass image's alpha where no surface was drawn (view distance, half float).
+#define RB_BEHIND_GLASS_SKY 65000.0
+
 // Upper bound of punctual lights a scene may carry: the lighting loop is per pixel, and
 // beyond this count a deferred renderer would cluster lights (not needed by our scenes).
 #define RB_MAX_LIGHTS 64

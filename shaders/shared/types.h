@@ -58,7 +58,7 @@ struct FrameUniforms {
   vec4 cameraPositionNear;  // xyz camera position, w near plane
   uvec4 sizeLightsFrame;    // x width, y height, z light count, w frame index
   vec4 sunDirection;        // xyz direction towards the sun (procedural sky), w sky intensity
-  vec4 exposure;            // x exposure (linear scale before tonemapping), y shadow-map uncertainty reach (texels), zw unused
+  vec4 exposure;            // x exposure (linear scale before tonemapping), y shadow-map uncertainty reach (texels), z 1 when the behind-glass image holds this frame's opaque frame, w unused
   uvec4 rayTracing;         // x effects traced (RB_RT_* bits, 0: all raster), y bounce depth, z roughness cut-off (float bits), w RB_RT_CLASSIFY_SHADOWS | RB_RT_MEASURE_ITEMS | RB_RT_SHORTEN_SHADOW_RAYS | RB_RT_RATES
 };
 

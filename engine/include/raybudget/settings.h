@@ -125,6 +125,7 @@ enum class Pass : uint32_t {
   Lighting,
   TraceEffects,
   Compose,
+  BehindGlass,  // the opaque frame lit and mip-mapped for glass to show, then the transmissive draws
   Count
 };
 inline constexpr size_t kPassCount = size_t(Pass::Count);
@@ -143,6 +144,8 @@ enum class PassSkip : uint8_t {
   EnvironmentReady,                // the static environment after the first frame
   HostGBuffer,                     // gbuffer: recordFrame reads the host's
   ShadowMapsCurrent,               // shadow maps: no light's casters moved since they were rendered
+  NoTransmissionInView,            // behind glass: no transmissive surface in view
+  EveryPixelTracesRefractions,     // behind glass: `all` at full rate traces every transmissive pixel
 };
 const char* passSkipText(PassSkip skip);
 

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <memory>
 
+#include "behind_glass_comp.h"
 #include "compose_comp.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
@@ -46,6 +47,7 @@ struct Context::Impl {
     std::array<PassSkip, kPassCount> skipped{};  // why each pass not recorded was left out
     double tlasRebuildMs = 0.0;
     passes::ShadowMapPass::Recorded shadowMapsRecorded;
+    PassSkip behindGlass = PassSkip::NoTransmissionInView;  // None: glass shows the opaque frame lit behind it
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
   };
 
@@ -66,6 +68,7 @@ struct Context::Impl {
   passes::ScreenPass lighting;
   passes::ScreenPass envFallback;
   passes::ScreenPass compose;
+  passes::ScreenPass behindGlassCopy;
   passes::TracePass traceShadows;
   passes::TracePass traceEffects;
   Slot slots[kFramesInFlight];
@@ -92,6 +95,7 @@ struct Context::Impl {
         lighting(ctx, layouts, kSpirv_lighting_comp),
         envFallback(ctx, layouts, kSpirv_env_fallback_comp),
         compose(ctx, layouts, kSpirv_compose_comp),
+        behindGlassCopy(ctx, layouts, kSpirv_behind_glass_comp),
         traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows)),
         traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects)) {
     if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows);
@@ -108,6 +112,8 @@ struct Context::Impl {
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       passes::ShadowMapPass::initialize(cmd, targets);
+      vk::imageBarrier(cmd, targets.behindGlass, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
   }
 
@@ -143,7 +149,7 @@ struct Context::Impl {
     u.cameraPositionNear = glm::vec4(camera.position, camera.znear);
     u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
     u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
-    u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, 0.0f, 0.0f);
+    u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, slot.behindGlass == PassSkip::None ? 1.0f : 0.0f, 0.0f);
     u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
                               itemFlags() | (reducedRates() ? RB_RT_RATES : 0u));
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
@@ -175,6 +181,17 @@ struct Context::Impl {
     const RayTracingSettings& rt = settings.rayTracing;
     const bool classify = rt.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
     return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
+  }
+
+  // Why the opaque frame behind glass is not lit this frame (PassSkip::None: it is): a host's
+  // G-buffer holds the glass already; without glass in view nothing shows it; where `all`
+  // traces every transmissive pixel's refraction nothing falls back to it (`classified`
+  // traces them all too, but measures each item's error against the fallback).
+  PassSkip behindGlassSkip(bool hostGBuffer, const glm::mat4& viewProj) const {
+    if (hostGBuffer) return PassSkip::HostGBuffer;
+    if (!passes::GBufferPass::transmissiveInView(scene, viewProj)) return PassSkip::NoTransmissionInView;
+    if ((tracedEffects() & RB_RT_REFRACTIONS) && settings.policy == Policy::All && !reducedRates()) return PassSkip::EveryPixelTracesRefractions;
+    return PassSkip::None;
   }
 
   // Whether selected items are traced at a reduced rate (the policies that select items).
@@ -230,6 +247,26 @@ struct Context::Impl {
     });
   }
 
+  // Glass shows the opaque frame behind it (Filament's and three.js's screen-space
+  // transmission): the opaque G-buffer lit with the shadow maps and the environment fallback,
+  // summed into the behind-glass image with a blitted mip chain, then the transmissive draws
+  // over the opaque G-buffer.
+  void recordBehindGlass(const passes::FrameContext& fc) {
+    VkCommandBuffer cmd = fc.cmd;
+    envFallback.record(fc);
+    computeToCompute(cmd);
+    lighting.record(fc, RB_PASS_BEHIND_GLASS);
+    vk::imageBarrier(cmd, targets.behindGlass, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    computeToCompute(cmd);
+    behindGlassCopy.record(fc);
+    vk::imageBarrier(cmd, targets.behindGlass, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    vk::generateMips(cmd, targets.behindGlass);
+    gbuffer.record(fc, passes::GBufferPass::Draws::Transmissive);
+  }
+
   // The frame's commands into `cmd`; `hostGBuffer`: the slot's sets read a host's G-buffer,
   // so no raster.
   void recordCommands(Slot& slot, VkCommandBuffer cmd, const glm::mat4& viewProj, bool hostGBuffer) {
@@ -262,7 +299,23 @@ struct Context::Impl {
     // tiles holding selected pixels (an empty tile list is an empty indirect dispatch).
     const uint32_t traced = tracedEffects();
     selection.beginFrame(cmd, s);
-    run(Pass::GBuffer, hostGBuffer ? PassSkip::HostGBuffer : PassSkip::None, [&] { gbuffer.record(fc); });
+    const bool behindGlass = slot.behindGlass == PassSkip::None;
+    run(Pass::GBuffer, hostGBuffer ? PassSkip::HostGBuffer : PassSkip::None,
+        [&] { gbuffer.record(fc, behindGlass ? passes::GBufferPass::Draws::Opaque : passes::GBufferPass::Draws::All); });
+    // With a budgeted policy unselected objects keep the shadow maps; at a reduced rate the
+    // shadow fill corrects the maps (rt_shadows.comp); the opaque frame behind glass is lit
+    // with them.
+    const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All && !reducedRates() && !behindGlass;
+    slot.shadowMapsRecorded = {};
+    run(Pass::ShadowMaps,
+        !shadowMaps                ? PassSkip::NoLights
+        : everyPixelTracesShadows  ? PassSkip::EveryPixelTracesShadows
+        : !shadowMaps->anyStale()  ? PassSkip::ShadowMapsCurrent
+                                   : PassSkip::None,
+        [&] { slot.shadowMapsRecorded = shadowMaps->record(fc); });
+    run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
+    environmentReady = true;
+    run(Pass::BehindGlass, slot.behindGlass, [&] { recordBehindGlass(fc); });
     // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
     const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
     const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing : PassSkip::NoEffectInScene;
@@ -276,18 +329,6 @@ struct Context::Impl {
       selection.recordSelect(fc, s, settings);
     });
     tracedMaskWritten = traced != 0;
-    // With a budgeted policy unselected objects keep the shadow maps; at a reduced rate the
-    // shadow fill corrects the maps (rt_shadows.comp).
-    const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All && !reducedRates();
-    slot.shadowMapsRecorded = {};
-    run(Pass::ShadowMaps,
-        !shadowMaps                ? PassSkip::NoLights
-        : everyPixelTracesShadows  ? PassSkip::EveryPixelTracesShadows
-        : !shadowMaps->anyStale()  ? PassSkip::ShadowMapsCurrent
-                                   : PassSkip::None,
-        [&] { slot.shadowMapsRecorded = shadowMaps->record(fc); });
-    run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
-    environmentReady = true;
     // Items at a reduced ray rate are filled inside the trace passes (shaders/include/tile_fill.glsl).
     run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc, reducedRates()); });
     if (traced & RB_RT_SHADOWS) computeToCompute(cmd);
@@ -318,9 +359,11 @@ struct Context::Impl {
     Slot& slot = slots[frameIndex % kFramesInFlight];
     if (slot.recorded) completed.push_back(collect(slot));
     bindGBuffer(slot, host ? *host : targets.gbufferViews());
-    writeUniforms(slot, camera);
     const float aspect = float(settings.width) / float(settings.height);
-    recordCommands(slot, cmd, camera.projection(aspect) * camera.view(), host != nullptr);
+    const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
+    slot.behindGlass = behindGlassSkip(host != nullptr, viewProj);
+    writeUniforms(slot, camera);
+    recordCommands(slot, cmd, viewProj, host != nullptr);
     slot.recorded = true;
     slot.frame = frameIndex++;
   }

@@ -74,6 +74,8 @@ const char* passSkipText(PassSkip skip) {
     case PassSkip::EnvironmentReady: return "the static environment is built";
     case PassSkip::HostGBuffer: return "the host rasterised the G-buffer";
     case PassSkip::ShadowMapsCurrent: return "the maps are current: no caster in a light's view moved";
+    case PassSkip::NoTransmissionInView: return "no transmissive surface in view";
+    case PassSkip::EveryPixelTracesRefractions: return "every transmissive pixel traces its refractions";
   }
   return "?";
 }
@@ -90,6 +92,7 @@ const char* passName(Pass pass) {
     case Pass::EnvFallback: return "env_fallback";
     case Pass::Lighting: return "lighting";
     case Pass::Compose: return "compose";
+    case Pass::BehindGlass: return "behind_glass";
     case Pass::Count: break;
   }
   return "?";

@@ -47,7 +47,9 @@ enum Binding : uint32_t {
   kShadowMapDepths = 38,
   kPointShadowDepths = 39,
   kTracedMask = 40,
-  kBindingCount = 41,
+  kBehindGlass = 41,
+  kBehindGlassImage = 42,
+  kBindingCount = 43,
 };
 
 }  // namespace raybudget::passes

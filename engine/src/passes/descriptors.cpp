@@ -24,7 +24,7 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
   if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition || binding == kShadowMapDepths ||
-      binding == kPointShadowDepths)
+      binding == kPointShadowDepths || binding == kBehindGlass)
     return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
   if (binding == kBvhNodes || binding == kBvhTriangles) return {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1};
@@ -148,6 +148,9 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   const VkDescriptorImageInfo depths[] = {{samplers.nearest, t.shadowMaps.view, ro}, {samplers.nearest, t.pointShadows.view, ro}};
   write(kShadowMapDepths, 1, nullptr, &depths[0]);
   write(kPointShadowDepths, 1, nullptr, &depths[1]);
+  const VkDescriptorImageInfo behind[] = {{samplers.linear, t.behindGlass.view, ro}, {VK_NULL_HANDLE, t.behindGlassMip0, g}};
+  write(kBehindGlass, 1, nullptr, &behind[0]);
+  write(kBehindGlassImage, 1, nullptr, &behind[1]);
   // Only the set's own bindings: a pass's layout holds those its shaders use.
   std::erase_if(writes, [&](const VkWriteDescriptorSet& w) { return !std::binary_search(only.begin(), only.end(), w.dstBinding); });
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);

@@ -17,23 +17,35 @@ GBufferPass::GBufferPass(const vk::Context& ctx, PassLayouts& layouts) : layout_
   pipeline_ = vk::createGraphicsPipeline(ctx, layout_.pipelineLayout, d);
 }
 
-void GBufferPass::record(const FrameContext& fc) const {
+bool GBufferPass::transmissiveInView(const SceneGpu& scene, const glm::mat4& viewProj) {
+  for (const Draw& d : scene.draws)
+    if (d.transmissive && sphereInFrustum(viewProj, scene.objectSpheres[d.object])) return true;
+  return false;
+}
+
+void GBufferPass::record(const FrameContext& fc, Draws draws) const {
   const FrameTargets& t = fc.targets;
-  // Previous contents are discarded (UNDEFINED); the frame-start barrier ordered any reads.
+  // A fresh G-buffer discards the previous contents (UNDEFINED; the frame-start barrier
+  // ordered any reads); the transmissive draws keep the opaque ones, after the compute
+  // passes that read them.
+  const bool over = draws == Draws::Transmissive;
+  const VkImageLayout from = over ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
+  const VkPipelineStageFlags2 after = over ? VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT : VK_PIPELINE_STAGE_2_NONE;
   for (const vk::Image* img : t.gbufferColors())
-    vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-  vk::imageBarrier(fc.cmd, t.depth, VK_PIPELINE_STAGE_2_NONE, 0,
-                   VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
-                   VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    vk::imageBarrier(fc.cmd, *img, after, 0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT, from,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  vk::imageBarrier(fc.cmd, t.depth, after, 0, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT, from,
+                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  const VkAttachmentLoadOp load = over ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
 
   std::vector<VkRenderingAttachmentInfo> colors;
   for (const vk::Image* img : t.gbufferColors()) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     a.imageView = img->view;
     a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.loadOp = load;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     if (img->desc.format == kIdFormat) a.clearValue.color.uint32[0] = RB_NO_OBJECT;
     colors.push_back(a);
@@ -41,7 +53,7 @@ void GBufferPass::record(const FrameContext& fc) const {
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = t.depth.view;
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.loadOp = load;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depth.clearValue.depthStencil = {1.0f, 0};
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -59,6 +71,7 @@ void GBufferPass::record(const FrameContext& fc) const {
   vkCmdSetViewport(fc.cmd, 0, 1, &viewport);
   vkCmdSetScissor(fc.cmd, 0, 1, &scissor);
   for (const Draw& d : fc.scene.draws) {
+    if ((draws == Draws::Opaque && d.transmissive) || (over && !d.transmissive)) continue;
     if (!sphereInFrustum(fc.viewProj, fc.scene.objectSpheres[d.object])) continue;
     gpu::DrawPush push{};
     push.objectMaterial = glm::uvec4(d.object, d.material, 0, 0);

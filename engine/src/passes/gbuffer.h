@@ -1,5 +1,7 @@
 // G-buffer pass: rasterises every visible object into depth, normal, base colour + metallic,
-// roughness + transmission + IOR, emissive, object ID and material ID.
+// roughness + transmission + IOR, emissive, object ID and material ID. Where glass shows the
+// opaque frame behind it, it runs twice: the opaque draws, then, once that frame is lit, the
+// transmissive draws over them.
 #pragma once
 #include "passes/frame_context.h"
 #include "passes/pass_layouts.h"
@@ -11,7 +13,11 @@ namespace raybudget::passes {
 class GBufferPass {
  public:
   GBufferPass(const vk::Context& ctx, PassLayouts& layouts);
-  void record(const FrameContext& fc) const;
+  enum class Draws { All, Opaque, Transmissive };
+  // All and Opaque clear the G-buffer; Transmissive draws over it (after compute reads).
+  void record(const FrameContext& fc, Draws draws = Draws::All) const;
+  // Whether a transmissive draw is inside the view.
+  static bool transmissiveInView(const SceneGpu& scene, const glm::mat4& viewProj);
 
  private:
   const PassLayout& layout_;

@@ -180,9 +180,11 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
     objects.push_back(g);
     gpu.objectSpheres.push_back(g.boundsCenterRadius);
     const Mesh& m = scene.meshes[o.mesh];
-    for (const Primitive& p : m.primitives)
-      gpu.draws.push_back({meshFirstIndex[o.mesh] + p.firstIndex, p.indexCount, int32_t(meshVertexOffset[o.mesh]), o.id,
-                           uint32_t(p.material), scene.materials[size_t(p.material)].alphaMode == AlphaMode::Mask});
+    for (const Primitive& p : m.primitives) {
+      const Material& mat = scene.materials[size_t(p.material)];
+      gpu.draws.push_back({meshFirstIndex[o.mesh] + p.firstIndex, p.indexCount, int32_t(meshVertexOffset[o.mesh]), o.id, uint32_t(p.material),
+                           mat.alphaMode == AlphaMode::Mask, mat.transmission > 0.0f});
+    }
   }
   gpu.objects = vk::createDeviceBuffer(ctx, objects, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 

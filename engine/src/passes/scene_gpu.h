@@ -18,6 +18,7 @@ struct Draw {
   uint32_t object;
   uint32_t material;
   bool alphaMask;
+  bool transmissive;  // KHR_materials_transmission: drawn over the opaque frame it shows behind it
 };
 
 struct GpuTexture {

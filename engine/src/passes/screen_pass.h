@@ -12,8 +12,9 @@ namespace raybudget::passes {
 class ScreenPass {
  public:
   ScreenPass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader);
-  // Dispatches over every tile; the caller places the barriers between passes.
-  void record(const FrameContext& fc) const;
+  // Dispatches over every tile with `argument` in DrawPush.objectMaterial.x; the caller
+  // places the barriers between passes.
+  void record(const FrameContext& fc, uint32_t argument = 0) const;
 
  private:
   const PassLayout& layout_;

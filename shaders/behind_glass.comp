@@ -1,0 +1,19 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "include/bindings.glsl"
+#include "include/gbuffer.glsl"
+
+// The opaque frame (direct + indirect, lit before the transmissive surfaces are drawn) into
+// mip 0 of the behind-glass image, with each pixel's view distance in alpha: the mips are
+// blitted after, and transmissive surfaces sample it (include/env_fallback.glsl).
+layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
+  vec3 radiance = max(imageLoad(directImage, pixel).rgb + imageLoad(indirectImage, pixel).rgb, vec3(0.0));
+  float distance = RB_BEHIND_GLASS_SKY;
+  if (texelFetch(gObjectId, pixel, 0).r != RB_NO_OBJECT)
+    distance = min(length(worldFromDepth(pixel, texelFetch(gDepth, pixel, 0).r) - frame.cameraPositionNear.xyz), RB_BEHIND_GLASS_SKY);
+  imageStore(behindGlassImage, pixel, vec4(min(radiance, vec3(65000.0)), distance));
+}
