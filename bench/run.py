@@ -53,6 +53,7 @@ def parse_args(argv):
     p.add_argument("--order-seed", type=int, default=1, help="shuffles each repeat's configurations (0: a fixed order)")
     p.add_argument("--raybudget", default=str(ROOT / "build" / "tools" / "raybudget"))
     p.add_argument("--validation", action="store_true")
+    p.add_argument("--no-screen-space-transmission", action="store_true", help="passed to the sweep: glass falls back to the environment alone")
     p.add_argument("--prior-time-scale", action="store_true", help="passed to the sweep: never learn the time scale")
     p.add_argument("--budget-list", help="passed to the sweep: explicit budgets in ms")
     p.add_argument("--publish", help="also copy summary.csv, headline.md, headline.json, plots/ and strips/ into this folder")
@@ -123,6 +124,8 @@ def run_sweep(a, scene, out, progress):
         cmd.append("--validation")
     if a.prior_time_scale:
         cmd.append("--prior-time-scale")
+    if a.no_screen_space_transmission:
+        cmd.append("--no-screen-space-transmission")
     if a.budget_list:
         cmd += ["--budget-list", a.budget_list]
     log = []

@@ -1,16 +1,18 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "include/bindings.glsl"
+layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/brdf.glsl"
 #include "include/gbuffer.glsl"
 #include "include/env_fallback.glsl"
+#include "include/screen_pixel.glsl"
 
 // Raster fallback for reflections and refractions (include/env_fallback.glsl). Writes
 // indirectImage; the ray-traced passes replace it for the paths they trace.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = screenPixel();
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
   if (!readSurface(pixel, s) || s.unlit) {

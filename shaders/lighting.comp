@@ -5,6 +5,7 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_ARB_shader_clock : require
 #include "include/bindings.glsl"
+layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/brdf.glsl"
 #include "include/display.glsl"
 #include "include/gbuffer.glsl"
@@ -12,6 +13,7 @@
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
+#include "include/screen_pixel.glsl"
 
 // Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
 // ray-traced shadow mask where traced, else the shadow maps), emissive, and diffuse ambient
@@ -22,7 +24,6 @@
 // With RB_PASS_BEHIND_GLASS it lights the opaque frame that glass shows behind it: the
 // shadow maps alone, nothing measured.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
-layout(push_constant) uniform PushBlock { DrawPush push; };
 
 // glTF KHR_lights_punctual range falloff: smooth window to zero at `range`.
 float rangeAttenuation(float d, float range) {
@@ -34,7 +35,7 @@ float rangeAttenuation(float d, float range) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = screenPixel();
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
   if (!readSurface(pixel, s)) {
@@ -50,8 +51,7 @@ void main() {
   vec3 color = s.emissive;
   // Ray-traced visibility replaces the shadow maps where the shadow pass traced: pixels of
   // objects whose shadow item is selected. Where the probe traced, it is measured, not shown.
-  bool behindGlassPass = push.objectMaterial.x == RB_PASS_BEHIND_GLASS;
-  bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && !behindGlassPass;
+  bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && !behindGlassPass();
   bool rtShadows = rtEnabled && itemSelected(s.objectId, RB_ITEM_SHADOWS);
   bool probed = rtEnabled && !rtShadows && itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel);
   // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.
@@ -91,7 +91,7 @@ void main() {
   vec3 ambient = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission);
   color += ambient;
   imageStore(directImage, pixel, vec4(probed ? fallbackColor + ambient : color, 1.0));
-  if (measuringItems() && !behindGlassPass) {
+  if (measuringItems() && !behindGlassPass()) {
     vec3 indirect = imageLoad(indirectImage, pixel).rgb;
     float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
     addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0), uvec3(0u));

@@ -283,6 +283,16 @@ TEST(RtRefractions, FallbackShowsTheObjectBehindAGlassBall) {
   ASSERT_GT(traced.r, 1.5f) << "the tracer sees the emitter through the ball";
   EXPECT_GT(raster.r, 0.7f * traced.r) << "the fallback shows the emitter behind the glass";
   EXPECT_LT(raster.g + raster.b, 0.2f);
+  // Switched off, the glass shows the (black) environment and the pass says why it is left out.
+  RenderSettings off = test::settingsFor(Policy::None, 64, 64);
+  off.skyIntensity = 0.0f;
+  off.screenSpaceTransmission = false;
+  Renderer renderer(scene, off);
+  const std::vector<FrameTiming> t = test::renderStill(renderer, cam, 1);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].skipped[size_t(Pass::BehindGlass)], PassSkip::FallbackOff);
+  EXPECT_LT(hdr(renderer.readback(), 32, 32).r, 0.1f);
+  test::expectValidationClean(renderer.validationMessages());
 }
 
 TEST(RtPolicy, NoneTracesNothingAndAllWithoutEffectsEqualsNone) {

@@ -95,6 +95,9 @@ render options:
   --no-rt-shadows, --no-rt-reflections, --no-rt-refractions
                         keep that effect on its raster fallback even where traced
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
+  --no-screen-space-transmission
+                        glass falls back to the environment alone, not the opaque frame lit
+                        behind it
   --strict              refuse a scene the loader would repair (NaN normals, unreadable
                         images, zero-area triangles...; docs/ROBUSTNESS.md)
 )";
@@ -238,6 +241,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--strict") c.load.strict = true;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;
+    else if (a == "--no-screen-space-transmission") c.settings.screenSpaceTransmission = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
     else sceneArgument(a, c.scene, " (see raybudget --help)");
   }

@@ -33,6 +33,8 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --policies LIST       comma-separated budgeted policies (default paper,density,nearest,random,benefit);
                         benefit-no-centrality, -no-hysteresis, -prior-only, -no-classifier, -no-probe: ablations;
                         benefit-rates: benefit choosing a ray rate per item
+  --no-screen-space-transmission
+                        glass falls back to the environment alone (the fallbacks' ablation)
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -263,6 +265,8 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       if (c.budgetList.empty()) throw Error("--budget-list needs at least one budget");
     } else if (a == "--no-classified") {
       c.classified = false;
+    } else if (a == "--no-screen-space-transmission") {
+      c.screenSpaceTransmission = false;
     } else if (a == "--policies") {
       c.policies.clear();
       for (const std::string& p : splitList(value())) {
@@ -283,6 +287,7 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
 int runSweep(const SweepCommand& c) {
   const Scene scene = loadScene(c.scene);
   RenderSettings s = c.target.settings();
+  s.screenSpaceTransmission = c.screenSpaceTransmission;
   s.optimalBound = true;
   s.learnTimeScale = !c.priorTimeScale;
   s.policy = Policy::All;

@@ -42,6 +42,7 @@ struct SweepCommand {
   bool priorTimeScale = false;    // never learn the time scale: selections independent of timing (tests)
   std::vector<SweepPolicy> policies{{Policy::Paper}, {Policy::Density}, {Policy::Nearest}, {Policy::Random}, {Policy::Benefit}};
   bool classified = true;  // run `classified` beside all and none
+  bool screenSpaceTransmission = true;  // RenderSettings::screenSpaceTransmission
   std::vector<std::string> paths{"orbit", "flythrough"};
 };
 

@@ -33,8 +33,8 @@ vec3 behindSurface(Surface s, vec3 exitPoint, vec3 exitDir) {
     vec4 clip = frame.viewProj * vec4(exitPoint, 1.0);
     vec2 uv = clip.xy / max(clip.w, 1e-6) * 0.5 + 0.5;
     if (clip.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
-      vec2 size = vec2(frame.sizeLightsFrame.xy);
-      float behind = texelFetch(behindGlass, ivec2(uv * size), 0).a;
+      vec2 size = vec2(textureSize(behindGlass, 0));
+      float behind = texelFetch(behindGlass, min(ivec2(uv * size), ivec2(size) - 1), 0).a;
       if (behind > length(s.position - frame.cameraPositionNear.xyz)) {
         float lod = log2(max(size.x, size.y)) * s.roughness * clamp(2.0 * s.ior - 2.0, 0.0, 1.0);
         return textureLod(behindGlass, uv, lod).rgb;

@@ -80,6 +80,8 @@ struct RenderSettings {
   std::string device;              // substring of the Vulkan device name; empty: best available
   bool validation = false;         // Khronos validation + synchronization validation
   uint32_t shadowMapSize = 1024;   // directional/spot layers; point-light cube faces get half
+  // Glass shows the opaque frame lit behind it (Pass::BehindGlass); off: the environment alone.
+  bool screenSpaceTransmission = true;
   float exposure = 1.0f;
   float skyIntensity = 0.3f;       // sky radiance scale (ambient, reflections, background)
   std::string environmentMap;      // equirectangular OpenEXR replacing the procedural sky
@@ -146,6 +148,7 @@ enum class PassSkip : uint8_t {
   ShadowMapsCurrent,               // shadow maps: no light's casters moved since they were rendered
   NoTransmissionInView,            // behind glass: no transmissive surface in view
   EveryPixelTracesRefractions,     // behind glass: `all` at full rate traces every transmissive pixel
+  FallbackOff,                     // behind glass: RenderSettings::screenSpaceTransmission is off
 };
 const char* passSkipText(PassSkip skip);
 

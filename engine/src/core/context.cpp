@@ -48,6 +48,7 @@ struct Context::Impl {
     double tlasRebuildMs = 0.0;
     passes::ShadowMapPass::Recorded shadowMapsRecorded;
     PassSkip behindGlass = PassSkip::NoTransmissionInView;  // None: glass shows the opaque frame lit behind it
+    glm::uvec4 behindGlassRect{0};                          // the pixels lit for it
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
   };
 
@@ -187,9 +188,12 @@ struct Context::Impl {
   // G-buffer holds the glass already; without glass in view nothing shows it; where `all`
   // traces every transmissive pixel's refraction nothing falls back to it (`classified`
   // traces them all too, but measures each item's error against the fallback).
-  PassSkip behindGlassSkip(bool hostGBuffer, const glm::mat4& viewProj) const {
+  PassSkip behindGlassSkip(bool hostGBuffer, const glm::mat4& viewProj, glm::uvec4& rect) const {
     if (hostGBuffer) return PassSkip::HostGBuffer;
-    if (!passes::GBufferPass::transmissiveInView(scene, viewProj)) return PassSkip::NoTransmissionInView;
+    if (!settings.screenSpaceTransmission) return PassSkip::FallbackOff;
+    const std::optional<glm::uvec4> r = passes::GBufferPass::transmissiveRect(scene, viewProj, settings.width, settings.height);
+    if (!r) return PassSkip::NoTransmissionInView;
+    rect = *r;
     if ((tracedEffects() & RB_RT_REFRACTIONS) && settings.policy == Policy::All && !reducedRates()) return PassSkip::EveryPixelTracesRefractions;
     return PassSkip::None;
   }
@@ -248,22 +252,30 @@ struct Context::Impl {
   }
 
   // Glass shows the opaque frame behind it (Filament's and three.js's screen-space
-  // transmission): the opaque G-buffer lit with the shadow maps and the environment fallback,
-  // summed into the behind-glass image with a blitted mip chain, then the transmissive draws
-  // over the opaque G-buffer.
-  void recordBehindGlass(const passes::FrameContext& fc) {
+  // transmission): the opaque G-buffer lit with the shadow maps and the environment fallback
+  // at every second pixel of the rectangle around the glass, summed into the half-resolution
+  // behind-glass image with a blitted mip chain, then the transmissive draws over the opaque
+  // G-buffer.
+  void recordBehindGlass(const passes::FrameContext& fc, const glm::uvec4& rect) {
     VkCommandBuffer cmd = fc.cmd;
-    envFallback.record(fc);
+    constexpr uint32_t kStride = 2;  // half resolution
+    envFallback.recordOver(fc, RB_PASS_BEHIND_GLASS, rect, kStride);
     computeToCompute(cmd);
-    lighting.record(fc, RB_PASS_BEHIND_GLASS);
-    vk::imageBarrier(cmd, targets.behindGlass, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    lighting.recordOver(fc, RB_PASS_BEHIND_GLASS, rect, kStride);
+    // Cleared to 0 (in front of everything: the environment) outside the rectangle.
+    const vk::Image& img = targets.behindGlass;
+    vk::imageBarrier(cmd, img, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const VkClearColorValue zero{};
+    const VkImageSubresourceRange mip0{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &mip0);
+    vk::imageBarrier(cmd, img, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
     computeToCompute(cmd);
-    behindGlassCopy.record(fc);
-    vk::imageBarrier(cmd, targets.behindGlass, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    vk::generateMips(cmd, targets.behindGlass);
+    behindGlassCopy.recordOver(fc, RB_PASS_BEHIND_GLASS, rect, kStride);
+    vk::imageBarrier(cmd, img, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    vk::generateMips(cmd, img);
     gbuffer.record(fc, passes::GBufferPass::Draws::Transmissive);
   }
 
@@ -315,7 +327,7 @@ struct Context::Impl {
         [&] { slot.shadowMapsRecorded = shadowMaps->record(fc); });
     run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
     environmentReady = true;
-    run(Pass::BehindGlass, slot.behindGlass, [&] { recordBehindGlass(fc); });
+    run(Pass::BehindGlass, slot.behindGlass, [&] { recordBehindGlass(fc, slot.behindGlassRect); });
     // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
     const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
     const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing : PassSkip::NoEffectInScene;
@@ -361,7 +373,7 @@ struct Context::Impl {
     bindGBuffer(slot, host ? *host : targets.gbufferViews());
     const float aspect = float(settings.width) / float(settings.height);
     const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
-    slot.behindGlass = behindGlassSkip(host != nullptr, viewProj);
+    slot.behindGlass = behindGlassSkip(host != nullptr, viewProj, slot.behindGlassRect);
     writeUniforms(slot, camera);
     recordCommands(slot, cmd, viewProj, host != nullptr);
     slot.recorded = true;

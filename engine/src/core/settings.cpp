@@ -76,6 +76,7 @@ const char* passSkipText(PassSkip skip) {
     case PassSkip::ShadowMapsCurrent: return "the maps are current: no caster in a light's view moved";
     case PassSkip::NoTransmissionInView: return "no transmissive surface in view";
     case PassSkip::EveryPixelTracesRefractions: return "every transmissive pixel traces its refractions";
+    case PassSkip::FallbackOff: return "the fallback is switched off";
   }
   return "?";
 }

@@ -53,8 +53,10 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
   t.tracedMask = image2d(ctx, VK_FORMAT_R32_UINT, width, height, storage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-  const uint32_t behindMips = uint32_t(std::floor(std::log2(double(std::max(width, height))))) + 1;
-  t.behindGlass = image2d(ctx, kHdrFormat, width, height, storage | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, false,
+  // Half the frame's resolution: glass shows it refracted and blurred.
+  const uint32_t behindW = (width + 1) / 2, behindH = (height + 1) / 2;
+  const uint32_t behindMips = uint32_t(std::floor(std::log2(double(std::max(behindW, behindH))))) + 1;
+  t.behindGlass = image2d(ctx, kHdrFormat, behindW, behindH, storage | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, false,
                           behindMips);
   t.behindGlassMip0 = vk::createView(ctx, t.behindGlass, VK_IMAGE_VIEW_TYPE_2D, 0, 1, 0, 1);
 

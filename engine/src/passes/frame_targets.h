@@ -41,7 +41,7 @@ struct FrameTargets {
   vk::Image shadowMask;                            // ray-traced light visibility, a layer per light
   vk::Owned<VkImageView> shadowMaskArray;          // 2D-array view (also for one light)
   vk::Image tracedMask;                            // R32_UINT: the RB_RT_* effects traced per pixel
-  vk::Image behindGlass;                           // the opaque frame behind transmissive surfaces, full mip chain
+  vk::Image behindGlass;                           // the opaque frame behind transmissive surfaces, half resolution, full mip chain
   vk::Owned<VkImageView> behindGlassMip0;          // its mip 0, written by behind_glass.comp
   bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;

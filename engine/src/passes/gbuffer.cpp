@@ -17,10 +17,31 @@ GBufferPass::GBufferPass(const vk::Context& ctx, PassLayouts& layouts) : layout_
   pipeline_ = vk::createGraphicsPipeline(ctx, layout_.pipelineLayout, d);
 }
 
-bool GBufferPass::transmissiveInView(const SceneGpu& scene, const glm::mat4& viewProj) {
-  for (const Draw& d : scene.draws)
-    if (d.transmissive && sphereInFrustum(viewProj, scene.objectSpheres[d.object])) return true;
-  return false;
+std::optional<glm::uvec4> GBufferPass::transmissiveRect(const SceneGpu& scene, const glm::mat4& viewProj, uint32_t width, uint32_t height) {
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  bool any = false;
+  for (const Draw& d : scene.draws) {
+    const glm::vec4& s = scene.objectSpheres[d.object];
+    if (!d.transmissive || !sphereInFrustum(viewProj, s)) continue;
+    any = true;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 corner = glm::vec3(s) + s.w * glm::vec3((c & 1) ? 1.0f : -1.0f, (c & 2) ? 1.0f : -1.0f, (c & 4) ? 1.0f : -1.0f);
+      const glm::vec4 clip = viewProj * glm::vec4(corner, 1.0f);
+      if (clip.w <= 1e-4f) return glm::uvec4(0, 0, width, height);  // around the camera: the whole frame
+      const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+      lo = glm::min(lo, ndc);
+      hi = glm::max(hi, ndc);
+    }
+  }
+  if (!any) return std::nullopt;
+  const glm::vec2 size = glm::vec2(float(width), float(height));
+  glm::vec2 a = (lo * 0.5f + 0.5f) * size, b = (hi * 0.5f + 0.5f) * size;
+  const glm::vec2 grow = 0.5f * (b - a) + 8.0f;
+  a = glm::clamp(a - grow, glm::vec2(0.0f), size);
+  b = glm::clamp(b + grow, glm::vec2(0.0f), size);
+  const glm::uvec2 first = glm::uvec2(a) & ~1u, last = glm::uvec2(glm::ceil(b));
+  if (last.x <= first.x || last.y <= first.y) return std::nullopt;
+  return glm::uvec4(first, last);
 }
 
 void GBufferPass::record(const FrameContext& fc, Draws draws) const {

@@ -3,6 +3,8 @@
 // opaque frame behind it, it runs twice: the opaque draws, then, once that frame is lit, the
 // transmissive draws over them.
 #pragma once
+#include <optional>
+
 #include "passes/frame_context.h"
 #include "passes/pass_layouts.h"
 #include "vk/context.h"
@@ -16,8 +18,10 @@ class GBufferPass {
   enum class Draws { All, Opaque, Transmissive };
   // All and Opaque clear the G-buffer; Transmissive draws over it (after compute reads).
   void record(const FrameContext& fc, Draws draws = Draws::All) const;
-  // Whether a transmissive draw is inside the view.
-  static bool transmissiveInView(const SceneGpu& scene, const glm::mat4& viewProj);
+  // The pixels [x0, x1) x [y0, y1) that the transmissive draws in view may show behind
+  // them: their bounding spheres' screen rectangle grown by half its size on each side (the
+  // refracted ray's offset, the blur), on even pixels; nothing when none is in view.
+  static std::optional<glm::uvec4> transmissiveRect(const SceneGpu& scene, const glm::mat4& viewProj, uint32_t width, uint32_t height);
 
  private:
   const PassLayout& layout_;

@@ -10,13 +10,16 @@ namespace raybudget::passes {
 ScreenPass::ScreenPass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader)
     : layout_(layouts.create({shader})), pipeline_(vk::createComputePipeline(ctx, layout_.pipelineLayout, shader)) {}
 
-void ScreenPass::record(const FrameContext& fc, uint32_t argument) const {
+void ScreenPass::record(const FrameContext& fc) const { recordOver(fc, 0, glm::uvec4(0, 0, fc.targets.width, fc.targets.height), 1); }
+
+void ScreenPass::recordOver(const FrameContext& fc, uint32_t mode, const glm::uvec4& rect, uint32_t stride) const {
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
   gpu::DrawPush push{};
-  push.objectMaterial.x = argument;
+  push.objectMaterial = glm::uvec4(mode, rect.x, rect.y, stride);
   layout_.push(fc, push);
-  vkCmdDispatch(fc.cmd, vk::groupsFor(fc.targets.width, RB_TILE_SIZE), vk::groupsFor(fc.targets.height, RB_TILE_SIZE), 1);
+  const uint32_t w = (rect.z - rect.x + stride - 1) / stride, h = (rect.w - rect.y + stride - 1) / stride;
+  vkCmdDispatch(fc.cmd, vk::groupsFor(w, RB_TILE_SIZE), vk::groupsFor(h, RB_TILE_SIZE), 1);
 }
 
 }  // namespace raybudget::passes

@@ -12,9 +12,11 @@ namespace raybudget::passes {
 class ScreenPass {
  public:
   ScreenPass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader);
-  // Dispatches over every tile with `argument` in DrawPush.objectMaterial.x; the caller
-  // places the barriers between passes.
-  void record(const FrameContext& fc, uint32_t argument = 0) const;
+  // Dispatches over every pixel; the caller places the barriers between passes.
+  void record(const FrameContext& fc) const;
+  // Over every `stride`-th pixel of the rectangle [x0, x1) x [y0, y1), in pass mode `mode`
+  // (shaders/include/screen_pixel.glsl).
+  void recordOver(const FrameContext& fc, uint32_t mode, const glm::uvec4& rect, uint32_t stride) const;
 
  private:
   const PassLayout& layout_;
