@@ -53,6 +53,24 @@ FrameImages renderScene(const Scene& scene, Policy policy, const Camera& camera,
   return img;
 }
 
+// A double-sided black emitter of `radiance`: what mirrors and glass show in these tests.
+Material emitter(const glm::vec3& radiance) {
+  Material m;
+  m.baseColorFactor = glm::vec4(0, 0, 0, 1);
+  m.emissive = radiance;
+  m.doubleSided = true;
+  return m;
+}
+
+// A camera at `height` above the origin looking straight down (-z up on the screen).
+Camera lookingDownFrom(float height) {
+  Camera cam;
+  cam.position = {0.0f, height, 0.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.up = {0.0f, 0.0f, -1.0f};
+  return cam;
+}
+
 glm::vec3 hdr(const FrameImages& img, uint32_t x, uint32_t y) {
   const size_t i = (size_t(y) * img.width + x) * 4;
   return {glm::unpackHalf1x16(img.hdrRgba16[i]), glm::unpackHalf1x16(img.hdrRgba16[i + 1]), glm::unpackHalf1x16(img.hdrRgba16[i + 2])};
@@ -190,15 +208,9 @@ TEST(RtReflections, MirrorShowsTheObjectAboveIt) {
   mirror.metallic = 1.0f;
   mirror.roughness = 0.0f;
   test::addObject(scene, test::quad(5.0f), glm::mat4(1.0f), mirror);
-  Material red;
-  red.baseColorFactor = glm::vec4(0, 0, 0, 1);
-  red.emissive = glm::vec3(4.0f, 0.0f, 0.0f);
-  red.doubleSided = true;
+  const Material red = emitter(glm::vec3(4.0f, 0.0f, 0.0f));
   test::addObject(scene, test::quad(20.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, 10, 0)), red);  // facing up, seen from below
-  Camera cam;
-  cam.position = {0.0f, 5.0f, 0.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.up = {0.0f, 0.0f, -1.0f};
+  const Camera cam = lookingDownFrom(5.0f);
   const FrameImages traced = renderScene(scene, Policy::All, cam, 64, 64, false, 0.0f);
   const FrameImages raster = renderScene(scene, Policy::None, cam, 64, 64, false, 0.0f);
   const glm::vec3 t = hdr(traced, 32, 32), r = hdr(raster, 32, 32);
@@ -213,15 +225,9 @@ TEST(RtRefractions, VolumeAttenuatesAlongThePathThroughTheCube) {
   Scene scene;
   const Material glass = test::tintedGlass();
   test::addObject(scene, test::subdividedCube(1), glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)), glass);  // unit cube
-  Material white;
-  white.baseColorFactor = glm::vec4(0, 0, 0, 1);
-  white.emissive = glm::vec3(2.0f);
-  white.doubleSided = true;
+  const Material white = emitter(glm::vec3(2.0f));
   test::addObject(scene, test::quad(30.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, -3, 0)), white);
-  Camera cam;  // looking straight down through the cube's top and bottom faces
-  cam.position = {0.0f, 4.0f, 0.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.up = {0.0f, 0.0f, -1.0f};
+  const Camera cam = lookingDownFrom(4.0f);  // through the cube's top and bottom faces
   const FrameImages traced = renderScene(scene, Policy::All, cam, 64, 64, false, 0.0f);
   const glm::vec3 c = hdr(traced, 32, 32);
   ASSERT_GT(c.g, 0.5f) << "light passes through the glass";
@@ -240,15 +246,9 @@ TEST(RtRefractions, FallbackAndTracerAttenuateAlikeThroughAScaledSlab) {
   Material glass = test::tintedGlass();
   glass.thickness = 2.0f;  // the mesh's own thickness; the node halves it
   test::addObject(scene, test::subdividedCube(1), glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)), glass);
-  Material white;
-  white.baseColorFactor = glm::vec4(0, 0, 0, 1);
-  white.emissive = glm::vec3(2.0f);
-  white.doubleSided = true;
+  const Material white = emitter(glm::vec3(2.0f));
   test::addObject(scene, test::quad(30.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, -3, 0)), white);
-  Camera cam;
-  cam.position = {0.0f, 4.0f, 0.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.up = {0.0f, 0.0f, -1.0f};
+  const Camera cam = lookingDownFrom(4.0f);
   const glm::vec3 traced = hdr(renderScene(scene, Policy::All, cam, 64, 64, false, 0.0f), 32, 32);
   const glm::vec3 raster = hdr(renderScene(scene, Policy::None, cam, 64, 64, false, 0.0f), 32, 32);
   ASSERT_GT(traced.g, 0.5f);
@@ -267,15 +267,9 @@ TEST(RtRefractions, FallbackShowsTheObjectBehindAGlassBall) {
   Material clear = test::tintedGlass();
   clear.attenuationDistance = 0.0f;  // no absorption
   test::addObject(scene, ball, glm::mat4(1.0f), clear);
-  Material red;
-  red.baseColorFactor = glm::vec4(0, 0, 0, 1);
-  red.emissive = glm::vec3(3.0f, 0.0f, 0.0f);
-  red.doubleSided = true;
+  const Material red = emitter(glm::vec3(3.0f, 0.0f, 0.0f));
   test::addObject(scene, test::quad(30.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, -4, 0)), red);
-  Camera cam;
-  cam.position = {0.0f, 5.0f, 0.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.up = {0.0f, 0.0f, -1.0f};
+  const Camera cam = lookingDownFrom(5.0f);
   const FrameImages tracedImage = renderScene(scene, Policy::All, cam, 64, 64, false, 0.0f);
   const FrameImages rasterImage = renderScene(scene, Policy::None, cam, 64, 64, false, 0.0f);
   const glm::vec3 traced = hdr(tracedImage, 32, 32), raster = hdr(rasterImage, 32, 32);
