@@ -29,8 +29,7 @@ TEST(CameraRobustness, StraightUpDownInsideAndAtTheNearPlaneRenderFinite) {
   down.target = centre;  // along -up
   up.position = centre;
   up.target = centre + glm::vec3(0.0f, 5.0f, 0.0f);  // along +up
-  const Object& crate = scene.objects[size_t(std::find_if(scene.objects.begin(), scene.objects.end(),
-                                                          [](const Object& o) { return o.name == "crate_0"; }) - scene.objects.begin())];
+  const Object& crate = scene.objects.at(test::objectNamed(scene, "crate_0"));
   inside.position = 0.5f * (crate.boundsMin + crate.boundsMax);  // inside a closed box
   inside.target = inside.position + glm::vec3(1.0f, 0.0f, 0.0f);
   near.znear = 1e-4f;  // a wall a hair beyond the near plane

@@ -83,10 +83,8 @@ TEST(Rates, TheFillNeverReadsAcrossObjectIds) {
 // measured on (shared/selection.h).
 TEST(Rates, AFlatMirrorAtAQuarterStaysCloseToFullRate) {
   const Scene scene = loadScene(test::defaultScenePath());
-  uint32_t mirror = ~0u;
-  for (const Object& o : scene.objects)
-    if (o.name == "mirror_panel") mirror = o.id;
-  ASSERT_NE(mirror, ~0u);
+  const uint32_t mirror = test::objectNamed(scene, "mirror_panel");
+  ASSERT_NE(mirror, test::kNoObjectNamed);
   const Camera cam = defaultCamera(scene, 320.0f / 192.0f);
   const std::vector<Camera> frames(3, cam);
   auto render = [&](Policy policy, ItemRate rate) {

@@ -179,9 +179,8 @@ TEST_P(RtMoved, MovedObjectIsTracedWhereItIsNow) {
   s.policy = Policy::All;
   Renderer renderer(scene, s);
   const Camera cam = defaultCamera(scene, 1.5f);
-  uint32_t chrome = 0;
-  for (const Object& o : scene.objects)
-    if (o.name == "chrome_sphere") chrome = o.id;
+  const uint32_t chrome = test::objectNamed(scene, "chrome_sphere");
+  ASSERT_NE(chrome, test::kNoObjectNamed);
   std::vector<FrameTiming> timings = renderer.render(cam);
   const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(2.5f, 0.8f, 1.0f)) * scene.objects[chrome].transform;
   renderer.setObjectTransform(chrome, moved);

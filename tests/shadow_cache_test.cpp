@@ -12,13 +12,6 @@ namespace {
 
 constexpr uint32_t kW = 160, kH = 96;
 
-uint32_t objectNamed(const Scene& scene, const std::string& name) {
-  for (const Object& o : scene.objects)
-    if (o.name == name) return o.id;
-  ADD_FAILURE() << "no object " << name;
-  return 0;
-}
-
 // The largest difference of one channel between two LDR frames, over the pixels that show
 // the same object in both, other than `except`.
 int maxChannelDifference(const FrameImages& a, const FrameImages& b, uint32_t except = 0xFFFFFFFEu) {
@@ -51,7 +44,8 @@ TEST(ShadowMapCache, AStaticSceneRendersItsMapsOnceAndAMovedCasterOnlyTheViewsTh
   const FrameImages before = renderer.readback();
 
   // The chrome sphere moves: its shadow moves with it in the views that see it.
-  const uint32_t chrome = objectNamed(scene, "chrome_sphere");
+  const uint32_t chrome = test::objectNamed(scene, "chrome_sphere");
+  ASSERT_NE(chrome, test::kNoObjectNamed);
   const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, 0.0f, 1.0f)) * scene.objects[chrome].transform;
   renderer.setObjectTransform(chrome, moved);
   setObjectTransform(scene, chrome, moved);

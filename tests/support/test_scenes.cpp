@@ -23,6 +23,12 @@ std::vector<std::filesystem::path> manifestScenes(const std::string& set) {
 
 std::filesystem::path defaultScenePath() { return std::filesystem::path(RAYBUDGET_SOURCE_DIR) / "data" / "default" / "court.gltf"; }
 
+uint32_t objectNamed(const Scene& scene, const std::string& name) {
+  for (const Object& o : scene.objects)
+    if (o.name == name) return o.id;
+  return kNoObjectNamed;
+}
+
 std::filesystem::path freshTempDir(const std::string& name) {
   // Per process: CTest runs each test as its own process, in parallel, and tests of one
   // file share names (two FrameTiming tests removed each other's folder while writing it).

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "raybudget/scene.h"
+
 namespace raybudget::test {
 
 std::filesystem::path sharedScenesDir();
@@ -12,6 +14,9 @@ std::filesystem::path sharedScenesDir();
 // empty when the folder is absent.
 std::vector<std::filesystem::path> manifestScenes(const std::string& set);
 std::filesystem::path defaultScenePath();
+// The ID of the scene's object called `name`; kNoObjectNamed when there is none.
+inline constexpr uint32_t kNoObjectNamed = ~0u;
+uint32_t objectNamed(const Scene& scene, const std::string& name);
 // A fresh empty temporary folder for one test process.
 std::filesystem::path freshTempDir(const std::string& name);
 
