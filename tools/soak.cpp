@@ -203,10 +203,11 @@ int runSoak(const SoakCommand& c) {
   double hostGrowth = 0.0, deviceGrowth = 0.0, hostPeak = 0.0, devicePeak = 0.0;
   if (firstAfterWarmup != samples.end()) {
     const auto half = firstAfterWarmup + (samples.end() - firstAfterWarmup + 1) / 2;
-    for (auto m = firstAfterWarmup; m != half; ++m)
-      if (m->hostBytes > baseline->hostBytes) baseline = m;
     uint64_t deviceBaseline = 0;
-    for (auto m = firstAfterWarmup; m != half; ++m) deviceBaseline = std::max(deviceBaseline, m->device.usedBytes);
+    for (auto m = firstAfterWarmup; m != half; ++m) {
+      if (m->hostBytes > baseline->hostBytes) baseline = m;
+      deviceBaseline = std::max(deviceBaseline, m->device.usedBytes);
+    }
     hostGrowth = growth(baseline->hostBytes, samples.back().hostBytes);
     deviceGrowth = growth(deviceBaseline, samples.back().device.usedBytes);
     for (auto m = firstAfterWarmup; m != samples.end(); ++m) {
