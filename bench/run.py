@@ -54,6 +54,8 @@ def parse_args(argv):
     p.add_argument("--raybudget", default=str(ROOT / "build" / "tools" / "raybudget"))
     p.add_argument("--validation", action="store_true")
     p.add_argument("--no-screen-space-transmission", action="store_true", help="passed to the sweep: glass falls back to the environment alone")
+    p.add_argument("--no-reflection-probes", action="store_true", help="passed to the sweep: reflections fall back to the sky alone")
+    p.add_argument("--no-screen-space-reflections", action="store_true", help="passed to the sweep: no screen-space reflections")
     p.add_argument("--prior-time-scale", action="store_true", help="passed to the sweep: never learn the time scale")
     p.add_argument("--budget-list", help="passed to the sweep: explicit budgets in ms")
     p.add_argument("--publish", help="also copy summary.csv, headline.md, headline.json, plots/ and strips/ into this folder")
@@ -126,6 +128,10 @@ def run_sweep(a, scene, out, progress):
         cmd.append("--prior-time-scale")
     if a.no_screen_space_transmission:
         cmd.append("--no-screen-space-transmission")
+    if a.no_reflection_probes:
+        cmd.append("--no-reflection-probes")
+    if a.no_screen_space_reflections:
+        cmd.append("--no-screen-space-reflections")
     if a.budget_list:
         cmd += ["--budget-list", a.budget_list]
     log = []

@@ -20,5 +20,5 @@ void main() {
     return;
   }
   vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
-  imageStore(indirectImage, pixel, vec4(envReflection(s, V) + envTransmission(s, V), 1.0));
+  imageStore(indirectImage, pixel, vec4(envReflection(s, V, behindGlassPass() ? ivec2(-1) : pixel) + envTransmission(s, V), 1.0));
 }

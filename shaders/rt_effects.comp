@@ -12,6 +12,7 @@
 #include "include/probe.glsl"
 #include "include/rates.glsl"
 #include "include/tile_fill.glsl"
+#include "include/trace_radiance.glsl"
 
 // Ray-traced reflections and refractions. Mirror-like surfaces (roughness up to the
 // frame's cut-off, RayTracingSettings::maxRoughness) trace a closest-hit reflection ray, shaded with direct light (and
@@ -28,60 +29,6 @@
 // reduced ray rate (include/rates.glsl) traces its pixels of this frame, and the tile's
 // other pixels of the item are filled from what those changed (fillPending).
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
-
-float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
-
-// Closest hit along the ray, alpha masks respected.
-bool traceClosest(vec3 origin, vec3 dir, out RayQuery q, inout uint work) {
-  ++rbRays;
-  rqInitialize(q, 0u, 0xFFu, origin, 0.0, dir, 1e30);
-  while (rqProceed(q))
-    if (candidateIsOpaque(q)) rqConfirm(q);
-  uvec2 w = rqWork(q);
-  work += w.x + w.y;
-  return rqCommittedHit(q);
-}
-
-// Radiance arriving at `origin` from direction `dir`: shades the first hit and follows
-// mirror bounces (up to `depth`) and thin transmissive walls (straight on, not counted as
-// bounces: a thin glass shell has a front and a back wall), RB_RT_MAX_DEPTH events in all.
-vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
-  vec3 throughput = vec3(1.0), result = vec3(0.0);
-  uint bounces = 0u;
-  for (int event = 0; event < 2 * RB_RT_MAX_DEPTH; ++event) {
-    RayQuery q;
-    if (!traceClosest(origin, dir, q, work)) return result + throughput * textureLod(envMap, dir, 0.0).rgb;
-    HitSurface h = hitSurface(rqCommittedObject(q), rqCommittedPrimitive(q), rqCommittedBarycentrics(q), rqCommittedMaterial(q), dir);
-    vec3 V = -dir;
-    result += throughput * shadeHit(h, V, work);
-    float NoV = clamp(dot(h.normal, V), 1e-4, 1.0);
-    vec3 f0 = mix(vec3(f0FromIor(h.ior)), h.baseColor.rgb, h.metallic);
-    vec3 weight = envBrdfApprox(f0, h.roughness, NoV);
-    vec3 R = reflect(dir, h.normal);
-    float transmission = h.transmission * (1.0 - h.metallic);
-    bool thinWall = transmission > 0.0 && materials[h.material].normalScaleThicknessFlags.y <= 0.0;
-    if (thinWall) {
-      // The wall's reflection from the environment; the ray goes on through it.
-      result += throughput * prefiltered(R, h.roughness) * weight;
-      throughput *= h.baseColor.rgb * transmission * (vec3(1.0) - weight);
-      origin = offsetRay(h.position, -h.geometricNormal);
-      continue;
-    }
-    if (bounces + 1u < depth && h.roughness <= maxTracedRoughness()) {
-      ++bounces;
-      throughput *= weight;
-      origin = offsetRay(h.position, h.geometricNormal);
-      dir = R;
-      continue;
-    }
-    // Last bounce: the hit's own specular reflection (and, for a volume, what it transmits)
-    // comes from the environment.
-    result += throughput * prefiltered(R, h.roughness) * weight;
-    if (transmission > 0.0) result += throughput * prefiltered(dir, h.roughness) * h.baseColor.rgb * transmission * (vec3(1.0) - weight);
-    return result;
-  }
-  return result;
-}
 
 // The ray that carries light through the surface at p towards the viewer: for a thin wall
 // the view ray continued behind the surface, for a volume the refracted ray after its way
@@ -194,7 +141,7 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
   if (dot(R, ng) < 0.0) R = reflect(R, ng);  // a normal map tilted the mirror ray below the surface
   // The fallback's paths, as the env_fallback pass computed them.
   vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
-  vec3 fallback[2] = vec3[2](envReflection(s, rasterV), envTransmission(s, rasterV));
+  vec3 fallback[2] = vec3[2](envReflection(s, rasterV, pixel), envTransmission(s, rasterV));
   // Path 0 reflects, path 1 transmits; one traceRadiance call site keeps the shader (and
   // its compile time on lavapipe) half the size.
   vec3 color[2] = fallback;

@@ -3,11 +3,13 @@
 #include <cmath>
 #include <fstream>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "raybudget/error.h"
 #include "raybudget/scene.h"
 #include "support/gltf_fixture.h"
+#include "support/procedural.h"
 #include "support/test_scenes.h"
 
 namespace raybudget {
@@ -178,6 +180,81 @@ TEST_F(BadInput, NonNumericParameter) {
   GltfFixture f = GltfFixture::oneTriangle();
   f.json["nodes"][0]["extras"] = {{"raybudget", {{"K", "high"}}}};
   expectLoadError(f.write(dir, "textk"), "extras.raybudget.K must be a number");
+}
+
+// A node marked extras.raybudget.reflectionProbe: its transform maps [-1, 1]^3 to the box.
+GltfFixture withProbeNode(const nlohmann::json& value, const std::vector<double>& scale) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  f.json["nodes"].push_back({{"name", "probe"}, {"translation", {1.0, 2.0, 3.0}}, {"scale", scale},
+                             {"extras", {{"raybudget", {{"reflectionProbe", value}}}}}});
+  f.json["scenes"][0]["nodes"].push_back(f.json["nodes"].size() - 1);
+  return f;
+}
+
+TEST_F(BadInput, AnAuthoredReflectionProbeTakesItsBoxFromItsNode) {
+  const Scene s = loadScene(withProbeNode(true, {2.0, 1.0, 4.0}).write(dir, "probe"));
+  ASSERT_EQ(s.reflectionProbes.size(), 1u);
+  const ReflectionProbe& p = s.reflectionProbes[0];
+  EXPECT_EQ(p.name, "probe");
+  EXPECT_EQ(p.center, glm::vec3(1, 2, 3));
+  EXPECT_EQ(p.boxMin, glm::vec3(-1, 1, -1));
+  EXPECT_EQ(p.boxMax, glm::vec3(3, 3, 7));
+  ASSERT_EQ(reflectionProbesOf(s).size(), 1u) << "the authored probe replaces the default one";
+  EXPECT_EQ(reflectionProbesOf(s)[0].center, p.center);
+  EXPECT_TRUE(loadScene(withProbeNode(false, {1.0, 1.0, 1.0}).write(dir, "off")).reflectionProbes.empty());
+}
+
+TEST_F(BadInput, WithoutAuthoredProbesOneCoversTheBounds) {
+  GltfFixture f = GltfFixture::oneTriangle();  // and a copy beside it: two objects, each spanning y (and the flat z)
+  f.json["nodes"].push_back({{"mesh", 0}, {"translation", {0.2, 0.0, 0.0}}});
+  f.json["scenes"][0]["nodes"].push_back(1);
+  const Scene s = loadScene(f.write(dir, "plain"));
+  const std::vector<ReflectionProbe> probes = reflectionProbesOf(s);
+  ASSERT_EQ(probes.size(), 1u);
+  EXPECT_EQ(probes[0].center, 0.5f * (s.boundsMin + s.boundsMax));
+  EXPECT_TRUE(glm::all(glm::lessThan(probes[0].boxMin, s.boundsMin)) && glm::all(glm::greaterThan(probes[0].boxMax, s.boundsMax)))
+      << "surfaces on the bounds lie inside the box";
+}
+
+// The default probe sits at the centre of the bounds where something spans the scene (a
+// floor), but not inside a model's box (a cube around the centre); a box covering the
+// scene's is no model; objects with nothing spanning them get none.
+TEST(DefaultReflectionProbe, IsPlacedAmidSurroundingsAndNotInsideAModel) {
+  const Material plain;
+  Scene s;
+  test::addObject(s, test::quad(4.0f), glm::mat4(1.0f), plain);
+  test::addObject(s, test::subdividedCube(1), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f)), plain);
+  EXPECT_TRUE(reflectionProbesOf(s).empty()) << "the centre (0, 1, 0) is inside the cube";
+  setObjectTransform(s, 1, glm::translate(glm::mat4(1.0f), glm::vec3(2.9f, 1.0f, 0.0f)));
+  EXPECT_EQ(reflectionProbesOf(s).size(), 1u) << "the cube moved aside";
+  Scene building;
+  test::addObject(building, test::subdividedCube(1), glm::scale(glm::mat4(1.0f), glm::vec3(5.0f, 2.0f, 5.0f)), plain);
+  test::addObject(building, test::subdividedCube(1), glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.0f, 3.0f)), plain);
+  EXPECT_EQ(reflectionProbesOf(building).size(), 1u) << "one mesh spanning the scene is its surroundings";
+  Scene grid;
+  for (int i = 0; i < 9; ++i)
+    test::addObject(grid, test::subdividedCube(1), glm::translate(glm::mat4(1.0f), glm::vec3(3.0f * float(i % 3), 0.0f, 3.0f * float(i / 3))), plain);
+  EXPECT_TRUE(reflectionProbesOf(grid).empty()) << "nothing spans the grid of cubes";
+}
+
+TEST_F(BadInput, AReflectionProbeFlagThatIsNotABoolean) {
+  expectLoadError(withProbeNode("yes", {1.0, 1.0, 1.0}).write(dir, "text"), "extras.raybudget.reflectionProbe must be true or false");
+}
+
+TEST_F(BadInput, AReflectionProbeWithoutVolume) {
+  expectLoadError(withProbeNode(true, {1.0, 0.0, 1.0}).write(dir, "flat"), "the reflection probe's box");
+}
+
+TEST_F(BadInput, ReflectionProbesBeyondTheMaximumAreDroppedWithAWarning) {
+  GltfFixture f = withProbeNode(true, {1.0, 1.0, 1.0});
+  for (size_t i = 0; i < kMaxReflectionProbes; ++i) {
+    f.json["nodes"].push_back(f.json["nodes"].back());
+    f.json["scenes"][0]["nodes"].push_back(f.json["nodes"].size() - 1);
+  }
+  const Scene s = loadScene(f.write(dir, "many"));
+  EXPECT_EQ(s.reflectionProbes.size(), kMaxReflectionProbes);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("reflection probes"), std::string::npos) << s.warnings[0];
 }
 
 TEST_F(BadInput, PointsAreSkippedWithWarning) {

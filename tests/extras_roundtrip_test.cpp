@@ -48,6 +48,21 @@ TEST(ExtrasRoundTrip, PartialParamsStayPartial) {
   EXPECT_FALSE(s.objects[0].params.hysteresisI.has_value());
 }
 
+// A node that is also a reflection probe keeps that key when its K, Q, I are saved.
+TEST(ExtrasRoundTrip, SavingParamsKeepsTheNodesOtherRayBudgetKeys) {
+  const auto dir = test::freshTempDir("roundtrip-probe");
+  test::GltfFixture f = test::GltfFixture::oneTriangle();
+  f.json["nodes"][0]["extras"] = {{"raybudget", {{"reflectionProbe", true}, {"K", 9.0}}}};
+  const auto src = f.write(dir, "src");
+  RayBudgetParams p;
+  p.raysQ = 2.0f;
+  saveRayBudgetParams(src, dir / "src.gltf", {{0, p}});
+  const Scene s = loadScene(dir / "src.gltf");
+  EXPECT_FALSE(s.objects[0].params.importanceK.has_value()) << "K was cleared";
+  EXPECT_EQ(s.objects[0].params.raysQ, 2.0f);
+  EXPECT_EQ(s.reflectionProbes.size(), 1u);
+}
+
 TEST(ExtrasRoundTrip, GlbKeepsItsBinaryChunk) {
   RB_REQUIRE_SHARED_SCENES();
   const auto dir = test::freshTempDir("roundtrip-glb");

@@ -22,6 +22,9 @@
 namespace raybudget {
 namespace {
 
+using test::emitter;
+using test::hdr;
+
 // The shader's octahedral decode (shaders/include/octahedral.glsl) of the packed normal.
 glm::vec3 geometricNormal(float packed) {
   const glm::vec2 e = glm::unpackSnorm2x16(std::bit_cast<uint32_t>(packed));
@@ -53,15 +56,6 @@ FrameImages renderScene(const Scene& scene, Policy policy, const Camera& camera,
   return img;
 }
 
-// A double-sided black emitter of `radiance`: what mirrors and glass show in these tests.
-Material emitter(const glm::vec3& radiance) {
-  Material m;
-  m.baseColorFactor = glm::vec4(0, 0, 0, 1);
-  m.emissive = radiance;
-  m.doubleSided = true;
-  return m;
-}
-
 // A camera at `height` above the origin looking straight down (-z up on the screen).
 Camera lookingDownFrom(float height) {
   Camera cam;
@@ -69,11 +63,6 @@ Camera lookingDownFrom(float height) {
   cam.target = {0.0f, 0.0f, 0.0f};
   cam.up = {0.0f, 0.0f, -1.0f};
   return cam;
-}
-
-glm::vec3 hdr(const FrameImages& img, uint32_t x, uint32_t y) {
-  const size_t i = (size_t(y) * img.width + x) * 4;
-  return {glm::unpackHalf1x16(img.hdrRgba16[i]), glm::unpackHalf1x16(img.hdrRgba16[i + 1]), glm::unpackHalf1x16(img.hdrRgba16[i + 2])};
 }
 
 // Compares the frame's ray-traced shadow mask with Embree's visibility from the same points.
@@ -200,7 +189,9 @@ INSTANTIATE_TEST_SUITE_P(Tracers, RtMoved, ::testing::Values(Tracer::Compute, Tr
                          [](const ::testing::TestParamInfo<Tracer>& p) { return std::string(tracerName(p.param)); });
 
 // A mirror floor seen from straight above shows what hangs above the camera: with ray
-// tracing the red emitter, with the raster fallback only the (black) sky.
+// tracing the red emitter; with the raster fallback the emitter too (the reflection probe,
+// captured from the centre of the scene's bounds, parallax-corrected against them), and the
+// (black) sky alone with the probes switched off.
 TEST(RtReflections, MirrorShowsTheObjectAboveIt) {
   Scene scene;
   Material mirror;
@@ -215,7 +206,17 @@ TEST(RtReflections, MirrorShowsTheObjectAboveIt) {
   const glm::vec3 t = hdr(traced, 32, 32), r = hdr(raster, 32, 32);
   EXPECT_NEAR(t.r, 4.0f, 0.25f) << "a white mirror reflects the emitter (F ~ 1)";
   EXPECT_LT(t.g + t.b, 0.05f);
-  EXPECT_LT(r.r, 0.05f) << "the fallback reflects the black sky";
+  EXPECT_NEAR(r.r, t.r, 0.05f * t.r) << "the probe shows the emitter as the traced reflection does";
+  EXPECT_LT(r.g + r.b, 0.05f);
+  RenderSettings off = test::settingsFor(Policy::None, 64, 64);
+  off.skyIntensity = 0.0f;
+  off.reflectionProbes = false;
+  Renderer renderer(scene, off);
+  const std::vector<FrameTiming> frames = test::renderStill(renderer, cam, 1);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].skipped[size_t(Pass::ReflectionProbes)], PassSkip::FallbackOff);
+  EXPECT_LT(hdr(renderer.readback(), 32, 32).r, 0.05f) << "without probes the fallback reflects the black sky";
+  test::expectValidationClean(renderer.validationMessages());
 }
 
 // White light through a cube of tinted glass: KHR_materials_volume attenuation over the
@@ -276,10 +277,12 @@ TEST(RtRefractions, FallbackShowsTheObjectBehindAGlassBall) {
   ASSERT_GT(traced.r, 1.5f) << "the tracer sees the emitter through the ball";
   EXPECT_GT(raster.r, 0.7f * traced.r) << "the fallback shows the emitter behind the glass";
   EXPECT_LT(raster.g + raster.b, 0.2f);
-  // Switched off, the glass shows the (black) environment and the pass says why it is left out.
+  // Switched off (and the probes too), the glass shows the (black) sky and the pass says why
+  // it is left out.
   RenderSettings off = test::settingsFor(Policy::None, 64, 64);
   off.skyIntensity = 0.0f;
   off.screenSpaceTransmission = false;
+  off.reflectionProbes = false;
   Renderer renderer(scene, off);
   const std::vector<FrameTiming> t = test::renderStill(renderer, cam, 1);
   ASSERT_EQ(t.size(), 1u);

@@ -98,6 +98,12 @@ render options:
   --no-screen-space-transmission
                         glass falls back to the environment alone, not the opaque frame lit
                         behind it
+  --no-reflection-probes
+                        reflections fall back to the sky alone, not probes captured from the
+                        scene
+  --no-screen-space-reflections
+                        smooth surfaces do not reflect what is on screen (the probes and the
+                        sky alone)
   --strict              refuse a scene the loader would repair (NaN normals, unreadable
                         images, zero-area triangles...; docs/ROBUSTNESS.md)
 )";
@@ -242,6 +248,8 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;
     else if (a == "--no-screen-space-transmission") c.settings.screenSpaceTransmission = false;
+    else if (a == "--no-reflection-probes") c.settings.reflectionProbes = false;
+    else if (a == "--no-screen-space-reflections") c.settings.screenSpaceReflections = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
     else sceneArgument(a, c.scene, " (see raybudget --help)");
   }

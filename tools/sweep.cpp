@@ -35,6 +35,10 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
                         benefit-rates: benefit choosing a ray rate per item
   --no-screen-space-transmission
                         glass falls back to the environment alone (the fallbacks' ablation)
+  --no-reflection-probes
+                        reflections fall back to the sky alone (the fallbacks' ablation)
+  --no-screen-space-reflections
+                        no screen-space reflections (the fallbacks' ablation)
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -267,6 +271,10 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       c.classified = false;
     } else if (a == "--no-screen-space-transmission") {
       c.screenSpaceTransmission = false;
+    } else if (a == "--no-reflection-probes") {
+      c.reflectionProbes = false;
+    } else if (a == "--no-screen-space-reflections") {
+      c.screenSpaceReflections = false;
     } else if (a == "--policies") {
       c.policies.clear();
       for (const std::string& p : splitList(value())) {
@@ -288,6 +296,8 @@ int runSweep(const SweepCommand& c) {
   const Scene scene = loadScene(c.scene);
   RenderSettings s = c.target.settings();
   s.screenSpaceTransmission = c.screenSpaceTransmission;
+  s.reflectionProbes = c.reflectionProbes;
+  s.screenSpaceReflections = c.screenSpaceReflections;
   s.optimalBound = true;
   s.learnTimeScale = !c.priorTimeScale;
   s.policy = Policy::All;

@@ -84,6 +84,23 @@ layout(set = 0, binding = 41) uniform sampler2D behindGlass;
 layout(set = 0, binding = 42, rgba16f) uniform writeonly image2D behindGlassImage;  // mip 0
 bool behindGlassReady() { return frame.exposure.z > 0.5; }
 
+// Reflection probes (include/environment.glsl): a cube per probe, the radiance captured
+// from the probe's centre with a blitted mip chain, and its GGX-prefiltered copy
+// (RB_ENV_MIPS roughness levels, like envMap).
+layout(set = 0, binding = 43) uniform samplerCubeArray reflectionProbes;
+layout(set = 0, binding = 44) uniform samplerCubeArray probeRadiance;
+layout(set = 0, binding = 45, rgba16f) uniform writeonly imageCubeArray probeRadianceImage;  // mip 0
+layout(set = 0, binding = 46, rgba16f) uniform writeonly imageCubeArray reflectionProbeMips[RB_ENV_MIPS];
+
+// Screen-space reflections (ssr.comp): the min-depth pyramid of the G-buffer's depth (level 0
+// the depth itself), the previous frame's HDR image they reproject, and their result per
+// pixel (rgb radiance, a confidence).
+layout(set = 0, binding = 47) uniform sampler2D depthPyramid;
+layout(set = 0, binding = 48, r32f) uniform writeonly image2D depthPyramidLevels[RB_HIZ_LEVELS];
+layout(set = 0, binding = 49) uniform sampler2D previousFrame;
+layout(set = 0, binding = 50, rgba16f) uniform image2D ssrImage;
+bool ssrReady() { return frame.ssr.x > 0.5; }
+
 // The 8x8 tiles covering the screen.
 uint screenTileCount() {
   uvec2 size = frame.sizeLightsFrame.xy;

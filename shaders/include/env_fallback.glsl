@@ -1,13 +1,13 @@
-// The raster fallback for reflections and refractions, per path: the prefiltered environment
-// in the reflected direction (split-sum specular), and through the surface the opaque frame
-// behind it (screen-space transmission, else the environment; Snell, with
+// The raster fallback for reflections and refractions, per path: in the reflected direction
+// the screen-space reflection, else the surroundings (the reflection probe around the
+// surface, else the sky; split-sum specular), and through the surface the opaque frame behind it (screen-space transmission,
+// else the surroundings; Snell, with
 // KHR_materials_volume attenuation over the thickness). The env_fallback pass writes their
 // sum; the trace pass keeps the path it does not trace as this exactly, and measures the
 // path it traces against it.
 #ifndef RB_ENV_FALLBACK_GLSL
 #define RB_ENV_FALLBACK_GLSL
-
-vec3 prefiltered(vec3 dir, float roughness) { return textureLod(envMap, dir, roughness * float(RB_ENV_MIPS - 1)).rgb; }
+#include "include/environment.glsl"
 
 vec3 envSpecularWeight(Surface s, vec3 V) {
   float NoV = clamp(dot(s.normal, V), 1e-4, 1.0);
@@ -15,7 +15,17 @@ vec3 envSpecularWeight(Surface s, vec3 V) {
   return envBrdfApprox(f0, s.roughness, NoV);
 }
 
-vec3 envReflection(Surface s, vec3 V) { return prefiltered(reflect(-V, s.normal), s.roughness) * envSpecularWeight(s, V); }
+// The reflection at `pixel`: the screen-space reflection where it found the reflected surface
+// (by its confidence), else the surroundings. A pixel of -1 (the opaque frame behind glass,
+// whose surfaces the screen-space pass did not see) takes the surroundings alone.
+vec3 envReflection(Surface s, vec3 V, ivec2 pixel) {
+  vec3 incoming = surroundings(s.position, reflect(-V, s.normal), s.roughness);
+  if (pixel.x >= 0 && ssrReady() && s.roughness < frame.ssr.y) {
+    vec4 screen = imageLoad(ssrImage, pixel);
+    incoming = mix(incoming, screen.rgb, screen.a);
+  }
+  return incoming * envSpecularWeight(s, V);
+}
 
 // glTF's thickness is in the mesh's space, so the node's transform scales it: the faces of a
 // slab of local thickness t along the local normal lie t·|Mᵀn| apart for the world normal n.
@@ -25,7 +35,7 @@ float worldThickness(Surface s, float thickness) {
 
 // What a transmissive surface shows behind it, as Filament and three.js do it: the opaque
 // frame (lit before the transmissive surfaces were drawn) where the ray leaves the volume,
-// projected to the screen, blurred by a mip from roughness and IOR; the environment in the
+// projected to the screen, blurred by a mip from roughness and IOR; the surroundings in the
 // ray's direction where that point is off the screen or the opaque frame there lies in front
 // of the surface.
 vec3 behindSurface(Surface s, vec3 exitPoint, vec3 exitDir) {
@@ -41,7 +51,7 @@ vec3 behindSurface(Surface s, vec3 exitPoint, vec3 exitDir) {
       }
     }
   }
-  return prefiltered(exitDir, s.roughness);
+  return surroundings(exitPoint, exitDir, s.roughness);
 }
 
 // Zero for opaque surfaces.

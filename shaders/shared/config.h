@@ -59,4 +59,18 @@
 // GGX importance samples per texel when prefiltering the environment.
 #define RB_ENV_PREFILTER_SAMPLES 64
 
+// Reflection probes: at most this many (authored ones; else one over the scene's bounds),
+// each a cube of RB_ENV_SIZE texels per side and RB_ENV_MIPS prefiltered levels.
+#define RB_MAX_PROBES 8
+#define RB_NO_PROBE 0xFFFFFFFFu
+// The captured radiance keeps a full mip chain (to 1x1 per face: the probe's mean alpha).
+#define RB_PROBE_RADIANCE_MIPS 8
+// A probe is used where at least this share of its directions see the outside of surfaces
+// (less: its centre is inside a closed object, and the sky stands in for it).
+#define RB_PROBE_MIN_OUTSIDE 0.99
+// Screen-space reflections: surfaces up to this roughness march their mirror ray (fading out
+// from 0.6 of it), through a min-depth pyramid of at most RB_HIZ_LEVELS levels (16384 pixels).
+#define RB_SSR_MAX_ROUGHNESS 0.4
+#define RB_HIZ_LEVELS 15
+
 #endif

@@ -120,6 +120,15 @@ Mesh smallAndLargeTriangles(int perAxis, int large) {
   return m;
 }
 
+// A double-sided black emitter of `radiance`: what mirrors and glass show in tests.
+Material emitter(const glm::vec3& radiance) {
+  Material m;
+  m.baseColorFactor = glm::vec4(0, 0, 0, 1);
+  m.emissive = radiance;
+  m.doubleSided = true;
+  return m;
+}
+
 Material tintedGlass() {
   Material glass;
   glass.metallic = 0.0f;

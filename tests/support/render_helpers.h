@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
 #include "raybudget/raybudget.h"
@@ -12,6 +13,12 @@
 #include "vk/context.h"
 
 namespace raybudget::test {
+
+// The HDR frame's radiance at pixel (x, y).
+inline glm::vec3 hdr(const FrameImages& img, uint32_t x, uint32_t y) {
+  const size_t i = (size_t(y) * img.width + x) * 4;
+  return {glm::unpackHalf1x16(img.hdrRgba16[i]), glm::unpackHalf1x16(img.hdrRgba16[i + 1]), glm::unpackHalf1x16(img.hdrRgba16[i + 2])};
+}
 
 // The CPU references checked every frame (raybudget/testing.h).
 inline const testing::Checks kCheckSelection{true};

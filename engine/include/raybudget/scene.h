@@ -115,6 +115,18 @@ struct Light {
   float outerConeAngle = 0.7853982f;
 };
 
+// A reflection probe: a cube map of the scene captured from `center`, which the raster
+// fallback reflects for the points inside its box, with parallax correction against the
+// box's walls. Authored on a glTF node as extras.raybudget.reflectionProbe = true: the
+// node's world transform maps the cube [-1, 1]^3 to the box (its translation is the centre).
+inline constexpr size_t kMaxReflectionProbes = 8;
+struct ReflectionProbe {
+  std::string name;
+  glm::vec3 center{0.0f};
+  glm::vec3 boxMin{0.0f};
+  glm::vec3 boxMax{0.0f};
+};
+
 struct SceneStats {
   size_t droppedDegenerateTriangles = 0;
   size_t skippedPointLinePrimitives = 0;
@@ -130,6 +142,7 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Object> objects;
   std::vector<Light> lights;
+  std::vector<ReflectionProbe> reflectionProbes;  // authored, at most kMaxReflectionProbes
   std::optional<Camera> camera;  // the glTF camera, when the scene has one
   bool usesDefaultSun = false;   // no KHR_lights_punctual light: the default sun was added
   glm::vec3 boundsMin{0.0f};
@@ -170,6 +183,13 @@ Scene inRenderSpace(const Scene& scene, const glm::vec3& origin);
 // translation alone moves: near the origin it subtracts exactly, Sterbenz).
 Camera inRenderSpace(const Camera& camera, const glm::vec3& origin);
 glm::mat4 inRenderSpace(const glm::mat4& transform, const glm::vec3& origin);
+
+// The probes the fallback reflects: the authored ones, else one at the centre of the
+// scene's bounds with the bounds as its box where the scene has surroundings: at least two
+// objects, one spanning 90% of the bounds along two axes (a floor, a wall), and the centre
+// inside no model's bounding box (one covering under 90% of the scene's). Otherwise none:
+// the sky stands in.
+std::vector<ReflectionProbe> reflectionProbesOf(const Scene& scene);
 
 // The camera to render with: the scene's own, else one framing its bounds.
 Camera defaultCamera(const Scene& scene, float aspect);

@@ -82,6 +82,12 @@ struct RenderSettings {
   uint32_t shadowMapSize = 1024;   // directional/spot layers; point-light cube faces get half
   // Glass shows the opaque frame lit behind it (Pass::BehindGlass); off: the environment alone.
   bool screenSpaceTransmission = true;
+  // Reflections and what glass shows off screen come from reflection probes captured from
+  // the scene (Pass::ReflectionProbes); off: the sky alone.
+  bool reflectionProbes = true;
+  // Smooth surfaces reflect what is on screen first (Pass::ScreenSpaceReflections, from the
+  // previous frame's image); off: the probes and the sky alone.
+  bool screenSpaceReflections = true;
   float exposure = 1.0f;
   float skyIntensity = 0.3f;       // sky radiance scale (ambient, reflections, background)
   std::string environmentMap;      // equirectangular OpenEXR replacing the procedural sky
@@ -128,6 +134,8 @@ enum class Pass : uint32_t {
   TraceEffects,
   Compose,
   BehindGlass,  // the opaque frame lit and mip-mapped for glass to show, then the transmissive draws
+  ReflectionProbes,  // cube maps captured from the scene for the reflection fallback
+  ScreenSpaceReflections,  // the depth pyramid and each smooth surface's mirror ray marched through it
   Count
 };
 inline constexpr size_t kPassCount = size_t(Pass::Count);
@@ -148,7 +156,12 @@ enum class PassSkip : uint8_t {
   ShadowMapsCurrent,               // shadow maps: no light's casters moved since they were rendered
   NoTransmissionInView,            // behind glass: no transmissive surface in view
   EveryPixelTracesRefractions,     // behind glass: `all` at full rate traces every transmissive pixel
-  FallbackOff,                     // behind glass: RenderSettings::screenSpaceTransmission is off
+  FallbackOff,                     // behind glass, reflection probes: switched off in RenderSettings
+  ProbesCurrent,                   // reflection probes: nothing inside their boxes moved since they were captured
+  NoReflectionProbe,               // reflection probes: none authored, and no surroundings to capture (reflectionProbesOf)
+  NoPreviousFrame,                 // screen-space reflections: the first frame has no earlier image to reflect
+  EveryPixelTracesReflections,     // screen-space reflections: `all` at full rate traces every smooth pixel's reflection
+  NoSmoothMaterial,                // screen-space reflections: no material smooth enough for them
 };
 const char* passSkipText(PassSkip skip);
 
@@ -159,6 +172,7 @@ struct FrameTiming {
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
   uint32_t shadowMapViews = 0;  // shadow-map layers and cube faces rendered (0: every map was current)
   uint32_t shadowMapDraws = 0;  // draw calls into them (the casters inside each view)
+  uint32_t probesCaptured = 0;  // reflection probes captured (0: every probe was current)
   // Budgeted policies: the stage budget T, the part of it the selection got for the
   // candidates' work (T less the stage's learned fixed cost: coverage, select, the trace
   // passes' own; divided by the headroom of RenderSettings::budgetConfidence), the cost model's prediction for the trace passes (their fixed cost plus

@@ -16,8 +16,10 @@
 #include "passes/environment.h"
 #include "passes/frame_targets.h"
 #include "passes/gbuffer.h"
+#include "passes/reflection_probes.h"
 #include "passes/scene_gpu.h"
 #include "passes/screen_pass.h"
+#include "passes/screen_reflections.h"
 #include "passes/shadow_maps.h"
 #include "passes/trace_pass.h"
 #include "raybudget/core.h"
@@ -47,6 +49,8 @@ struct Context::Impl {
     std::array<PassSkip, kPassCount> skipped{};  // why each pass not recorded was left out
     double tlasRebuildMs = 0.0;
     passes::ShadowMapPass::Recorded shadowMapsRecorded;
+    uint32_t probesCaptured = 0;
+    PassSkip ssr = PassSkip::NoPreviousFrame;  // None: smooth surfaces reflect what is on screen
     PassSkip behindGlass = PassSkip::NoTransmissionInView;  // None: glass shows the opaque frame lit behind it
     glm::uvec4 behindGlassRect{0};                          // the pixels lit for it
     vk::Buffer updateStaging;  // moved objects: new TLAS nodes, instances and object records
@@ -66,6 +70,11 @@ struct Context::Impl {
   passes::GBufferPass gbuffer;
   std::optional<passes::ShadowMapPass> shadowMaps;  // only when a light has a shadow map
   passes::EnvironmentPass environment;
+  passes::ReflectionProbePass probes;
+  passes::ScreenReflectionPass screenReflections;
+  bool ssrUseful;      // a material is smooth enough for screen-space reflections
+  float ssrReach;      // their rays' length: the diagonal of the scene's bounds
+  std::optional<glm::mat4> previousViewProj;  // the last recorded frame's (none before the first)
   passes::ScreenPass lighting;
   passes::ScreenPass envFallback;
   passes::ScreenPass compose;
@@ -86,13 +95,18 @@ struct Context::Impl {
         sunDirection(sunOf(s)),
         ctx(host),
         scene(passes::uploadScene(ctx, s, rs)),
-        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount)),
+        targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount,
+                                           uint32_t(raybudget::reflectionProbesOf(s).size()))),
         samplers(passes::createSamplers(ctx)),
         layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
         timestamps(ctx, kFramesInFlight, kPassCount),
         selection(ctx, layouts, s, rs, kFramesInFlight, checks.selectionAgainstCpu),
         gbuffer(ctx, layouts),
         environment(ctx, layouts),
+        probes(ctx, layouts, raybudget::reflectionProbesOf(s), scene.tracer->shader(passes::TraceShader::ReflectionProbe)),
+        screenReflections(ctx, layouts),
+        ssrUseful(raybudget::sceneEffects(s, RB_SSR_MAX_ROUGHNESS).reflections),
+        ssrReach(std::max(glm::length(s.boundsMax - s.boundsMin), 1e-3f)),
         lighting(ctx, layouts, kSpirv_lighting_comp),
         envFallback(ctx, layouts, kSpirv_env_fallback_comp),
         compose(ctx, layouts, kSpirv_compose_comp),
@@ -113,6 +127,8 @@ struct Context::Impl {
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       passes::ShadowMapPass::initialize(cmd, targets);
+      passes::ReflectionProbePass::initialize(cmd, targets);
+      passes::ScreenReflectionPass::initialize(cmd, targets);
       vk::imageBarrier(cmd, targets.behindGlass, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
@@ -132,6 +148,7 @@ struct Context::Impl {
     t.tlasRebuildMs = slot.tlasRebuildMs;
     t.shadowMapViews = slot.shadowMapsRecorded.views;
     t.shadowMapDraws = slot.shadowMapsRecorded.draws;
+    t.probesCaptured = slot.probesCaptured;
     t.skipped = slot.skipped;
     const uint32_t s = uint32_t(&slot - slots);
     const auto ms = timestamps.read(s);
@@ -153,6 +170,9 @@ struct Context::Impl {
     u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, slot.behindGlass == PassSkip::None ? 1.0f : 0.0f, 0.0f);
     u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
                               itemFlags() | (reducedRates() ? RB_RT_RATES : 0u));
+    probes.writeUniforms(u, settings.reflectionProbes);
+    u.previousViewProj = previousViewProj.value_or(u.viewProj);
+    u.ssr = glm::vec4(slot.ssr == PassSkip::None ? 1.0f : 0.0f, RB_SSR_MAX_ROUGHNESS, ssrReach, 0.0f);
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 
@@ -198,6 +218,17 @@ struct Context::Impl {
     return PassSkip::None;
   }
 
+  // Why smooth surfaces do not reflect what is on screen this frame (PassSkip::None: they do).
+  PassSkip ssrSkip() const {
+    if (!settings.screenSpaceReflections) return PassSkip::FallbackOff;
+    if (!ssrUseful) return PassSkip::NoSmoothMaterial;
+    if ((tracedEffects() & RB_RT_REFLECTIONS) && settings.policy == Policy::All && !reducedRates() &&
+        settings.rayTracing.maxRoughness >= RB_SSR_MAX_ROUGHNESS)
+      return PassSkip::EveryPixelTracesReflections;
+    if (!previousViewProj) return PassSkip::NoPreviousFrame;
+    return PassSkip::None;
+  }
+
   // Whether selected items are traced at a reduced rate (the policies that select items).
   bool reducedRates() const {
     const Policy p = settings.policy;
@@ -223,14 +254,17 @@ struct Context::Impl {
   bool native() const { return scene.tracer->kind() == Tracer::Native; }
 
   // The object records for the moved objects' new transforms (and their culling spheres);
-  // the shadow maps that see a moved object before or after are rendered again.
+  // the shadow maps and reflection probes that see a moved object before or after are
+  // rendered again.
   std::vector<gpu::GpuObject> refreshObjectRecords() {
     std::vector<gpu::GpuObject> objects;
     for (const Object& o : scene.shell.objects) objects.push_back(passes::gpuObject(scene, o));
     for (size_t i = 0; i < objects.size(); ++i) {
       const glm::vec4 before = scene.objectSpheres[i];
       scene.objectSpheres[i] = objects[i].boundsCenterRadius;
-      if (shadowMaps && before != scene.objectSpheres[i]) shadowMaps->objectMoved(scene.shadows, before, scene.objectSpheres[i]);
+      if (before == scene.objectSpheres[i]) continue;
+      if (shadowMaps) shadowMaps->objectMoved(scene.shadows, before, scene.objectSpheres[i]);
+      probes.objectMoved(before, scene.objectSpheres[i]);
     }
     return objects;
   }
@@ -327,7 +361,20 @@ struct Context::Impl {
         [&] { slot.shadowMapsRecorded = shadowMaps->record(fc); });
     run(Pass::Environment, environmentReady ? PassSkip::EnvironmentReady : PassSkip::None, [&] { environment.record(fc); });
     environmentReady = true;
+    // The probes are shaded with the environment and the traced shadows of their own rays.
+    slot.probesCaptured = 0;
+    run(Pass::ReflectionProbes,
+        !settings.reflectionProbes   ? PassSkip::FallbackOff
+        : probes.probes().empty()    ? PassSkip::NoReflectionProbe
+        : !probes.anyStale()         ? PassSkip::ProbesCurrent
+                                     : PassSkip::None,
+        [&] { slot.probesCaptured = probes.record(fc); });
     run(Pass::BehindGlass, slot.behindGlass, [&] { recordBehindGlass(fc, slot.behindGlassRect); });
+    // After the transmissive draws: the reflections see the G-buffer the frame shows.
+    run(Pass::ScreenSpaceReflections, slot.ssr, [&] {
+      screenReflections.record(fc);
+      computeToCompute(cmd);
+    });
     // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
     const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
     const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing : PassSkip::NoEffectInScene;
@@ -374,8 +421,10 @@ struct Context::Impl {
     const float aspect = float(settings.width) / float(settings.height);
     const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
     slot.behindGlass = behindGlassSkip(host != nullptr, viewProj, slot.behindGlassRect);
+    slot.ssr = ssrSkip();
     writeUniforms(slot, camera);
     recordCommands(slot, cmd, viewProj, host != nullptr);
+    previousViewProj = viewProj;
     slot.recorded = true;
     slot.frame = frameIndex++;
   }
@@ -511,6 +560,8 @@ std::vector<std::string> Context::builtPipelines() const {
   const Impl& r = *impl_;
   std::vector<std::string> out = {"gbuffer", "coverage", "select", "environment", "env_fallback", "lighting", "compose"};
   if (r.shadowMaps) out.push_back("shadow_maps");
+  if (r.probes.built()) out.push_back("reflection_probes");
+  if (r.screenReflections.built()) out.push_back("ssr");
   if (r.traceShadows.builtPlain()) out.push_back("trace_shadows");
   if (r.traceShadows.builtFilling()) out.push_back("trace_shadows+fill");
   if (r.traceEffects.builtPlain()) out.push_back("trace_effects");

@@ -77,6 +77,11 @@ const char* passSkipText(PassSkip skip) {
     case PassSkip::NoTransmissionInView: return "no transmissive surface in view";
     case PassSkip::EveryPixelTracesRefractions: return "every transmissive pixel traces its refractions";
     case PassSkip::FallbackOff: return "the fallback is switched off";
+    case PassSkip::ProbesCurrent: return "the probes are current: nothing inside their boxes moved";
+    case PassSkip::NoReflectionProbe: return "no probe: none authored, and the scene has no surroundings to capture (a model, objects with nothing spanning them)";
+    case PassSkip::NoPreviousFrame: return "no earlier frame to reflect";
+    case PassSkip::EveryPixelTracesReflections: return "every smooth pixel traces its reflection";
+    case PassSkip::NoSmoothMaterial: return "no material smooth enough for screen-space reflections";
   }
   return "?";
 }
@@ -94,6 +99,8 @@ const char* passName(Pass pass) {
     case Pass::Lighting: return "lighting";
     case Pass::Compose: return "compose";
     case Pass::BehindGlass: return "behind_glass";
+    case Pass::ReflectionProbes: return "reflection_probes";
+    case Pass::ScreenSpaceReflections: return "ssr";
     case Pass::Count: break;
   }
   return "?";

@@ -49,7 +49,15 @@ enum Binding : uint32_t {
   kTracedMask = 40,
   kBehindGlass = 41,
   kBehindGlassImage = 42,
-  kBindingCount = 43,
+  kReflectionProbes = 43,
+  kProbeRadiance = 44,
+  kProbeRadianceImage = 45,
+  kReflectionProbeMips = 46,
+  kDepthPyramid = 47,
+  kDepthPyramidLevels = 48,
+  kPreviousFrame = 49,
+  kSsrImage = 50,
+  kBindingCount = 51,
 };
 
 }  // namespace raybudget::passes

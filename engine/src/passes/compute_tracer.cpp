@@ -10,6 +10,7 @@
 #include "passes/bindings.h"
 #include "passes/bvh_buffers.h"
 #include "passes/scene_tracer.h"
+#include "probe_capture_comp.h"
 #include "rt_effects_comp.h"
 #include "rt_shadows_comp.h"
 #include "shared/config.h"
@@ -35,7 +36,12 @@ class ComputeTracer final : public SceneTracer {
   Tracer kind() const override { return Tracer::Compute; }
   AccelStats stats() const override { return stats_; }
   vk::Spirv shader(TraceShader which) const override {
-    return which == TraceShader::Shadows ? vk::Spirv(kSpirv_rt_shadows_comp) : vk::Spirv(kSpirv_rt_effects_comp);
+    switch (which) {
+      case TraceShader::Shadows: return vk::Spirv(kSpirv_rt_shadows_comp);
+      case TraceShader::Effects: return vk::Spirv(kSpirv_rt_effects_comp);
+      case TraceShader::ReflectionProbe: break;
+    }
+    return vk::Spirv(kSpirv_probe_capture_comp);
   }
 
   void writeBindings(VkDevice device, VkDescriptorSet set, std::span<const uint32_t> only) const override {

@@ -24,9 +24,11 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
   if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition || binding == kShadowMapDepths ||
-      binding == kPointShadowDepths || binding == kBehindGlass)
+      binding == kPointShadowDepths || binding == kBehindGlass || binding == kReflectionProbes || binding == kProbeRadiance ||
+      binding == kDepthPyramid || binding == kPreviousFrame)
     return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
-  if (binding == kEnvStorage) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
+  if (binding == kEnvStorage || binding == kReflectionProbeMips) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
+  if (binding == kDepthPyramidLevels) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_HIZ_LEVELS};
   if (binding == kBvhNodes || binding == kBvhTriangles) return {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1};
   if (binding == kBvhInstances || binding == kIndices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding >= kCoverage && binding <= kItemCosts) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
@@ -151,6 +153,23 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   const VkDescriptorImageInfo behind[] = {{samplers.linear, t.behindGlass.view, ro}, {VK_NULL_HANDLE, t.behindGlassMip0, g}};
   write(kBehindGlass, 1, nullptr, &behind[0]);
   write(kBehindGlassImage, 1, nullptr, &behind[1]);
+  const VkDescriptorImageInfo probes[] = {{samplers.linear, t.reflectionProbes.view, ro}, {samplers.linear, t.probeRadiance.view, ro},
+                                          {VK_NULL_HANDLE, t.probeRadianceMip0, g}};
+  write(kReflectionProbes, 1, nullptr, &probes[0]);
+  write(kProbeRadiance, 1, nullptr, &probes[1]);
+  write(kProbeRadianceImage, 1, nullptr, &probes[2]);
+  std::vector<VkDescriptorImageInfo> probeMips;
+  for (const auto& v : t.reflectionProbeMips) probeMips.push_back({VK_NULL_HANDLE, v, g});
+  write(kReflectionProbeMips, uint32_t(probeMips.size()), nullptr, probeMips.data());
+  // The pyramid and the previous frame stay in GENERAL: written and read in the same frame.
+  const VkDescriptorImageInfo ssr[] = {{samplers.nearest, t.depthPyramid.view, g}, {samplers.linear, t.hdr.view, g}, {VK_NULL_HANDLE, t.ssr.view, g}};
+  write(kDepthPyramid, 1, nullptr, &ssr[0]);
+  write(kPreviousFrame, 1, nullptr, &ssr[1]);
+  write(kSsrImage, 1, nullptr, &ssr[2]);
+  std::vector<VkDescriptorImageInfo> levels;
+  for (uint32_t l = 0; l < RB_HIZ_LEVELS; ++l)  // past the last level: the last one again (never written)
+    levels.push_back({VK_NULL_HANDLE, t.depthPyramidLevels[std::min<size_t>(l, t.depthPyramidLevels.size() - 1)], g});
+  write(kDepthPyramidLevels, uint32_t(levels.size()), nullptr, levels.data());
   // Only the set's own bindings: a pass's layout holds those its shaders use.
   std::erase_if(writes, [&](const VkWriteDescriptorSet& w) { return !std::binary_search(only.begin(), only.end(), w.dstBinding); });
   vkUpdateDescriptorSets(ctx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);

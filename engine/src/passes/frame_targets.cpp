@@ -29,7 +29,7 @@ vk::Image image2d(const vk::Context& ctx, VkFormat format, uint32_t w, uint32_t 
 }  // namespace
 
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount) {
+                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount, uint32_t probeCount) {
   FrameTargets t;
   t.width = width;
   t.height = height;
@@ -48,7 +48,11 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.position = image2d(ctx, kPositionFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   t.direct = image2d(ctx, kHdrFormat, width, height, storage);
   t.indirect = image2d(ctx, kHdrFormat, width, height, storage);
-  t.hdr = image2d(ctx, kHdrFormat, width, height, storage);
+  t.hdr = image2d(ctx, kHdrFormat, width, height, storage | VK_IMAGE_USAGE_SAMPLED_BIT);  // sampled: the next frame's reflections
+  t.ssr = image2d(ctx, kHdrFormat, width, height, storage);
+  const uint32_t levels = std::min<uint32_t>(uint32_t(std::floor(std::log2(double(std::max(width, height))))) + 1, RB_HIZ_LEVELS);
+  t.depthPyramid = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 1, false, levels);
+  for (uint32_t l = 0; l < levels; ++l) t.depthPyramidLevels.push_back(vk::createView(ctx, t.depthPyramid, VK_IMAGE_VIEW_TYPE_2D, l, 1, 0, 1));
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
@@ -85,6 +89,19 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.skyStorageView = vk::createView(ctx, t.sky, VK_IMAGE_VIEW_TYPE_CUBE, 0, 1, 0, 6);
   t.env = image2d(ctx, kHdrFormat, RB_ENV_SIZE, RB_ENV_SIZE, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 6, true, RB_ENV_MIPS);
   for (uint32_t m = 0; m < RB_ENV_MIPS; ++m) t.envMipViews.push_back(vk::createView(ctx, t.env, VK_IMAGE_VIEW_TYPE_CUBE, m, 1, 0, 6));
+
+  // Reflection probes.
+  const uint32_t probeLayers = 6 * std::max(probeCount, 1u);
+  t.probeRadiance = image2d(ctx, kHdrFormat, RB_ENV_SIZE, RB_ENV_SIZE,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                            probeLayers, true, RB_PROBE_RADIANCE_MIPS);
+  t.probeRadiance.view = vk::createView(ctx, t.probeRadiance, VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, 0, RB_PROBE_RADIANCE_MIPS, 0, probeLayers);
+  t.probeRadianceMip0 = vk::createView(ctx, t.probeRadiance, VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, 0, 1, 0, probeLayers);
+  t.reflectionProbes = image2d(ctx, kHdrFormat, RB_ENV_SIZE, RB_ENV_SIZE, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, probeLayers,
+                               true, RB_ENV_MIPS);
+  t.reflectionProbes.view = vk::createView(ctx, t.reflectionProbes, VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, 0, RB_ENV_MIPS, 0, probeLayers);
+  for (uint32_t m = 0; m < RB_ENV_MIPS; ++m)
+    t.reflectionProbeMips.push_back(vk::createView(ctx, t.reflectionProbes, VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, m, 1, 0, probeLayers));
 
   // The HDR environment image as half floats (1x1 black when the procedural sky is used).
   uint32_t ew = 1, eh = 1;

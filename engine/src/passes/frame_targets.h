@@ -43,6 +43,17 @@ struct FrameTargets {
   vk::Image tracedMask;                            // R32_UINT: the RB_RT_* effects traced per pixel
   vk::Image behindGlass;                           // the opaque frame behind transmissive surfaces, half resolution, full mip chain
   vk::Owned<VkImageView> behindGlassMip0;          // its mip 0, written by behind_glass.comp
+  // Reflection probes, cube arrays of 6 layers per probe: the captured radiance with a full
+  // mip chain (its mip 0 written by probe_capture.comp), and its GGX-prefiltered copy.
+  vk::Image probeRadiance;
+  vk::Owned<VkImageView> probeRadianceMip0;
+  vk::Image reflectionProbes;
+  std::vector<vk::Owned<VkImageView>> reflectionProbeMips;  // one cube-array view per mip
+  // Screen-space reflections: the min-depth pyramid (R32F, a mip per level, each with a
+  // storage view) and their result (RGBA16F).
+  vk::Image depthPyramid;
+  std::vector<vk::Owned<VkImageView>> depthPyramidLevels;
+  vk::Image ssr;
   bool hasEnvSource = false;
   uint32_t shadowMapSize = 0, cubeSize = 0;
 
@@ -58,7 +69,8 @@ struct FrameTargets {
 };
 
 // `environmentMap`: an equirectangular OpenEXR path, or empty for the procedural sky.
+// `probeCount`: reflection probes (at least one cube array layer set is made).
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount);
+                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount, uint32_t probeCount);
 
 }  // namespace raybudget::passes

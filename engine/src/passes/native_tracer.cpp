@@ -9,6 +9,7 @@
 #include "passes/bindings.h"
 #include "passes/native_accel.h"
 #include "passes/scene_tracer.h"
+#include "probe_capture_comp_native.h"
 #include "rt_effects_comp_native.h"
 #include "rt_shadows_comp_native.h"
 #include "vk/check.h"
@@ -28,7 +29,12 @@ class NativeTracer final : public SceneTracer {
   Tracer kind() const override { return Tracer::Native; }
   AccelStats stats() const override { return stats_; }
   vk::Spirv shader(TraceShader which) const override {
-    return which == TraceShader::Shadows ? vk::Spirv(kSpirv_rt_shadows_comp_native) : vk::Spirv(kSpirv_rt_effects_comp_native);
+    switch (which) {
+      case TraceShader::Shadows: return vk::Spirv(kSpirv_rt_shadows_comp_native);
+      case TraceShader::Effects: return vk::Spirv(kSpirv_rt_effects_comp_native);
+      case TraceShader::ReflectionProbe: break;
+    }
+    return vk::Spirv(kSpirv_probe_capture_comp_native);
   }
 
   // The TLAS, and the geometry table in both other bindings (the layout keeps one shape).

@@ -16,7 +16,7 @@
 
 namespace raybudget::passes {
 
-enum class TraceShader { Shadows, Effects };
+enum class TraceShader { Shadows, Effects, ReflectionProbe };
 
 class SceneTracer {
  public:

@@ -51,11 +51,15 @@ void saveRayBudgetParams(const std::filesystem::path& source, const std::filesys
   for (const auto& [node, params] : nodeParams) {
     validateRayBudgetParams(params, file + ": node " + std::to_string(node));
     if (!nodes.is_array() || node < 0 || size_t(node) >= nodes.size()) throw Error(file + ": node " + std::to_string(node) + " does not exist");
-    nlohmann::json rb = nlohmann::json::object();
-    if (params.importanceK) rb["K"] = *params.importanceK;
-    if (params.raysQ) rb["Q"] = *params.raysQ;
-    if (params.hysteresisI) rb["I"] = *params.hysteresisI;
-    nodes[size_t(node)]["extras"]["raybudget"] = rb;
+    // K, Q and I are replaced; the object's other keys (reflectionProbe) stay.
+    nlohmann::json& extras = nodes[size_t(node)]["extras"];
+    if (!extras.is_object()) extras = nlohmann::json::object();
+    nlohmann::json& rb = extras["raybudget"];
+    if (!rb.is_object()) rb = nlohmann::json::object();
+    for (const auto& [key, value] : {std::pair{"K", params.importanceK}, {"Q", params.raysQ}, {"I", params.hysteresisI}}) {
+      if (value) rb[key] = *value;
+      else rb.erase(key);
+    }
   }
   std::string out = doc.dump(glb ? -1 : 2);
   if (glb) {

@@ -258,6 +258,36 @@ std::vector<glm::mat4> gpuInstances(const tinygltf::Model& model, const tinygltf
   return out;
 }
 
+// extras.raybudget.reflectionProbe = true: the node's transform maps [-1, 1]^3 to the
+// probe's box; probes past kMaxReflectionProbes are dropped with a warning.
+void addReflectionProbe(const tinygltf::Node& node, const glm::mat4& world, const std::string& at, Scene& scene) {
+  if (!node.extras.IsObject() || !node.extras.Has("raybudget")) return;
+  const tinygltf::Value& rb = node.extras.Get("raybudget");
+  if (!rb.IsObject() || !rb.Has("reflectionProbe")) return;
+  const tinygltf::Value& v = rb.Get("reflectionProbe");
+  if (!v.IsBool()) throw Error(at + ": extras.raybudget.reflectionProbe must be true or false");
+  if (!v.Get<bool>()) return;
+  ReflectionProbe p;
+  p.name = node.name.empty() ? at : node.name;
+  p.center = glm::vec3(world[3]);
+  p.boxMin = glm::vec3(std::numeric_limits<float>::infinity());
+  p.boxMax = -p.boxMin;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec4 c((corner & 1) ? 1.0f : -1.0f, (corner & 2) ? 1.0f : -1.0f, (corner & 4) ? 1.0f : -1.0f, 1.0f);
+    const glm::vec3 w(world * c);
+    p.boxMin = glm::min(p.boxMin, w);
+    p.boxMax = glm::max(p.boxMax, w);
+  }
+  const glm::vec3 extent = p.boxMax - p.boxMin;
+  if (!finiteBounds(p.boxMin, p.boxMax) || extent.x <= 0.0f || extent.y <= 0.0f || extent.z <= 0.0f)
+    throw Error(at + ": the reflection probe's box (the node's transform of [-1, 1]^3) has no volume or is not finite");
+  if (scene.reflectionProbes.size() >= kMaxReflectionProbes) {
+    scene.warnings.push_back(at + ": more than " + std::to_string(kMaxReflectionProbes) + " reflection probes, this one is ignored");
+    return;
+  }
+  scene.reflectionProbes.push_back(p);
+}
+
 void addLight(const tinygltf::Model& model, const tinygltf::Node& node, const glm::mat4& world, const std::string& at, Scene& scene) {
   const auto* ext = extension(node.extensions, "KHR_lights_punctual");
   if (!ext || !ext->Has("light")) return;
@@ -400,6 +430,7 @@ Scene loadAndRepair(const std::filesystem::path& path) {
       }
     }
     addLight(model, node, world, at, scene);
+    addReflectionProbe(node, world, at, scene);
     addCamera(model, node, world, at, scene);
     for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world, item.depth + 1});
   }

@@ -73,6 +73,11 @@ Scene inRenderSpace(const Scene& scene, const glm::vec3& origin) {
     worldBounds(s.meshes[o.mesh], o.transform, o.boundsMin, o.boundsMax);
   }
   for (Light& l : s.lights) l.position -= origin;
+  for (ReflectionProbe& p : s.reflectionProbes) {
+    p.center -= origin;
+    p.boxMin -= origin;
+    p.boxMax -= origin;
+  }
   if (s.camera) s.camera = inRenderSpace(*s.camera, origin);
   updateSceneBounds(s);
   return s;

@@ -1,0 +1,101 @@
+#include "passes/reflection_probes.h"
+
+#include <algorithm>
+
+#include "passes/frame_targets.h"
+#include "probe_prefilter_comp.h"
+#include "shared/config.h"
+#include "vk/pipelines.h"
+
+namespace raybudget::passes {
+namespace {
+
+static_assert((RB_ENV_SIZE >> (RB_PROBE_RADIANCE_MIPS - 1)) == 1, "the captured radiance's last mip is 1x1");
+static_assert(kMaxReflectionProbes == RB_MAX_PROBES);
+
+bool sphereMeetsBox(const glm::vec4& sphere, const ReflectionProbe& p) {
+  const glm::vec3 c(sphere);
+  const glm::vec3 nearest = glm::clamp(c, p.boxMin, p.boxMax);
+  const glm::vec3 d = c - nearest;
+  return glm::dot(d, d) <= sphere.w * sphere.w;
+}
+
+}  // namespace
+
+ReflectionProbePass::ReflectionProbePass(const vk::Context& ctx, PassLayouts& layouts, std::vector<ReflectionProbe> probes, vk::Spirv capture)
+    : ctx_(ctx),
+      layout_(layouts.create({capture, kSpirv_probe_prefilter_comp})),
+      captureShader_(capture),
+      probes_(std::move(probes)),
+      stale_(probes_.size(), true) {}
+
+void ReflectionProbePass::objectMoved(const glm::vec4& before, const glm::vec4& after) {
+  for (size_t i = 0; i < probes_.size(); ++i)
+    if (sphereMeetsBox(before, probes_[i]) || sphereMeetsBox(after, probes_[i])) stale_[i] = true;
+}
+
+bool ReflectionProbePass::anyStale() const { return std::find(stale_.begin(), stale_.end(), true) != stale_.end(); }
+
+void ReflectionProbePass::writeUniforms(gpu::FrameUniforms& u, bool use) const {
+  u.probes = glm::uvec4(use ? uint32_t(probes_.size()) : 0u, 0u, 0u, 0u);
+  for (size_t i = 0; i < probes_.size(); ++i) {
+    u.probeCenter[i] = glm::vec4(probes_[i].center, 1.0f);
+    u.probeBoxMin[i] = glm::vec4(probes_[i].boxMin, 0.0f);
+    u.probeBoxMax[i] = glm::vec4(probes_[i].boxMax, 0.0f);
+  }
+}
+
+void ReflectionProbePass::initialize(VkCommandBuffer cmd, const FrameTargets& t) {
+  for (const vk::Image* img : {&t.probeRadiance, &t.reflectionProbes})
+    vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+uint32_t ReflectionProbePass::record(const FrameContext& fc) {
+  if (!capture_) {
+    capture_ = vk::createComputePipeline(ctx_, layout_.pipelineLayout, captureShader_);
+    prefilter_ = vk::createComputePipeline(ctx_, layout_.pipelineLayout, kSpirv_probe_prefilter_comp);
+  }
+  const FrameTargets& t = fc.targets;
+  const uint32_t groups = vk::groupsFor(RB_ENV_SIZE, RB_TILE_SIZE);
+  constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  // 1. The stale probes' radiance into mip 0 (the other layers keep theirs), then a blitted
+  // mip chain down to 1x1.
+  vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, capture_);
+  layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  uint32_t captured = 0;
+  for (uint32_t p = 0; p < probes_.size(); ++p) {
+    if (!stale_[p]) continue;
+    gpu::DrawPush push{};
+    push.objectMaterial.x = p;
+    layout_.push(fc, push);
+    vkCmdDispatch(fc.cmd, groups, groups, 6);
+    ++captured;
+  }
+  vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                   VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  vk::generateMips(fc.cmd, t.probeRadiance);
+
+  // 2. GGX prefilter of the captured probes, one dispatch per probe and roughness level.
+  vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prefilter_);
+  for (uint32_t p = 0; p < probes_.size(); ++p) {
+    if (!stale_[p]) continue;
+    for (uint32_t mip = 0; mip < RB_ENV_MIPS; ++mip) {
+      gpu::DrawPush push{};
+      push.objectMaterial = glm::uvec4(mip, p, 0u, 0u);
+      layout_.push(fc, push);
+      const uint32_t g = vk::groupsFor(std::max(RB_ENV_SIZE >> mip, 1), RB_TILE_SIZE);
+      vkCmdDispatch(fc.cmd, g, g, 6);
+    }
+    stale_[p] = false;
+  }
+  vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  return captured;
+}
+
+}  // namespace raybudget::passes

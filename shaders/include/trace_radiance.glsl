@@ -1,0 +1,67 @@
+// Radiance along a ray, by closest-hit tracing: what a traced reflection or refraction
+// shows, and what a reflection probe captures (probe_capture.comp). The includer includes
+// rt_common.glsl and environment.glsl.
+#ifndef RB_TRACE_RADIANCE_GLSL
+#define RB_TRACE_RADIANCE_GLSL
+
+// Whether traceRadiance's first hit was the back of a one-sided surface: the ray started
+// inside a closed object.
+bool rbFirstHitInside = false;
+
+float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
+
+// Closest hit along the ray, alpha masks respected.
+bool traceClosest(vec3 origin, vec3 dir, out RayQuery q, inout uint work) {
+  ++rbRays;
+  rqInitialize(q, 0u, 0xFFu, origin, 0.0, dir, 1e30);
+  while (rqProceed(q))
+    if (candidateIsOpaque(q)) rqConfirm(q);
+  uvec2 w = rqWork(q);
+  work += w.x + w.y;
+  return rqCommittedHit(q);
+}
+
+// Radiance arriving at `origin` from direction `dir`: shades the first hit and follows
+// mirror bounces (up to `depth`) and thin transmissive walls (straight on, not counted as
+// bounces: a thin glass shell has a front and a back wall), RB_RT_MAX_DEPTH events in all.
+vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
+  vec3 throughput = vec3(1.0), result = vec3(0.0);
+  uint bounces = 0u;
+  for (int event = 0; event < 2 * RB_RT_MAX_DEPTH; ++event) {
+    RayQuery q;
+    if (!traceClosest(origin, dir, q, work)) return result + throughput * textureLod(envMap, dir, 0.0).rgb;
+    HitSurface h = hitSurface(rqCommittedObject(q), rqCommittedPrimitive(q), rqCommittedBarycentrics(q), rqCommittedMaterial(q), dir);
+    uint flags = floatBitsToUint(materials[h.material].normalScaleThicknessFlags.z);
+    if (event == 0 && !h.frontFace && (flags & RB_MATERIAL_DOUBLE_SIDED) == 0u) rbFirstHitInside = true;
+    vec3 V = -dir;
+    result += throughput * shadeHit(h, V, work);
+    float NoV = clamp(dot(h.normal, V), 1e-4, 1.0);
+    vec3 f0 = mix(vec3(f0FromIor(h.ior)), h.baseColor.rgb, h.metallic);
+    vec3 weight = envBrdfApprox(f0, h.roughness, NoV);
+    vec3 R = reflect(dir, h.normal);
+    float transmission = h.transmission * (1.0 - h.metallic);
+    bool thinWall = transmission > 0.0 && materials[h.material].normalScaleThicknessFlags.y <= 0.0;
+    if (thinWall) {
+      // The wall's reflection from the environment; the ray goes on through it.
+      result += throughput * prefiltered(R, h.roughness) * weight;
+      throughput *= h.baseColor.rgb * transmission * (vec3(1.0) - weight);
+      origin = offsetRay(h.position, -h.geometricNormal);
+      continue;
+    }
+    if (bounces + 1u < depth && h.roughness <= maxTracedRoughness()) {
+      ++bounces;
+      throughput *= weight;
+      origin = offsetRay(h.position, h.geometricNormal);
+      dir = R;
+      continue;
+    }
+    // Last bounce: the hit's own specular reflection (and, for a volume, what it transmits)
+    // comes from the environment.
+    result += throughput * prefiltered(R, h.roughness) * weight;
+    if (transmission > 0.0) result += throughput * prefiltered(dir, h.roughness) * h.baseColor.rgb * transmission * (vec3(1.0) - weight);
+    return result;
+  }
+  return result;
+}
+
+#endif
