@@ -39,9 +39,7 @@ void imageErrorPerObject(const FrameImages& traced, const FrameImages& fallback,
 // a shadow on a lit plane: one item of each effect with a clear error to remove.
 Scene itemScene() {
   Scene scene;
-  Material mirror;
-  mirror.metallic = 1.0f;
-  mirror.roughness = 0.0f;
+  const Material mirror = test::mirror();
   test::addObject(scene, test::quad(3.0f), glm::translate(glm::mat4(1.0f), glm::vec3(-3.0f, 0.0f, 0.0f)), mirror);
   const Material glass = test::tintedGlass();
   test::addObject(scene, test::subdividedCube(1), glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.5f, 0.0f)), glass);

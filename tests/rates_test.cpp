@@ -21,10 +21,7 @@ namespace {
 // one normal, so depth and normal weights cannot tell their pixels apart: only the object ID.
 Scene twoMirrors() {
   Scene scene;
-  Material mirror;
-  mirror.metallic = 1.0f;
-  mirror.roughness = 0.0f;
-  mirror.baseColorFactor = glm::vec4(1.0f);
+  const Material mirror = test::mirror();
   test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.0f, 0.0f)), mirror);
   test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)), mirror);
   for (int side : {-1, 1}) {

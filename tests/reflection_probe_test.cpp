@@ -23,12 +23,9 @@ struct MirrorAndWall {
   Camera camera;
 
   MirrorAndWall() {
-    Material m;
-    m.metallic = 1.0f;
-    m.roughness = 0.0f;
     const glm::mat4 facingZ = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0));  // +y to +z
     const glm::mat4 facingMinusZ = glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0));
-    test::addObject(scene, test::quad(2.0f), facingZ, m);
+    test::addObject(scene, test::quad(2.0f), facingZ, test::mirror());
     mirror = 0;
     test::addObject(scene, test::quad(6.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 8)) * facingMinusZ,
                     test::emitter(glm::vec3(0.0f, 2.0f, 0.0f)));
@@ -126,10 +123,7 @@ TEST(ReflectionProbes, AreCapturedOnceAndAgainWhenAnObjectInsideTheirBoxMoves) {
 // the box's bounds).
 TEST(ReflectionProbes, AProbeInsideAClosedObjectGivesWayToTheSky) {
   Scene scene;
-  Material floor;
-  floor.metallic = 1.0f;
-  floor.roughness = 0.1f;
-  test::addObject(scene, test::quad(3.0f), glm::mat4(1.0f), floor);
+  test::addObject(scene, test::quad(3.0f), glm::mat4(1.0f), test::mirror(0.1f));
   Material stone;
   stone.metallic = 0.0f;
   stone.baseColorFactor = glm::vec4(0.8f, 0.3f, 0.2f, 1.0f);

@@ -194,10 +194,7 @@ INSTANTIATE_TEST_SUITE_P(Tracers, RtMoved, ::testing::Values(Tracer::Compute, Tr
 // (black) sky alone with the probes switched off.
 TEST(RtReflections, MirrorShowsTheObjectAboveIt) {
   Scene scene;
-  Material mirror;
-  mirror.metallic = 1.0f;
-  mirror.roughness = 0.0f;
-  test::addObject(scene, test::quad(5.0f), glm::mat4(1.0f), mirror);
+  test::addObject(scene, test::quad(5.0f), glm::mat4(1.0f), test::mirror());
   const Material red = emitter(glm::vec3(4.0f, 0.0f, 0.0f));
   test::addObject(scene, test::quad(20.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, 10, 0)), red);  // facing up, seen from below
   const Camera cam = lookingDownFrom(5.0f);

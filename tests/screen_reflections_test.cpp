@@ -16,10 +16,7 @@ using test::hdr;
 // A mirror floor, and on it a green wall with a red stripe facing the camera (emitters).
 Scene floorAndWall() {
   Scene scene;
-  Material mirror;
-  mirror.metallic = 1.0f;
-  mirror.roughness = 0.0f;
-  test::addObject(scene, test::quad(4.0f), glm::mat4(1.0f), mirror);
+  test::addObject(scene, test::quad(4.0f), glm::mat4(1.0f), test::mirror());
   const glm::mat4 facingZ = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0));
   test::addObject(scene, test::quad(2.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 2.0f, -3.0f)) * facingZ,
                   test::emitter(glm::vec3(0.0f, 2.0f, 0.0f)));

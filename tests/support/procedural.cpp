@@ -120,6 +120,14 @@ Mesh smallAndLargeTriangles(int perAxis, int large) {
   return m;
 }
 
+Material mirror(float roughness) {
+  Material m;
+  m.metallic = 1.0f;
+  m.roughness = roughness;
+  m.baseColorFactor = glm::vec4(1.0f);
+  return m;
+}
+
 // A double-sided black emitter of `radiance`: what mirrors and glass show in tests.
 Material emitter(const glm::vec3& radiance) {
   Material m;

@@ -17,6 +17,8 @@ Mesh smallAndLargeTriangles(int perAxis, int large);
 Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform = glm::mat4(1.0f));
 
 // Clear glass with a volume (thickness 1, IOR 1.5) that halves red over one unit of path.
+// A white metal of `roughness` (0: a mirror).
+Material mirror(float roughness = 0.0f);
 // A double-sided black emitter of `radiance`: what mirrors and glass show in tests.
 Material emitter(const glm::vec3& radiance);
 Material tintedGlass();
