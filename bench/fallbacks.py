@@ -3,7 +3,8 @@
 FLIP of `none` against `all` along both camera paths with the sky alone, with each fallback
 switched on alone (screen-space transmission, reflection probes, screen-space reflections)
 and with all of them; then the fallback passes' GPU time per frame of `none` at a larger size.
-Writes OUT/fallbacks.csv, OUT/timings.csv and OUT/fallbacks.md (the sweeps under OUT/raw/).
+Writes OUT/fallbacks.csv, OUT/timings.csv and OUT/fallbacks.md (the sweeps under OUT/raw/);
+what an earlier run into OUT measured is kept but for the scenes measured again.
 
 usage: bench/fallbacks.py [--out DIR] [--scenes FILE...] [--size WxH] [--timing-size WxH]
                           [--frames N] [--warmup N] [--timing-frames N] [--only flip|timings]
@@ -81,9 +82,15 @@ def main(argv):
     out = pathlib.Path(a.out)
     scenes = [pathlib.Path(s) for s in a.scenes] if a.scenes else run.default_scenes(False)
     out.mkdir(parents=True, exist_ok=True)
-    results = [] if a.only != "timings" else [dict(r, flip=float(r["flip"])) for r in run.read_rows(out / "fallbacks.csv")]
-    timings = [] if a.only != "flip" else [dict(r, total=float(r["total"]), **{k: float(r[k]) if r[k] else "" for k in TIMED_PASSES})
-                                           for r in (run.read_rows(out / "timings.csv") if (out / "timings.csv").exists() else [])]
+    # What an earlier run into OUT measured is kept, but for what this run measures again.
+    names = {s.stem for s in scenes}
+    def earlier(name, measured):
+        path = out / name
+        rows = run.read_rows(path) if path.exists() else []
+        return [r for r in rows if not measured or r["scene"] not in names]
+    results = [dict(r, flip=float(r["flip"])) for r in earlier("fallbacks.csv", a.only != "timings")]
+    timings = [dict(r, total=float(r["total"]), **{k: float(r[k]) if r[k] else "" for k in TIMED_PASSES})
+               for r in earlier("timings.csv", a.only != "flip")]
     for scene in scenes:
         name = scene.stem
         for config in CONFIGS if a.only != "timings" else []:

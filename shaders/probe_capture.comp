@@ -12,8 +12,10 @@
 // through every texel of its cube (one invocation per texel, z the face), traced and
 // shaded as a traced reflection's first hit is (trace_radiance.glsl), so that the probe
 // and the rays it stands in for agree where the probe's centre sees what the surface
-// would. Alpha 0 where the ray meets the back of a one-sided surface: the centre is inside
-// a closed object (probe_prefilter.comp).
+// would. Alpha 0 where the ray meets the back of a one-sided surface (the centre is inside a
+// closed object) or a surface nearer than RB_PROBE_MIN_CLEARANCE of the scene's diagonal (the
+// centre is against it, and would show that surface for most of what it stands for); the
+// prefilter counts them (probe_prefilter.comp).
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
 
@@ -24,5 +26,6 @@ void main() {
   vec3 dir = cubeDirection(id.z, id.xy, RB_ENV_SIZE);
   uint work = 0u;
   vec3 radiance = traceRadiance(frame.probeCenter[probe].xyz, dir, 1u, work);
-  imageStore(probeRadianceImage, ivec3(id.xy, probe * 6u + id.z), vec4(radiance, rbFirstHitInside ? 0.0 : 1.0));
+  bool against = rbFirstHitDistance < RB_PROBE_MIN_CLEARANCE * frame.ssr.z;
+  imageStore(probeRadianceImage, ivec3(id.xy, probe * 6u + id.z), vec4(radiance, rbFirstHitInside || against ? 0.0 : 1.0));
 }

@@ -9,9 +9,9 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 
 // Reflection probe push.objectMaterial.y GGX-prefiltered (include/prefilter.glsl) into
 // roughness level push.objectMaterial.x. Alpha: the share of the probe's directions that
-// see the outside of a surface (the capture's alpha averaged by its 1x1 mip), below
-// RB_PROBE_MIN_OUTSIDE when the probe's centre lies inside a closed object; the probe is not
-// used then (include/environment.glsl).
+// see the outside of a surface in the clear (the capture's alpha averaged by its 1x1 mip),
+// below RB_PROBE_MIN_OUTSIDE when the probe's centre lies inside a closed object or against a
+// surface; the probe is not used then (include/environment.glsl).
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {

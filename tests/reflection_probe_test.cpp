@@ -118,9 +118,10 @@ TEST(ReflectionProbes, AreCapturedOnceAndAgainWhenAnObjectInsideTheirBoxMoves) {
 }
 
 // A probe placed inside a closed box sees the box's inner faces (the back of one-sided
-// surfaces), so the fallback keeps the sky: the frame equals one rendered without probes.
-// Without an authored probe none is placed there at all (the default one's centre is inside
-// the box's bounds).
+// surfaces), so the fallback keeps the sky: the frame equals one rendered without probes. So
+// does one placed against the floor, which would show the floor in most directions. Without
+// an authored probe none is placed there at all (the default one's centre is inside the
+// box's bounds).
 TEST(ReflectionProbes, AProbeInsideAClosedObjectGivesWayToTheSky) {
   Scene scene;
   test::addObject(scene, test::quad(3.0f), glm::mat4(1.0f), test::mirror(0.1f));
@@ -144,6 +145,12 @@ TEST(ReflectionProbes, AProbeInsideAClosedObjectGivesWayToTheSky) {
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].probesCaptured, 1u);
   EXPECT_TRUE(withProbe.hdrRgba16 == sky.hdrRgba16) << "the probe from inside the box was used";
+  scene.reflectionProbes[0].center = glm::vec3(2.0f, 0.05f, 2.0f);  // 0.05 above the floor, the diagonal 8.5
+  const FrameImages against = renderOnce(scene, on, cam, &t);
+  EXPECT_EQ(t[0].probesCaptured, 1u);
+  EXPECT_TRUE(against.hdrRgba16 == sky.hdrRgba16) << "the probe against the floor was used";
+  scene.reflectionProbes[0].center = glm::vec3(2.0f, 0.8f, 2.0f);  // in the clear: used
+  EXPECT_FALSE(renderOnce(scene, on, cam).hdrRgba16 == sky.hdrRgba16);
 }
 
 }  // namespace

@@ -4,9 +4,10 @@
 #ifndef RB_TRACE_RADIANCE_GLSL
 #define RB_TRACE_RADIANCE_GLSL
 
-// Whether traceRadiance's first hit was the back of a one-sided surface: the ray started
-// inside a closed object.
+// Whether traceRadiance's first hit was the back of a one-sided surface (the ray started
+// inside a closed object), and how far along the ray it was (1e30: none).
 bool rbFirstHitInside = false;
+float rbFirstHitDistance = 1e30;
 
 float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
 
@@ -32,7 +33,10 @@ vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
     if (!traceClosest(origin, dir, q, work)) return result + throughput * textureLod(envMap, dir, 0.0).rgb;
     HitSurface h = hitSurface(rqCommittedObject(q), rqCommittedPrimitive(q), rqCommittedBarycentrics(q), rqCommittedMaterial(q), dir);
     uint flags = floatBitsToUint(materials[h.material].normalScaleThicknessFlags.z);
-    if (event == 0 && !h.frontFace && (flags & RB_MATERIAL_DOUBLE_SIDED) == 0u) rbFirstHitInside = true;
+    if (event == 0) {
+      rbFirstHitInside = !h.frontFace && (flags & RB_MATERIAL_DOUBLE_SIDED) == 0u;
+      rbFirstHitDistance = rqCommittedT(q) * length(dir);
+    }
     vec3 V = -dir;
     result += throughput * shadeHit(h, V, work);
     float NoV = clamp(dot(h.normal, V), 1e-4, 1.0);

@@ -66,8 +66,10 @@
 // The captured radiance keeps a full mip chain (to 1x1 per face: the probe's mean alpha).
 #define RB_PROBE_RADIANCE_MIPS 8
 // A probe is used where at least this share of its directions see the outside of surfaces
-// (less: its centre is inside a closed object, and the sky stands in for it).
+// (less: its centre is inside a closed object, and the sky stands in for it) ...
 #define RB_PROBE_MIN_OUTSIDE 0.99
+// ... and see no surface nearer than this share of the scene's diagonal.
+#define RB_PROBE_MIN_CLEARANCE 0.025
 // Screen-space reflections: surfaces up to this roughness march their mirror ray (fading out
 // from 0.6 of it), through a min-depth pyramid of at most RB_HIZ_LEVELS levels (16384 pixels).
 #define RB_SSR_MAX_ROUGHNESS 0.4

@@ -67,7 +67,7 @@ struct FrameUniforms {
   vec4 probeBoxMin[RB_MAX_PROBES];  // xyz its box: the surfaces it shows, and the points it serves
   vec4 probeBoxMax[RB_MAX_PROBES];
   mat4 previousViewProj;    // the previous frame's, for reprojecting its image
-  vec4 ssr;                 // x 1 when ssrImage holds this frame's screen-space reflections, y roughness cut-off, z ray length
+  vec4 ssr;                 // x 1 when ssrImage holds this frame's screen-space reflections, y roughness cut-off, z the diagonal of the scene's bounds (their rays' length)
 };
 
 // Push constants for the raster passes and the compute passes, 80 bytes (the guaranteed
