@@ -214,7 +214,7 @@ struct Context::Impl {
     const std::optional<glm::uvec4> r = passes::GBufferPass::transmissiveRect(scene, viewProj, settings.width, settings.height);
     if (!r) return PassSkip::NoTransmissionInView;
     rect = *r;
-    if ((tracedEffects() & RB_RT_REFRACTIONS) && settings.policy == Policy::All && !reducedRates()) return PassSkip::EveryPixelTracesRefractions;
+    if (everyPixelTraces(RB_RT_REFRACTIONS)) return PassSkip::EveryPixelTracesRefractions;
     return PassSkip::None;
   }
 
@@ -222,11 +222,16 @@ struct Context::Impl {
   PassSkip ssrSkip() const {
     if (!settings.screenSpaceReflections) return PassSkip::FallbackOff;
     if (!ssrUseful) return PassSkip::NoSmoothMaterial;
-    if ((tracedEffects() & RB_RT_REFLECTIONS) && settings.policy == Policy::All && !reducedRates() &&
-        settings.rayTracing.maxRoughness >= RB_SSR_MAX_ROUGHNESS)
+    if (everyPixelTraces(RB_RT_REFLECTIONS) && settings.rayTracing.maxRoughness >= RB_SSR_MAX_ROUGHNESS)
       return PassSkip::EveryPixelTracesReflections;
     if (!previousViewProj) return PassSkip::NoPreviousFrame;
     return PassSkip::None;
+  }
+
+  // Whether `all` at full rate traces the effect (an RB_RT_* bit) at every pixel that shows it,
+  // so that no pixel falls back for it.
+  bool everyPixelTraces(uint32_t effect) const {
+    return (tracedEffects() & effect) && settings.policy == Policy::All && !reducedRates();
   }
 
   // Whether selected items are traced at a reduced rate (the policies that select items).
@@ -351,7 +356,7 @@ struct Context::Impl {
     // With a budgeted policy unselected objects keep the shadow maps; at a reduced rate the
     // shadow fill corrects the maps (rt_shadows.comp); the opaque frame behind glass is lit
     // with them.
-    const bool everyPixelTracesShadows = (traced & RB_RT_SHADOWS) && settings.policy == Policy::All && !reducedRates() && !behindGlass;
+    const bool everyPixelTracesShadows = everyPixelTraces(RB_RT_SHADOWS) && !behindGlass;
     slot.shadowMapsRecorded = {};
     run(Pass::ShadowMaps,
         !shadowMaps                ? PassSkip::NoLights

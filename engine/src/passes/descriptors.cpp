@@ -105,8 +105,14 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   const VkDescriptorImageInfo storage[] = {{VK_NULL_HANDLE, t.direct.view, g}, {VK_NULL_HANDLE, t.indirect.view, g},
                                            {VK_NULL_HANDLE, t.hdr.view, g},    {VK_NULL_HANDLE, t.ldr.view, g},
                                            {VK_NULL_HANDLE, t.skyStorageView, g}};
-  std::vector<VkDescriptorImageInfo> envMips;
-  for (const auto& v : t.envMipViews) envMips.push_back({VK_NULL_HANDLE, v, g});
+  // An array binding of per-mip storage views, `count` long: past the last view, the last one
+  // again (never written there).
+  auto storageViews = [&](const std::vector<vk::Owned<VkImageView>>& views, uint32_t count) {
+    std::vector<VkDescriptorImageInfo> infos;
+    for (uint32_t i = 0; i < count; ++i) infos.push_back({VK_NULL_HANDLE, views[std::min<size_t>(i, views.size() - 1)], g});
+    return infos;
+  };
+  const std::vector<VkDescriptorImageInfo> envMips = storageViews(t.envMipViews, RB_ENV_MIPS);
 
   const bool native = scene.tracer->kind() == Tracer::Native;
   std::vector<VkWriteDescriptorSet> writes;
@@ -158,17 +164,14 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   write(kReflectionProbes, 1, nullptr, &probes[0]);
   write(kProbeRadiance, 1, nullptr, &probes[1]);
   write(kProbeRadianceImage, 1, nullptr, &probes[2]);
-  std::vector<VkDescriptorImageInfo> probeMips;
-  for (const auto& v : t.reflectionProbeMips) probeMips.push_back({VK_NULL_HANDLE, v, g});
+  const std::vector<VkDescriptorImageInfo> probeMips = storageViews(t.reflectionProbeMips, RB_ENV_MIPS);
   write(kReflectionProbeMips, uint32_t(probeMips.size()), nullptr, probeMips.data());
   // The pyramid and the previous frame stay in GENERAL: written and read in the same frame.
   const VkDescriptorImageInfo ssr[] = {{samplers.nearest, t.depthPyramid.view, g}, {samplers.linear, t.hdr.view, g}, {VK_NULL_HANDLE, t.ssr.view, g}};
   write(kDepthPyramid, 1, nullptr, &ssr[0]);
   write(kPreviousFrame, 1, nullptr, &ssr[1]);
   write(kSsrImage, 1, nullptr, &ssr[2]);
-  std::vector<VkDescriptorImageInfo> levels;
-  for (uint32_t l = 0; l < RB_HIZ_LEVELS; ++l)  // past the last level: the last one again (never written)
-    levels.push_back({VK_NULL_HANDLE, t.depthPyramidLevels[std::min<size_t>(l, t.depthPyramidLevels.size() - 1)], g});
+  const std::vector<VkDescriptorImageInfo> levels = storageViews(t.depthPyramidLevels, RB_HIZ_LEVELS);
   write(kDepthPyramidLevels, uint32_t(levels.size()), nullptr, levels.data());
   // Only the set's own bindings: a pass's layout holds those its shaders use.
   std::erase_if(writes, [&](const VkWriteDescriptorSet& w) { return !std::binary_search(only.begin(), only.end(), w.dstBinding); });

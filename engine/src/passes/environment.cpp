@@ -8,6 +8,16 @@
 
 namespace raybudget::passes {
 
+void recordPrefilterLevels(const FrameContext& fc, const PassLayout& layout, uint32_t probe) {
+  for (uint32_t mip = 0; mip < RB_ENV_MIPS; ++mip) {
+    gpu::DrawPush push{};
+    push.objectMaterial = glm::uvec4(mip, probe, 0u, 0u);
+    layout.push(fc, push);
+    const uint32_t g = vk::groupsFor(std::max(RB_ENV_SIZE >> mip, 1), RB_TILE_SIZE);
+    vkCmdDispatch(fc.cmd, g, g, 6);
+  }
+}
+
 EnvironmentPass::EnvironmentPass(const vk::Context& ctx, PassLayouts& layouts)
     : layout_(layouts.create({kSpirv_sky_comp, kSpirv_env_prefilter_comp})),
       sky_(vk::createComputePipeline(ctx, layout_.pipelineLayout, kSpirv_sky_comp)),
@@ -34,14 +44,7 @@ void EnvironmentPass::record(const FrameContext& fc) const {
   vk::imageBarrier(fc.cmd, t.env, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prefilter_);
-  for (uint32_t mip = 0; mip < RB_ENV_MIPS; ++mip) {
-    gpu::DrawPush push{};
-    push.objectMaterial.x = mip;
-    layout_.push(fc, push);
-    const uint32_t size = std::max(RB_ENV_SIZE >> mip, 1);
-    const uint32_t g = vk::groupsFor(size, RB_TILE_SIZE);
-    vkCmdDispatch(fc.cmd, g, g, 6);
-  }
+  recordPrefilterLevels(fc, layout_, 0);
   vk::imageBarrier(fc.cmd, t.env, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

@@ -8,6 +8,11 @@
 
 namespace raybudget::passes {
 
+// The bound prefilter pipeline (env_prefilter.comp, probe_prefilter.comp) over every
+// roughness level of RB_ENV_MIPS, one dispatch each: push x the level, y `probe` (the
+// reflection probe; unused for the sky).
+void recordPrefilterLevels(const FrameContext& fc, const PassLayout& layout, uint32_t probe);
+
 class EnvironmentPass {
  public:
   EnvironmentPass(const vk::Context& ctx, PassLayouts& layouts);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "passes/environment.h"
 #include "passes/frame_targets.h"
 #include "probe_prefilter_comp.h"
 #include "shared/config.h"
@@ -84,13 +85,7 @@ uint32_t ReflectionProbePass::record(const FrameContext& fc) {
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prefilter_);
   for (uint32_t p = 0; p < probes_.size(); ++p) {
     if (!stale_[p]) continue;
-    for (uint32_t mip = 0; mip < RB_ENV_MIPS; ++mip) {
-      gpu::DrawPush push{};
-      push.objectMaterial = glm::uvec4(mip, p, 0u, 0u);
-      layout_.push(fc, push);
-      const uint32_t g = vk::groupsFor(std::max(RB_ENV_SIZE >> mip, 1), RB_TILE_SIZE);
-      vkCmdDispatch(fc.cmd, g, g, 6);
-    }
+    recordPrefilterLevels(fc, layout_, p);
     stale_[p] = false;
   }
   vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
