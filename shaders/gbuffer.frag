@@ -16,18 +16,18 @@ layout(location = 3) out vec4 outEmissive;
 layout(location = 4) out uint outObjectId;
 layout(location = 5) out uint outMaterialId;
 layout(location = 6) out vec4 outPosition;
+layout(location = 7) out uvec4 outLayers;
 
+#define RB_SAMPLE_MATERIAL(slot, uv) texture(textures[nonuniformEXT(slot)], uv)
+#include "include/material_layers.glsl"
 #include "include/octahedral.glsl"
 
-vec4 sampleTexture(int index, vec2 uv, vec4 fallback) {
-  return index >= 0 ? texture(textures[nonuniformEXT(index)], uv) : fallback;
-}
-
 // Perturbs N with a tangent-space normal map using a cotangent frame built from screen-space
-// derivatives (Schueler 2013), so meshes need no TANGENT attribute.
-vec3 perturbNormal(vec3 N, vec3 mapped, float scale) {
+// derivatives (Schueler 2013), so meshes need no TANGENT attribute. `uv`: the map's texture
+// coordinates (after its transform).
+vec3 perturbNormal(vec3 N, vec3 mapped, float scale, vec2 uv) {
   vec3 dp1 = dFdx(inWorld), dp2 = dFdy(inWorld);
-  vec2 duv1 = dFdx(inUv), duv2 = dFdy(inUv);
+  vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
   vec3 dp2perp = cross(dp2, N), dp1perp = cross(N, dp1);
   vec3 T = dp2perp * duv1.x + dp1perp * duv2.x;
   vec3 B = dp2perp * duv1.y + dp1perp * duv2.y;
@@ -43,18 +43,28 @@ vec3 perturbNormal(vec3 N, vec3 mapped, float scale) {
 void main() {
   GpuMaterial m = materials[push.objectMaterial.y];
   uint flags = floatBitsToUint(m.normalScaleThicknessFlags.z);
-  vec4 base = m.baseColorFactor * inColor * sampleTexture(m.textures.x, inUv, vec4(1.0));
+  vec4 base = m.baseColorFactor * inColor * sampleMaterial(m.textures.x, inUv, vec4(1.0));
   if ((flags & RB_MATERIAL_ALPHA_MASK) != 0u && base.a < m.emissiveAlphaCutoff.w) discard;
 
   vec3 N = normalize(inNormal);
   // Two-sided lighting faces the viewer; one-sided back faces keep their normal.
   if (!gl_FrontFacing && (flags & RB_MATERIAL_DOUBLE_SIDED) != 0u) N = -N;
-  if (m.textures.z >= 0) N = perturbNormal(N, texture(textures[nonuniformEXT(m.textures.z)], inUv).xyz, m.normalScaleThicknessFlags.x);
+  vec3 surfaceN = N;  // the coat's normal map perturbs the surface's, not the base's map
+  if (m.textures.z >= 0) {
+    vec2 uv = textureUv(m.textures.z, inUv);
+    N = perturbNormal(N, texture(textures[nonuniformEXT(m.textures.z)], uv).xyz, m.normalScaleThicknessFlags.x, uv);
+  }
 
-  vec4 mr = sampleTexture(m.textures.y, inUv, vec4(1.0));
+  vec4 mr = sampleMaterial(m.textures.y, inUv, vec4(1.0));
   float roughness = clamp(m.metallicRoughnessTransmissionIor.y * mr.g, 0.0, 1.0);
   float metallic = clamp(m.metallicRoughnessTransmissionIor.x * mr.b, 0.0, 1.0);
-  vec3 emissive = m.emissiveAlphaCutoff.rgb * sampleTexture(m.textures.w, inUv, vec4(1.0)).rgb;
+  vec3 emissive = m.emissiveAlphaCutoff.rgb * sampleMaterial(m.textures.w, inUv, vec4(1.0)).rgb;
+  Layers layers = materialLayers(m, inUv, N, m.metallicRoughnessTransmissionIor.w, true);
+  layers.clearcoatNormal = surfaceN;
+  if (m.layerTextures.z >= 0) {
+    vec2 uv = textureUv(m.layerTextures.z, inUv);
+    layers.clearcoatNormal = perturbNormal(surfaceN, texture(textures[nonuniformEXT(m.layerTextures.z)], uv).xyz, m.clearcoat.z, uv);
+  }
 
   outNormal = vec4(N, 0.0);
   outBaseMetal = vec4(base.rgb, metallic);
@@ -68,4 +78,5 @@ void main() {
   vec3 ng = normalize(cross(dFdx(inWorld), dFdy(inWorld)));
   if (dot(ng, frame.cameraPositionNear.xyz - inWorld) < 0.0) ng = -ng;
   outPosition = vec4(inWorld, uintBitsToFloat(packSnorm2x16(octEncode(ng))));
+  outLayers = packLayers(layers, customSpecularF0(m));
 }

@@ -8,6 +8,7 @@
 layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/brdf.glsl"
 #include "include/display.glsl"
+#include "include/environment.glsl"
 #include "include/gbuffer.glsl"
 #include "include/item_stats.glsl"
 #include "include/shadows.glsl"
@@ -83,12 +84,17 @@ void main() {
     float masked = rtShadows || probed ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
     float mapped = rtShadows && !measure && masked >= 0.0 ? 1.0 : shadowFromLight(light, s.position, N);
     float visibility = masked >= 0.0 ? masked : mapped;
-    vec3 unshadowed = shadePbr(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.ior) * light.colorIntensity.rgb * attenuation;
+    vec3 unshadowed = shadeLayered(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.layers) * light.colorIntensity.rgb * attenuation;
     color += unshadowed * visibility;
     fallbackColor += unshadowed * mapped;
   }
-  // Diffuse ambient: the roughest prefiltered level approximates irradiance / pi.
-  vec3 ambient = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission);
+  // Diffuse ambient: the roughest prefiltered level approximates irradiance / pi. The layers'
+  // ambient (sheen, and the coat's reflection of its surroundings) is the same whether the
+  // base's reflection is traced or not.
+  vec3 irradiance = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb;
+  vec3 ambient = irradiance * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission) * layerAttenuation(s.layers, V);
+  vec3 coat = s.layers.clearcoat > 0.0 ? surroundings(s.position, coatReflection(s.layers, V), s.layers.clearcoatRoughness) : vec3(0.0);
+  ambient += layersAmbient(s.layers, N, V, irradiance, coat);
   color += ambient;
   imageStore(directImage, pixel, vec4(probed ? fallbackColor + ambient : color, 1.0));
   if (measuringItems() && !behindGlassPass()) {

@@ -6,9 +6,12 @@
 layout(push_constant) uniform PushBlock { DrawPush push; };
 layout(location = 0) in vec2 inUv;
 
+#define RB_SAMPLE_MATERIAL(slot, uv) texture(textures[nonuniformEXT(slot)], uv)
+#include "include/material_layers.glsl"
+
 void main() {
   GpuMaterial m = materials[push.objectMaterial.y];
   float alpha = m.baseColorFactor.a;
-  if (m.textures.x >= 0) alpha *= texture(textures[nonuniformEXT(m.textures.x)], inUv).a;
+  alpha *= sampleMaterial(m.textures.x, inUv, vec4(1.0)).a;
   if (alpha < m.emissiveAlphaCutoff.w) discard;
 }

@@ -13,6 +13,7 @@ layout(set = 0, binding = 2, std430) readonly buffer MaterialBlock { GpuMaterial
 layout(set = 0, binding = 3, std140) uniform LightBlock { GpuLight lights[RB_MAX_LIGHTS]; };
 layout(set = 0, binding = 4, std430) readonly buffer VertexBlock { GpuVertex vertices[]; };
 layout(set = 0, binding = 5) uniform sampler2D textures[];
+layout(set = 0, binding = 51, std430) readonly buffer TextureTransformBlock { GpuTextureTransform textureTransforms[]; };
 
 // G-buffer, read with texelFetch.
 layout(set = 0, binding = 6) uniform sampler2D gDepth;
@@ -22,6 +23,7 @@ layout(set = 0, binding = 9) uniform sampler2D gRoughTransIor;
 layout(set = 0, binding = 10) uniform sampler2D gEmissive;
 layout(set = 0, binding = 11) uniform usampler2D gObjectId;
 layout(set = 0, binding = 12) uniform usampler2D gMaterialId;
+layout(set = 0, binding = 52) uniform usampler2D gLayers;  // material layers (gbuffer.glsl's packLayers)
 
 // Raster fallbacks.
 layout(set = 0, binding = 13) uniform sampler2DArrayShadow shadowMaps;      // directional + spot

@@ -9,10 +9,9 @@
 #define RB_ENV_FALLBACK_GLSL
 #include "include/environment.glsl"
 
-vec3 envSpecularWeight(Surface s, vec3 V) {
-  float NoV = clamp(dot(s.normal, V), 1e-4, 1.0);
-  vec3 f0 = mix(vec3(f0FromIor(s.ior)), s.baseColor, s.metallic);
-  return envBrdfApprox(f0, s.roughness, NoV);
+// The split-sum weights of the surface's reflection and transmission (brdf.glsl).
+void envWeights(Surface s, vec3 N, vec3 V, out vec3 reflectWeight, out vec3 transmitWeight) {
+  layeredEnvWeights(s.baseColor, s.metallic, s.roughness, s.transmission, s.layers, N, V, reflectWeight, transmitWeight);
 }
 
 // The reflection at `pixel`: the screen-space reflection where it found the reflected surface
@@ -24,7 +23,9 @@ vec3 envReflection(Surface s, vec3 V, ivec2 pixel) {
     vec4 screen = imageLoad(ssrImage, pixel);
     incoming = mix(incoming, screen.rgb, screen.a);
   }
-  return incoming * envSpecularWeight(s, V);
+  vec3 reflectWeight, transmitWeight;
+  envWeights(s, s.normal, V, reflectWeight, transmitWeight);
+  return incoming * reflectWeight;
 }
 
 // glTF's thickness is in the mesh's space, so the node's transform scales it: the faces of a
@@ -70,10 +71,12 @@ vec3 envTransmission(Surface s, vec3 V) {
   // wall lets the view ray through.
   float distanceInside = thickness / max(dot(T, -N), 0.05);
   vec3 exitPoint = thickness > 0.0 && dot(T, T) > 0.0 ? s.position + T * distanceInside : s.position;
-  vec3 transmitted = behindSurface(s, exitPoint, dir) * s.baseColor;
+  vec3 transmitted = behindSurface(s, exitPoint, dir);
   if (m.attenuationColorDistance.w > 0.0 && thickness > 0.0)
     transmitted *= pow(m.attenuationColorDistance.rgb, vec3(distanceInside / m.attenuationColorDistance.w));
-  return transmitted * transmission * (vec3(1.0) - envSpecularWeight(s, V));
+  vec3 reflectWeight, transmitWeight;
+  envWeights(s, s.normal, V, reflectWeight, transmitWeight);
+  return transmitted * transmitWeight;  // the base colour, the transmitted share, through the layers
 }
 
 // What a traced path's radiance is weighted by at the surface (rt_effects.comp, and the
@@ -83,10 +86,7 @@ vec3 envTransmission(Surface s, vec3 V) {
 void tracedPathWeights(Surface s, vec3 p, vec3 ng, out vec3 N, out vec3 V, out vec3 specularWeight, out vec3 transmitWeight) {
   V = normalize(frame.cameraPositionNear.xyz - p);
   N = dot(s.normal, ng) < 0.0 ? -s.normal : s.normal;
-  float NoV = clamp(dot(N, V), 1e-4, 1.0);
-  vec3 f0 = mix(vec3(f0FromIor(s.ior)), s.baseColor, s.metallic);
-  specularWeight = envBrdfApprox(f0, s.roughness, NoV);
-  transmitWeight = s.baseColor * s.transmission * (1.0 - s.metallic) * (vec3(1.0) - specularWeight);
+  envWeights(s, N, V, specularWeight, transmitWeight);
 }
 
 #endif

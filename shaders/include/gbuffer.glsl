@@ -2,6 +2,7 @@
 #ifndef RB_GBUFFER_GLSL
 #define RB_GBUFFER_GLSL
 
+#include "include/material_layers.glsl"
 #include "include/octahedral.glsl"
 
 struct Surface {
@@ -16,6 +17,7 @@ struct Surface {
   vec3 emissive;
   uint objectId;
   uint materialId;
+  Layers layers;
 };
 
 vec3 worldFromDepth(ivec2 pixel, float depth) {
@@ -45,6 +47,9 @@ bool readSurface(ivec2 pixel, out Surface s) {
   s.unlit = rti.a > 0.5;
   s.emissive = texelFetch(gEmissive, pixel, 0).rgb;
   s.materialId = texelFetch(gMaterialId, pixel, 0).r;
+  // A host's G-buffer without layers: its materials' factors.
+  s.layers = frame.exposure.w > 0.5 ? unpackLayers(texelFetch(gLayers, pixel, 0), s.normal, s.ior)
+                                    : materialLayers(materials[s.materialId], vec2(0.0), s.normal, s.ior, false);
   return true;
 }
 
@@ -61,6 +66,7 @@ bool readFillSurface(ivec2 pixel, uint objectId, out Surface s) {
   s.transmission = rti.g;
   s.ior = rti.b;
   s.unlit = rti.a > 0.5;
+  s.layers = noLayers(s.normal, s.ior);  // not read by a fill
   return !s.unlit;
 }
 

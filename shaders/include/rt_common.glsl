@@ -5,6 +5,7 @@
 #define RB_RT_COMMON_GLSL
 #include "include/bindings.glsl"
 #include "include/brdf.glsl"
+#include "include/material_layers.glsl"
 #include "include/rayquery.glsl"
 #include "include/tile_pixel.glsl"
 #include "shared/offset_ray.h"
@@ -42,6 +43,7 @@ struct HitSurface {
   vec3 emissive;
   uint material;
   bool frontFace;
+  Layers layers;
 };
 
 // Interpolated attributes of triangle `primitive` of `object` at barycentrics (b1, b2).
@@ -65,14 +67,15 @@ HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec
   GpuMaterial m = materials[material];
   vec4 color = w0 * v0.color + bary.x * v1.color + bary.y * v2.color;
   h.baseColor = m.baseColorFactor * color;
-  if (m.textures.x >= 0) h.baseColor *= textureLod(textures[nonuniformEXT(m.textures.x)], h.uv, 0.0);
-  vec4 mr = m.textures.y >= 0 ? textureLod(textures[nonuniformEXT(m.textures.y)], h.uv, 0.0) : vec4(1.0);
+  h.baseColor *= sampleMaterial(m.textures.x, h.uv, vec4(1.0));
+  vec4 mr = sampleMaterial(m.textures.y, h.uv, vec4(1.0));
   h.metallic = clamp(m.metallicRoughnessTransmissionIor.x * mr.b, 0.0, 1.0);
   h.roughness = clamp(m.metallicRoughnessTransmissionIor.y * mr.g, 0.0, 1.0);
   h.transmission = m.metallicRoughnessTransmissionIor.z;
   h.ior = m.metallicRoughnessTransmissionIor.w;
-  h.emissive = m.emissiveAlphaCutoff.rgb * (m.textures.w >= 0 ? textureLod(textures[nonuniformEXT(m.textures.w)], h.uv, 0.0).rgb : vec3(1.0));
+  h.emissive = m.emissiveAlphaCutoff.rgb * sampleMaterial(m.textures.w, h.uv, vec4(1.0)).rgb;
   h.material = material;
+  h.layers = materialLayers(m, h.uv, h.normal, h.ior, true);
   return h;
 }
 
@@ -89,7 +92,7 @@ bool candidateIsOpaque(RayQuery q) {
   vec2 uv = w0 * vec2(v0.positionU.w, v0.normalV.w) + bary.x * vec2(v1.positionU.w, v1.normalV.w) +
             bary.y * vec2(v2.positionU.w, v2.normalV.w);
   float alpha = m.baseColorFactor.a * (w0 * v0.color.a + bary.x * v1.color.a + bary.y * v2.color.a);
-  if (m.textures.x >= 0) alpha *= textureLod(textures[nonuniformEXT(m.textures.x)], uv, 0.0).a;
+  alpha *= sampleMaterial(m.textures.x, uv, vec4(1.0)).a;
   return alpha >= m.emissiveAlphaCutoff.w;
 }
 
@@ -145,9 +148,15 @@ vec3 shadeHit(HitSurface h, vec3 V, inout uint work) {
     float dist, scale;
     if (!lightSample(light, h.position, L, dist, scale) || dot(h.normal, L) <= 0.0) continue;
     float visible = traceVisibility(origin, L, dist, work);
-    color += shadePbr(h.normal, V, L, h.baseColor.rgb, h.metallic, h.roughness, h.transmission, h.ior) * light.colorIntensity.rgb * scale * visible;
+    color += shadeLayered(h.normal, V, L, h.baseColor.rgb, h.metallic, h.roughness, h.transmission, h.layers) * light.colorIntensity.rgb * scale *
+             visible;
   }
-  color += textureLod(envMap, h.normal, float(RB_ENV_MIPS - 1)).rgb * h.baseColor.rgb * (1.0 - h.metallic) * (1.0 - h.transmission);
+  vec3 irradiance = textureLod(envMap, h.normal, float(RB_ENV_MIPS - 1)).rgb;
+  color += irradiance * h.baseColor.rgb * (1.0 - h.metallic) * (1.0 - h.transmission) * layerAttenuation(h.layers, V);
+  vec3 coat = h.layers.clearcoat > 0.0
+                  ? textureLod(envMap, coatReflection(h.layers, V), h.layers.clearcoatRoughness * float(RB_ENV_MIPS - 1)).rgb
+                  : vec3(0.0);
+  color += layersAmbient(h.layers, h.normal, V, irradiance, coat);
   return color;
 }
 

@@ -39,16 +39,15 @@ vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
     }
     vec3 V = -dir;
     result += throughput * shadeHit(h, V, work);
-    float NoV = clamp(dot(h.normal, V), 1e-4, 1.0);
-    vec3 f0 = mix(vec3(f0FromIor(h.ior)), h.baseColor.rgb, h.metallic);
-    vec3 weight = envBrdfApprox(f0, h.roughness, NoV);
+    vec3 weight, transmitWeight;
+    layeredEnvWeights(h.baseColor.rgb, h.metallic, h.roughness, h.transmission, h.layers, h.normal, V, weight, transmitWeight);
     vec3 R = reflect(dir, h.normal);
     float transmission = h.transmission * (1.0 - h.metallic);
     bool thinWall = transmission > 0.0 && materials[h.material].normalScaleThicknessFlags.y <= 0.0;
     if (thinWall) {
       // The wall's reflection from the environment; the ray goes on through it.
       result += throughput * prefiltered(R, h.roughness) * weight;
-      throughput *= h.baseColor.rgb * transmission * (vec3(1.0) - weight);
+      throughput *= transmitWeight;
       origin = offsetRay(h.position, -h.geometricNormal);
       continue;
     }
@@ -62,7 +61,7 @@ vec3 traceRadiance(vec3 origin, vec3 dir, uint depth, inout uint work) {
     // Last bounce: the hit's own specular reflection (and, for a volume, what it transmits)
     // comes from the environment.
     result += throughput * prefiltered(R, h.roughness) * weight;
-    if (transmission > 0.0) result += throughput * prefiltered(dir, h.roughness) * h.baseColor.rgb * transmission * (vec3(1.0) - weight);
+    if (transmission > 0.0) result += throughput * prefiltered(dir, h.roughness) * transmitWeight;
     return result;
   }
   return result;

@@ -1,5 +1,5 @@
 // GPU structs, defined once and included from both C++ and GLSL (std430 / std140-safe:
-// every member is a vec4-sized slot). engine/src/vk/gpu_types.cpp static_asserts sizes.
+// every member is a vec4-sized slot). engine/src/passes/scene_gpu.cpp static_asserts sizes.
 #ifndef RAYBUDGET_SHARED_TYPES_H
 #define RAYBUDGET_SHARED_TYPES_H
 
@@ -31,7 +31,9 @@ struct GpuObject {
   uvec4 ids;                // x object ID, y first index of its mesh, z its vertex offset, w unused
 };
 
-// 96 bytes: glTF metallic-roughness material with the transmission/volume extensions.
+// 176 bytes: glTF metallic-roughness material with the transmission/volume extensions and
+// the clearcoat, sheen and specular layers. Texture slots index `textures` and
+// `textureTransforms` (-1: none).
 struct GpuMaterial {
   vec4 baseColorFactor;
   vec4 emissiveAlphaCutoff;   // rgb emissive * emissive_strength, w alpha cutoff
@@ -39,6 +41,17 @@ struct GpuMaterial {
   ivec4 textures;             // base colour, metallic-roughness, normal, emissive (-1 = none)
   vec4 attenuationColorDistance;  // KHR_materials_volume: rgb colour, w distance
   vec4 normalScaleThicknessFlags; // x normal scale, y thickness, z flags (as float bits), w unused
+  vec4 clearcoat;             // x factor, y roughness, z normal scale, w KHR_materials_specular factor
+  vec4 sheen;                 // rgb colour, w roughness
+  vec4 specularColor;         // rgb: scales the dielectric F0 (KHR_materials_specular), w 1 when set
+  ivec4 layerTextures;        // clearcoat (R), clearcoat roughness (G), clearcoat normal, specular (A)
+  ivec4 layerTextures2;       // sheen colour (RGB), sheen roughness (A), specular colour (RGB), unused
+};
+
+// 32 bytes: a texture slot's KHR_texture_transform, uv' = (dot(u.xyz, (uv, 1)), dot(v.xyz, (uv, 1))).
+struct GpuTextureTransform {
+  vec4 u;
+  vec4 v;
 };
 
 // 144 bytes: a punctual light and its shadow map.
@@ -60,7 +73,7 @@ struct FrameUniforms {
   vec4 cameraPositionNear;  // xyz camera position, w near plane
   uvec4 sizeLightsFrame;    // x width, y height, z light count, w frame index
   vec4 sunDirection;        // xyz direction towards the sun (procedural sky), w sky intensity
-  vec4 exposure;            // x exposure (linear scale before tonemapping), y shadow-map uncertainty reach (texels), z 1 when the behind-glass image holds this frame's opaque frame, w unused
+  vec4 exposure;            // x exposure (linear scale before tonemapping), y shadow-map uncertainty reach (texels), z 1 when the behind-glass image holds this frame's opaque frame, w 1 when the G-buffer holds material layers (gLayers)
   uvec4 rayTracing;         // x effects traced (RB_RT_* bits, 0: all raster), y bounce depth, z roughness cut-off (float bits), w RB_RT_CLASSIFY_SHADOWS | RB_RT_MEASURE_ITEMS | RB_RT_SHORTEN_SHADOW_RAYS | RB_RT_RATES
   uvec4 probes;             // x reflection probes in use (0: the sky alone)
   vec4 probeCenter[RB_MAX_PROBES];  // xyz where each probe was captured from

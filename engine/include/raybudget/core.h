@@ -91,6 +91,9 @@ struct GBuffer {
   // the exact point and are offset along it: depth reconstruction is a few ulps off).
   VkImageView position = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // or GENERAL
+  // Optional, R32G32B32A32_UINT: the material layers per pixel (docs/INTEGRATION.md; all zero:
+  // none). Without it, each pixel's layers come from its material's factors, textures ignored.
+  VkImageView layers = VK_NULL_HANDLE;
 };
 
 // The bits of FrameOutputs::tracedMask.
@@ -119,7 +122,7 @@ struct FrameOutputs {
 // The images of the core's own G-buffer raster (recordFrame without a host G-buffer), in
 // core::GBuffer's formats, SHADER_READ_ONLY_OPTIMAL after such a frame: for read-back.
 struct OwnGBuffer {
-  VkImage depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position;
+  VkImage depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position, layers;
 };
 
 // The core on the host's device: the scene's buffers and acceleration structure, the

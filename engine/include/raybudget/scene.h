@@ -55,6 +55,9 @@ struct Sampler {
 struct Texture {
   int image = -1;
   int sampler = -1;  // -1: the default sampler
+  // KHR_texture_transform (translation * rotation * scale, applied to (u, v, 1)): a texture
+  // reference with a transform becomes a texture of its own after the glTF file's textures.
+  glm::mat3 uvTransform{1.0f};
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
@@ -79,6 +82,23 @@ struct Material {
   int metallicRoughnessTexture = -1;
   int normalTexture = -1;
   int emissiveTexture = -1;
+  // KHR_materials_clearcoat: a dielectric coat (IOR 1.5) over the base.
+  float clearcoat = 0.0f;
+  float clearcoatRoughness = 0.0f;
+  float clearcoatNormalScale = 1.0f;
+  int clearcoatTexture = -1;           // R
+  int clearcoatRoughnessTexture = -1;  // G
+  int clearcoatNormalTexture = -1;
+  // KHR_materials_sheen: a retro-reflective fabric layer (Charlie distribution).
+  glm::vec3 sheenColor{0.0f};
+  float sheenRoughness = 0.0f;
+  int sheenColorTexture = -1;      // RGB
+  int sheenRoughnessTexture = -1;  // A
+  // KHR_materials_specular: the dielectric reflection's strength and its F0 colour.
+  float specular = 1.0f;
+  glm::vec3 specularColor{1.0f};
+  int specularTexture = -1;       // A
+  int specularColorTexture = -1;  // RGB
 };
 
 // Per-object heuristic inputs (the paper's K, Q, I), from glTF node extras.raybudget.

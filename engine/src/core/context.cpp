@@ -167,7 +167,8 @@ struct Context::Impl {
     u.cameraPositionNear = glm::vec4(camera.position, camera.znear);
     u.sizeLightsFrame = glm::uvec4(settings.width, settings.height, scene.lightCount, uint32_t(frameIndex));
     u.sunDirection = glm::vec4(sunDirection, settings.skyIntensity);
-    u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, slot.behindGlass == PassSkip::None ? 1.0f : 0.0f, 0.0f);
+    u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, slot.behindGlass == PassSkip::None ? 1.0f : 0.0f,
+                           slot.gbuffer.layers ? 1.0f : 0.0f);
     u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
                               itemFlags() | (reducedRates() ? RB_RT_RATES : 0u));
     probes.writeUniforms(u, settings.reflectionProbes);
@@ -279,7 +280,8 @@ struct Context::Impl {
   void bindGBuffer(Slot& slot, const GBuffer& g) {
     const GBuffer& b = slot.gbuffer;
     if (b.depth == g.depth && b.normal == g.normal && b.baseMetal == g.baseMetal && b.roughTransIor == g.roughTransIor &&
-        b.emissive == g.emissive && b.objectId == g.objectId && b.materialId == g.materialId && b.position == g.position && b.layout == g.layout)
+        b.emissive == g.emissive && b.objectId == g.objectId && b.materialId == g.materialId && b.position == g.position && b.layout == g.layout &&
+        b.layers == g.layers)
       return;
     slot.gbuffer = g;
     layouts.writeAll(uint32_t(&slot - slots), [&](VkDescriptorSet set, std::span<const uint32_t> bindings) {
@@ -509,7 +511,7 @@ FrameOutputs Context::outputs() const {
 OwnGBuffer Context::ownGBuffer() const {
   const passes::FrameTargets& t = impl_->targets;
   return {t.depth.image, t.normal.image, t.baseMetal.image, t.roughTransIor.image, t.emissive.image, t.objectId.image, t.materialId.image,
-          t.position.image};
+          t.position.image, t.layers.image};
 }
 
 void Context::restartSelection(Policy policy, float budgetMs, BenefitAblation ablation, ItemRate rate) {

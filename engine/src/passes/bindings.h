@@ -57,7 +57,9 @@ enum Binding : uint32_t {
   kDepthPyramidLevels = 48,
   kPreviousFrame = 49,
   kSsrImage = 50,
-  kBindingCount = 51,
+  kTextureTransforms = 51,
+  kGLayers = 52,
+  kBindingCount = 53,
 };
 
 }  // namespace raybudget::passes

@@ -23,9 +23,10 @@ BindingInfo bindingInfo(uint32_t binding, uint32_t textureCount, bool native) {
   if (binding == kLights) return {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
   if (binding <= kVertices) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding == kTextures) return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount};
+  if (binding == kTextureTransforms) return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
   if (binding <= kSkyMap || binding == kEnvSource || binding == kGPosition || binding == kShadowMapDepths ||
       binding == kPointShadowDepths || binding == kBehindGlass || binding == kReflectionProbes || binding == kProbeRadiance ||
-      binding == kDepthPyramid || binding == kPreviousFrame)
+      binding == kDepthPyramid || binding == kPreviousFrame || binding == kGLayers)
     return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   if (binding == kEnvStorage || binding == kReflectionProbeMips) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_ENV_MIPS};
   if (binding == kDepthPyramidLevels) return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RB_HIZ_LEVELS};
@@ -42,7 +43,9 @@ std::pair<VkDescriptorType, uint32_t> bindingType(uint32_t binding, uint32_t tex
   return {info.type, info.count};
 }
 
-bool isGBufferBinding(uint32_t binding) { return (binding >= kGDepth && binding <= kGMaterialId) || binding == kGPosition; }
+bool isGBufferBinding(uint32_t binding) {
+  return (binding >= kGDepth && binding <= kGMaterialId) || binding == kGPosition || binding == kGLayers;
+}
 
 vk::DescriptorNeeds descriptorNeeds(uint32_t textureCount, bool nativeTracer) {
   vk::DescriptorNeeds n;
@@ -94,7 +97,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
       {uniforms.buffer, 0, VK_WHOLE_SIZE}, {scene.objects.buffer, 0, VK_WHOLE_SIZE}, {scene.materials.buffer, 0, VK_WHOLE_SIZE},
       {scene.lights.buffer, 0, VK_WHOLE_SIZE}, {scene.vertices.buffer, 0, VK_WHOLE_SIZE}};
   std::vector<VkDescriptorImageInfo> textures;
-  for (const GpuTexture& tex : scene.textures) textures.push_back({tex.sampler, tex.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  for (const GpuTexture& tex : scene.textures)
+    textures.push_back({tex.sampler, scene.textureImages[tex.image].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
   const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   const VkDescriptorImageInfo sampled[] = {
       {samplers.nearest, gb.depth, gb.layout},         {samplers.nearest, gb.normal, gb.layout},   {samplers.nearest, gb.baseMetal, gb.layout},
@@ -130,6 +134,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   };
   for (uint32_t b = kFrameUniforms; b <= kVertices; ++b) write(b, 1, &buffers[b], nullptr);
   write(kTextures, uint32_t(textures.size()), nullptr, textures.data());
+  const VkDescriptorBufferInfo transforms{scene.textureTransforms.buffer, 0, VK_WHOLE_SIZE};
+  write(kTextureTransforms, 1, &transforms, nullptr);
   for (uint32_t b = kGDepth; b <= kSkyMap; ++b) write(b, 1, nullptr, &sampled[b - kGDepth]);
   for (uint32_t b = kDirectImage; b <= kSkyStorage; ++b) write(b, 1, nullptr, &storage[b - kDirectImage]);
   write(kEnvStorage, uint32_t(envMips.size()), nullptr, envMips.data());
@@ -143,6 +149,9 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   write(kTracedMask, 1, nullptr, &traced);
   const VkDescriptorImageInfo position{samplers.nearest, gb.position, gb.layout};
   write(kGPosition, 1, nullptr, &position);
+  // A host G-buffer without material layers: a 1x1 image never read (frame.exposure.w is 0).
+  const VkDescriptorImageInfo layers{samplers.nearest, gb.layers ? gb.layers : t.noLayers.view, gb.layers ? gb.layout : ro};
+  write(kGLayers, 1, nullptr, &layers);
   const VkDescriptorBufferInfo heuristic[] = {{selection.coverage.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectParams.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectRecords.buffer, 0, VK_WHOLE_SIZE},

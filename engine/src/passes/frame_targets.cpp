@@ -46,6 +46,15 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   // Full-precision world position (+ packed geometric normal): secondary rays start at the
   // exact surface point, which depth reconstruction cannot give to within a few ulps.
   t.position = image2d(ctx, kPositionFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  // Clearcoat, sheen and specular per pixel (gbuffer.glsl's readLayers; zero: none).
+  t.layers = image2d(ctx, kLayersFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  {
+    vk::ImageDesc d;
+    d.format = kLayersFormat;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    t.noLayers = vk::createImage(ctx, d);
+    vk::uploadTexture(ctx, t.noLayers, std::vector<uint8_t>(16, 0));
+  }
   t.direct = image2d(ctx, kHdrFormat, width, height, storage);
   t.indirect = image2d(ctx, kHdrFormat, width, height, storage);
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage | VK_IMAGE_USAGE_SAMPLED_BIT);  // sampled: the next frame's reflections

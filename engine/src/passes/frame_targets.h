@@ -18,6 +18,7 @@ inline constexpr VkFormat kRoughTransIorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
 inline constexpr VkFormat kPositionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr VkFormat kLayersFormat = VK_FORMAT_R32G32B32A32_UINT;
 inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
@@ -26,7 +27,8 @@ struct FrameTargets {
   // 8x8 tiles covering the frame (the tile list, the per-tile passes).
   uint32_t tileCount() const { return vk::groupsFor(width, RB_TILE_SIZE) * vk::groupsFor(height, RB_TILE_SIZE); }
   // G-buffer (color attachments in this order, then depth).
-  vk::Image depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position;
+  vk::Image depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position, layers;
+  vk::Image noLayers;  // 1x1, bound where a host's G-buffer has no layers
   // Compute outputs, kept in GENERAL layout.
   vk::Image direct, indirect, hdr, ldr;
   // Raster fallbacks.
@@ -60,11 +62,11 @@ struct FrameTargets {
   // The G-buffer as the passes read it: these images, or a host's (Renderer::recordFrame).
   core::GBuffer gbufferViews() const {
     return {depth.view, normal.view, baseMetal.view, roughTransIor.view, emissive.view, objectId.view, materialId.view, position.view,
-            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, layers.view};
   }
 
   std::vector<const vk::Image*> gbufferColors() const {
-    return {&normal, &baseMetal, &roughTransIor, &emissive, &objectId, &materialId, &position};
+    return {&normal, &baseMetal, &roughTransIor, &emissive, &objectId, &materialId, &position, &layers};
   }
 };
 

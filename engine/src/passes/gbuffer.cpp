@@ -12,7 +12,7 @@ GBufferPass::GBufferPass(const vk::Context& ctx, PassLayouts& layouts) : layout_
   vk::GraphicsPipelineDesc d;
   d.vertex = kSpirv_gbuffer_vert;
   d.fragment = kSpirv_gbuffer_frag;
-  d.colorFormats = {kNormalFormat, kBaseMetalFormat, kRoughTransIorFormat, kEmissiveFormat, kIdFormat, kIdFormat, kPositionFormat};
+  d.colorFormats = {kNormalFormat, kBaseMetalFormat, kRoughTransIorFormat, kEmissiveFormat, kIdFormat, kIdFormat, kPositionFormat, kLayersFormat};
   d.depthFormat = kDepthFormat;
   pipeline_ = vk::createGraphicsPipeline(ctx, layout_.pipelineLayout, d);
 }

@@ -16,7 +16,8 @@ namespace {
 
 static_assert(sizeof(gpu::GpuVertex) == 48);
 static_assert(sizeof(gpu::GpuObject) == 160);
-static_assert(sizeof(gpu::GpuMaterial) == 96);
+static_assert(sizeof(gpu::GpuMaterial) == 176);
+static_assert(sizeof(gpu::GpuTextureTransform) == 32);
 static_assert(sizeof(gpu::GpuLight) == 144);
 static_assert(sizeof(gpu::FrameUniforms) == 352 + 3 * 16 * RB_MAX_PROBES + 80);
 static_assert(sizeof(gpu::DrawPush) == 80);
@@ -43,16 +44,16 @@ vk::Owned<VkSampler> makeSampler(const vk::Context& ctx, const Sampler& s) {
   return vk::createSampler(ctx, ci);
 }
 
-GpuTexture makeTexture(const vk::Context& ctx, const Image& img, bool srgb, VkSampler sampler) {
+vk::Image makeTextureImage(const vk::Context& ctx, const Image& img, bool srgb) {
   vk::ImageDesc d;
   d.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
   d.width = img.width;
   d.height = img.height;
   d.mips = uint32_t(std::floor(std::log2(float(std::max(img.width, img.height))))) + 1;
   d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  GpuTexture t{vk::createImage(ctx, d), sampler};
-  vk::uploadTexture(ctx, t.image, img.rgba);
-  return t;
+  vk::Image image = vk::createImage(ctx, d);
+  vk::uploadTexture(ctx, image, img.rgba);
+  return image;
 }
 
 glm::vec3 anyPerpendicular(const glm::vec3& d) { return std::fabs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
@@ -138,16 +139,26 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
   gpu.vertices = vk::createDeviceBuffer(ctx, vertices, kStorage);
   gpu.indices = vk::createDeviceBuffer(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kStorage);
 
-  // Textures: one GPU image per (glTF texture, colour space) actually used.
+  // Textures: one GPU image per (image, colour space) actually used, and one slot per
+  // (texture, colour space) with its sampler and UV transform.
   gpu.samplers.push_back(makeSampler(ctx, Sampler{}));
   for (const Sampler& s : scene.samplers) gpu.samplers.push_back(makeSampler(ctx, s));
+  std::map<std::pair<int, bool>, uint32_t> imageOf;
   std::map<std::pair<int, bool>, int> textureSlot;
+  std::vector<gpu::GpuTextureTransform> transforms;
   auto slot = [&](int texture, bool srgb) -> int {
     if (texture < 0) return -1;
     auto it = textureSlot.find({texture, srgb});
     if (it != textureSlot.end()) return it->second;
     const Texture& t = scene.textures[size_t(texture)];
-    gpu.textures.push_back(makeTexture(ctx, scene.images[size_t(t.image)], srgb, gpu.samplers[size_t(t.sampler + 1)]));
+    auto image = imageOf.find({t.image, srgb});
+    if (image == imageOf.end()) {
+      gpu.textureImages.push_back(makeTextureImage(ctx, scene.images[size_t(t.image)], srgb));
+      image = imageOf.emplace(std::pair{t.image, srgb}, uint32_t(gpu.textureImages.size() - 1)).first;
+    }
+    gpu.textures.push_back({image->second, gpu.samplers[size_t(t.sampler + 1)]});
+    const glm::mat3& m = t.uvTransform;
+    transforms.push_back({glm::vec4(m[0][0], m[1][0], m[2][0], 0.0f), glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f)});
     return textureSlot[{texture, srgb}] = int(gpu.textures.size() - 1);
   };
   std::vector<gpu::GpuMaterial> materials;
@@ -164,13 +175,23 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
     if (m.alphaMode == AlphaMode::Mask) flags |= RB_MATERIAL_ALPHA_MASK;
     if (m.unlit) flags |= RB_MATERIAL_UNLIT;
     g.normalScaleThicknessFlags = glm::vec4(m.normalScale, m.thickness, std::bit_cast<float>(flags), 0.0f);
+    g.clearcoat = glm::vec4(m.clearcoat, m.clearcoatRoughness, m.clearcoatNormalScale, m.specular);
+    g.sheen = glm::vec4(m.sheenColor, m.sheenRoughness);
+    const bool customF0 = m.specularColor != glm::vec3(1.0f) || m.specularColorTexture >= 0;
+    g.specularColor = glm::vec4(m.specularColor, customF0 ? 1.0f : 0.0f);
+    g.layerTextures = glm::ivec4(slot(m.clearcoatTexture, false), slot(m.clearcoatRoughnessTexture, false), slot(m.clearcoatNormalTexture, false),
+                                 slot(m.specularTexture, false));
+    g.layerTextures2 = glm::ivec4(slot(m.sheenColorTexture, true), slot(m.sheenRoughnessTexture, false), slot(m.specularColorTexture, true), -1);
     materials.push_back(g);
     gpu.hasTransmission = gpu.hasTransmission || m.transmission > 0.0f;
   }
   if (gpu.textures.empty()) {
     Image white{"white", 1, 1, {255, 255, 255, 255}};
-    gpu.textures.push_back(makeTexture(ctx, white, false, gpu.samplers[0]));
+    gpu.textureImages.push_back(makeTextureImage(ctx, white, false));
+    gpu.textures.push_back({0, gpu.samplers[0]});
+    transforms.push_back({glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0)});
   }
+  gpu.textureTransforms = vk::createDeviceBuffer(ctx, transforms, kStorage);
   gpu.materials = vk::createDeviceBuffer(ctx, materials, kStorage);
 
   // Objects and their draws (one per primitive).

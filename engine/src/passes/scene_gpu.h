@@ -21,8 +21,9 @@ struct Draw {
   bool transmissive;  // KHR_materials_transmission: drawn over the opaque frame it shows behind it
 };
 
+// A material texture slot: an image of SceneGpu::textureImages and its sampler.
 struct GpuTexture {
-  vk::Image image;
+  uint32_t image;
   VkSampler sampler;
 };
 
@@ -45,7 +46,9 @@ struct SceneGpu {
   vk::Buffer materials;
   vk::Buffer lights;
   std::vector<vk::Owned<VkSampler>> samplers;  // [0] default, then one per glTF sampler
+  std::vector<vk::Image> textureImages;
   std::vector<GpuTexture> textures;            // at least one (white) so the array is never empty
+  vk::Buffer textureTransforms;                // GpuTextureTransform per texture slot
   std::vector<Draw> draws;
   std::vector<glm::vec4> objectSpheres;  // world bounding spheres, for culling
   ShadowViews shadows;

@@ -1,5 +1,6 @@
 // glTF 2.0 -> Scene: node hierarchy, instancing (nodes and EXT_mesh_gpu_instancing),
-// materials with KHR_materials_{transmission,ior,volume,emissive_strength,unlit},
+// materials with KHR_materials_{transmission,ior,volume,emissive_strength,unlit,clearcoat,
+// sheen,specular} and KHR_texture_transform,
 // KHR_lights_punctual, cameras and extras.raybudget. Every reference is range-checked.
 #include <algorithm>
 #include <cmath>
@@ -40,20 +41,75 @@ const tinygltf::Value* extension(const tinygltf::ExtensionMap& m, const char* na
   return it == m.end() ? nullptr : &it->second;
 }
 
-int textureIndex(const tinygltf::Model& model, int index, int texCoord, const std::string& where, Scene& scene) {
-  if (index < 0) return -1;
-  if (size_t(index) >= model.textures.size())
-    throw Error(where + " refers to texture " + std::to_string(index) + ", which does not exist");
-  if (texCoord != 0) scene.warnings.push_back(where + ": uses TEXCOORD_" + std::to_string(texCoord) + "; TEXCOORD_0 is used");
-  const int image = scene.textures[size_t(index)].image;
-  return image >= 0 && !scene.images[size_t(image)].rgba.empty() ? index : -1;
-}
-
 // `v` as a float; beyond float range counts as not finite (a light colour of 1e40 is infinite
 // once it reaches the GPU).
 float finiteOr(double v, const std::string& what) {
   if (!std::isfinite(v) || !std::isfinite(float(v))) throw Error(what + " is not finite (or beyond float range)");
   return float(v);
+}
+
+// A material's reference to a texture: which one, which UV set, and its KHR_texture_transform.
+struct TextureRef {
+  int index = -1;
+  int texCoord = 0;
+  const tinygltf::Value* transform = nullptr;
+};
+
+template <class Info>
+TextureRef textureRef(const Info& info) {
+  return {info.index, info.texCoord, extension(info.extensions, "KHR_texture_transform")};
+}
+
+// A textureInfo inside a material extension's JSON (e.g. clearcoatTexture).
+TextureRef textureRef(const tinygltf::Value& ext, const char* key) {
+  if (!ext.Has(key) || !ext.Get(key).IsObject()) return {};
+  const tinygltf::Value& info = ext.Get(key);
+  TextureRef r;
+  r.index = info.Has("index") && info.Get("index").IsInt() ? info.Get("index").GetNumberAsInt() : -1;
+  r.texCoord = info.Has("texCoord") && info.Get("texCoord").IsInt() ? info.Get("texCoord").GetNumberAsInt() : 0;
+  if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform")) r.transform = &info.Get("extensions").Get("KHR_texture_transform");
+  return r;
+}
+
+double arrayNumber(const tinygltf::Value& v, const char* key, int i, double fallback) {
+  if (!v.Has(key) || !v.Get(key).IsArray() || int(v.Get(key).ArrayLen()) <= i || !v.Get(key).Get(i).IsNumber()) return fallback;
+  return v.Get(key).Get(i).GetNumberAsDouble();
+}
+
+// KHR_texture_transform's matrix: translation * rotation * scale, rotation counter-clockwise
+// (the extension's GLSL, column by column).
+glm::mat3 uvTransform(const tinygltf::Value& t, const std::string& where) {
+  const float ox = finiteOr(arrayNumber(t, "offset", 0, 0.0), where + " offset"), oy = finiteOr(arrayNumber(t, "offset", 1, 0.0), where + " offset");
+  const float sx = finiteOr(arrayNumber(t, "scale", 0, 1.0), where + " scale"), sy = finiteOr(arrayNumber(t, "scale", 1, 1.0), where + " scale");
+  const float r = finiteOr(number(t, "rotation", 0.0), where + " rotation");
+  const glm::mat3 translation(1, 0, 0, 0, 1, 0, ox, oy, 1);
+  const glm::mat3 rotation(std::cos(r), std::sin(r), 0, -std::sin(r), std::cos(r), 0, 0, 0, 1);
+  const glm::mat3 scale(sx, 0, 0, 0, sy, 0, 0, 0, 1);
+  return translation * rotation * scale;
+}
+
+// The Scene::textures index a material slot samples (-1: none, or an image that could not be
+// decoded). A transformed reference gets a texture of its own (shared by equal transforms).
+int textureIndex(const tinygltf::Model& model, const TextureRef& ref, const std::string& where, Scene& scene) {
+  if (ref.index < 0) return -1;
+  if (size_t(ref.index) >= model.textures.size())
+    throw Error(where + " refers to texture " + std::to_string(ref.index) + ", which does not exist");
+  int texCoord = ref.texCoord;
+  if (ref.transform && ref.transform->Has("texCoord") && ref.transform->Get("texCoord").IsInt()) texCoord = ref.transform->Get("texCoord").GetNumberAsInt();
+  if (texCoord != 0) scene.warnings.push_back(where + ": uses TEXCOORD_" + std::to_string(texCoord) + "; TEXCOORD_0 is used");
+  const int image = scene.textures[size_t(ref.index)].image;
+  if (image < 0 || scene.images[size_t(image)].rgba.empty()) return -1;
+  if (!ref.transform) return ref.index;
+  const glm::mat3 m = uvTransform(*ref.transform, where + " KHR_texture_transform");
+  if (m == glm::mat3(1.0f)) return ref.index;
+  Texture t = scene.textures[size_t(ref.index)];
+  t.uvTransform = m;
+  for (size_t i = model.textures.size(); i < scene.textures.size(); ++i) {
+    const Texture& d = scene.textures[i];
+    if (d.image == t.image && d.sampler == t.sampler && d.uvTransform == m) return int(i);
+  }
+  scene.textures.push_back(t);
+  return int(scene.textures.size() - 1);
 }
 
 void loadImagesAndTextures(const tinygltf::Model& model, const std::string& file, Scene& scene) {
@@ -106,8 +162,36 @@ void loadImagesAndTextures(const tinygltf::Model& model, const std::string& file
   }
 }
 
+// KHR_materials_clearcoat, _sheen and _specular: factors clamped to their ranges (the
+// specular colour may exceed 1: it scales the IOR's F0, clamped to 1 when shading).
+void loadLayers(const tinygltf::Model& model, const tinygltf::Material& gm, const std::string& at, Scene& scene, Material& m) {
+  auto unit = [&](const tinygltf::Value& e, const char* key, double fallback) {
+    return glm::clamp(finiteOr(number(e, key, fallback), at + " " + key), 0.0f, 1.0f);
+  };
+  if (const auto* e = extension(gm.extensions, "KHR_materials_clearcoat")) {
+    m.clearcoat = unit(*e, "clearcoatFactor", 0.0);
+    m.clearcoatRoughness = unit(*e, "clearcoatRoughnessFactor", 0.0);
+    m.clearcoatTexture = textureIndex(model, textureRef(*e, "clearcoatTexture"), at + " clearcoatTexture", scene);
+    m.clearcoatRoughnessTexture = textureIndex(model, textureRef(*e, "clearcoatRoughnessTexture"), at + " clearcoatRoughnessTexture", scene);
+    m.clearcoatNormalTexture = textureIndex(model, textureRef(*e, "clearcoatNormalTexture"), at + " clearcoatNormalTexture", scene);
+    if (e->Has("clearcoatNormalTexture")) m.clearcoatNormalScale = finiteOr(number(e->Get("clearcoatNormalTexture"), "scale", 1.0), at + " clearcoatNormalTexture.scale");
+  }
+  if (const auto* e = extension(gm.extensions, "KHR_materials_sheen")) {
+    for (int k = 0; k < 3; ++k) m.sheenColor[k] = glm::clamp(finiteOr(arrayNumber(*e, "sheenColorFactor", k, 0.0), at + " sheenColorFactor"), 0.0f, 1.0f);
+    m.sheenRoughness = unit(*e, "sheenRoughnessFactor", 0.0);
+    m.sheenColorTexture = textureIndex(model, textureRef(*e, "sheenColorTexture"), at + " sheenColorTexture", scene);
+    m.sheenRoughnessTexture = textureIndex(model, textureRef(*e, "sheenRoughnessTexture"), at + " sheenRoughnessTexture", scene);
+  }
+  if (const auto* e = extension(gm.extensions, "KHR_materials_specular")) {
+    m.specular = unit(*e, "specularFactor", 1.0);
+    for (int k = 0; k < 3; ++k)
+      m.specularColor[k] = glm::clamp(finiteOr(arrayNumber(*e, "specularColorFactor", k, 1.0), at + " specularColorFactor"), 0.0f, 1.0e4f);
+    m.specularTexture = textureIndex(model, textureRef(*e, "specularTexture"), at + " specularTexture", scene);
+    m.specularColorTexture = textureIndex(model, textureRef(*e, "specularColorTexture"), at + " specularColorTexture", scene);
+  }
+}
+
 void loadMaterials(const tinygltf::Model& model, const std::string& file, Scene& scene) {
-  bool warnedTransform = false;
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const tinygltf::Material& gm = model.materials[i];
     const std::string at = file + ": material " + std::to_string(i) + " ('" + gm.name + "')";
@@ -124,10 +208,10 @@ void loadMaterials(const tinygltf::Model& model, const std::string& file, Scene&
     m.alphaCutoff = finiteOr(gm.alphaCutoff, at + " alphaCutoff");
     m.doubleSided = gm.doubleSided;
     m.normalScale = finiteOr(gm.normalTexture.scale, at + " normalTexture.scale");
-    m.baseColorTexture = textureIndex(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, at, scene);
-    m.metallicRoughnessTexture = textureIndex(model, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, at, scene);
-    m.normalTexture = textureIndex(model, gm.normalTexture.index, gm.normalTexture.texCoord, at, scene);
-    m.emissiveTexture = textureIndex(model, gm.emissiveTexture.index, gm.emissiveTexture.texCoord, at, scene);
+    m.baseColorTexture = textureIndex(model, textureRef(pbr.baseColorTexture), at, scene);
+    m.metallicRoughnessTexture = textureIndex(model, textureRef(pbr.metallicRoughnessTexture), at, scene);
+    m.normalTexture = textureIndex(model, textureRef(gm.normalTexture), at, scene);
+    m.emissiveTexture = textureIndex(model, textureRef(gm.emissiveTexture), at, scene);
     if (const auto* e = extension(gm.extensions, "KHR_materials_emissive_strength"))
       m.emissive *= std::max(finiteOr(number(*e, "emissiveStrength", 1.0), at + " emissiveStrength"), 0.0f);
     if (const auto* e = extension(gm.extensions, "KHR_materials_transmission"))
@@ -145,10 +229,7 @@ void loadMaterials(const tinygltf::Model& model, const std::string& file, Scene&
           m.attenuationColor[k] = glm::clamp(finiteOr(e->Get("attenuationColor").Get(k).GetNumberAsDouble(), at + " attenuationColor"), 0.0f, 1.0f);
     }
     m.unlit = extension(gm.extensions, "KHR_materials_unlit") != nullptr;
-    if (!warnedTransform && (pbr.baseColorTexture.extensions.count("KHR_texture_transform") != 0)) {
-      scene.warnings.push_back(at + ": KHR_texture_transform is ignored");
-      warnedTransform = true;
-    }
+    loadLayers(model, gm, at, scene, m);
     scene.materials.push_back(m);
   }
 }
@@ -371,7 +452,8 @@ Scene loadAndRepair(const std::filesystem::path& path) {
   if (!warn.empty()) scene.warnings.push_back(file + ": " + warn);
   for (const std::string& ext : model.extensionsRequired) {
     static const char* known[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
-                                  "KHR_materials_emissive_strength", "KHR_materials_unlit", "EXT_mesh_gpu_instancing", "KHR_texture_transform"};
+                                  "KHR_materials_emissive_strength", "KHR_materials_unlit", "EXT_mesh_gpu_instancing", "KHR_texture_transform",
+                                  "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular"};
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return ext == k; }) == std::end(known))
       throw Error(file + ": requires extension " + ext + ", which raybudget does not support");
   }
