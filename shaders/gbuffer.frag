@@ -43,7 +43,7 @@ vec3 perturbNormal(vec3 N, vec3 mapped, float scale, vec2 uv) {
 void main() {
   GpuMaterial m = materials[push.objectMaterial.y];
   uint flags = floatBitsToUint(m.normalScaleThicknessFlags.z);
-  vec4 base = m.baseColorFactor * inColor * sampleMaterial(m.textures.x, inUv, vec4(1.0));
+  vec4 base = m.baseColorFactor * inColor * sampleMaterial(m, m.textures.x, inUv, vec4(1.0));
   if ((flags & RB_MATERIAL_ALPHA_MASK) != 0u && base.a < m.emissiveAlphaCutoff.w) discard;
 
   vec3 N = normalize(inNormal);
@@ -51,18 +51,18 @@ void main() {
   if (!gl_FrontFacing && (flags & RB_MATERIAL_DOUBLE_SIDED) != 0u) N = -N;
   vec3 surfaceN = N;  // the coat's normal map perturbs the surface's, not the base's map
   if (m.textures.z >= 0) {
-    vec2 uv = textureUv(m.textures.z, inUv);
+    vec2 uv = textureUv(m, m.textures.z, inUv);
     N = perturbNormal(N, texture(textures[nonuniformEXT(m.textures.z)], uv).xyz, m.normalScaleThicknessFlags.x, uv);
   }
 
-  vec4 mr = sampleMaterial(m.textures.y, inUv, vec4(1.0));
+  vec4 mr = sampleMaterial(m, m.textures.y, inUv, vec4(1.0));
   float roughness = clamp(m.metallicRoughnessTransmissionIor.y * mr.g, 0.0, 1.0);
   float metallic = clamp(m.metallicRoughnessTransmissionIor.x * mr.b, 0.0, 1.0);
-  vec3 emissive = m.emissiveAlphaCutoff.rgb * sampleMaterial(m.textures.w, inUv, vec4(1.0)).rgb;
+  vec3 emissive = m.emissiveAlphaCutoff.rgb * sampleMaterial(m, m.textures.w, inUv, vec4(1.0)).rgb;
   Layers layers = materialLayers(m, inUv, N, m.metallicRoughnessTransmissionIor.w, true);
   layers.clearcoatNormal = surfaceN;
-  if (m.layerTextures.z >= 0) {
-    vec2 uv = textureUv(m.layerTextures.z, inUv);
+  if ((flags & RB_MATERIAL_LAYERS) != 0u && m.layerTextures.z >= 0) {
+    vec2 uv = textureUv(m, m.layerTextures.z, inUv);
     layers.clearcoatNormal = perturbNormal(surfaceN, texture(textures[nonuniformEXT(m.layerTextures.z)], uv).xyz, m.clearcoat.z, uv);
   }
 
@@ -70,7 +70,7 @@ void main() {
   outBaseMetal = vec4(base.rgb, metallic);
   outRoughTransIor = vec4(roughness, m.metallicRoughnessTransmissionIor.z, m.metallicRoughnessTransmissionIor.w,
                           (flags & RB_MATERIAL_UNLIT) != 0u ? 1.0 : 0.0);
-  outEmissive = vec4(emissive, 0.0);
+  outEmissive = vec4(emissive, (flags & RB_MATERIAL_LAYERS) != 0u ? 1.0 : 0.0);  // a: read the layers
   outObjectId = objects[push.objectMaterial.x].ids.x;
   outMaterialId = push.objectMaterial.y;
   // The triangle's plane normal from screen derivatives (exact for the plane: every sample
@@ -78,5 +78,5 @@ void main() {
   vec3 ng = normalize(cross(dFdx(inWorld), dFdy(inWorld)));
   if (dot(ng, frame.cameraPositionNear.xyz - inWorld) < 0.0) ng = -ng;
   outPosition = vec4(inWorld, uintBitsToFloat(packSnorm2x16(octEncode(ng))));
-  outLayers = packLayers(layers, customSpecularF0(m));
+  outLayers = (flags & RB_MATERIAL_LAYERS) != 0u ? packLayers(layers, customSpecularF0(m)) : uvec4(0u);
 }

@@ -12,6 +12,6 @@ layout(location = 0) in vec2 inUv;
 void main() {
   GpuMaterial m = materials[push.objectMaterial.y];
   float alpha = m.baseColorFactor.a;
-  alpha *= sampleMaterial(m.textures.x, inUv, vec4(1.0)).a;
+  alpha *= sampleMaterial(m, m.textures.x, inUv, vec4(1.0)).a;
   if (alpha < m.emissiveAlphaCutoff.w) discard;
 }

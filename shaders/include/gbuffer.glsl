@@ -45,11 +45,13 @@ bool readSurface(ivec2 pixel, out Surface s) {
   s.transmission = rti.g;
   s.ior = rti.b;
   s.unlit = rti.a > 0.5;
-  s.emissive = texelFetch(gEmissive, pixel, 0).rgb;
+  vec4 emissive = texelFetch(gEmissive, pixel, 0);
+  s.emissive = emissive.rgb;
   s.materialId = texelFetch(gMaterialId, pixel, 0).r;
-  // A host's G-buffer without layers: its materials' factors.
-  s.layers = frame.exposure.w > 0.5 ? unpackLayers(texelFetch(gLayers, pixel, 0), s.normal, s.ior)
-                                    : materialLayers(materials[s.materialId], vec2(0.0), s.normal, s.ior, false);
+  // The layers where the emissive target's alpha says the pixel has some; a host's G-buffer
+  // without layers: its materials' factors.
+  if (frame.exposure.w < 0.5) s.layers = materialLayers(materials[s.materialId], vec2(0.0), s.normal, s.ior, false);
+  else s.layers = emissive.a > 0.5 ? unpackLayers(texelFetch(gLayers, pixel, 0), s.normal, s.ior) : noLayers(s.normal, s.ior);
   return true;
 }
 

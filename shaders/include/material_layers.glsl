@@ -11,26 +11,34 @@
 #define RB_SAMPLE_MATERIAL(slot, uv) textureLod(textures[nonuniformEXT(slot)], uv, 0.0)
 #endif
 
-vec2 textureUv(int slot, vec2 uv) {
+uint materialFlags(GpuMaterial m) { return floatBitsToUint(m.normalScaleThicknessFlags.z); }
+
+// Where texture slot `slot` of `m` is read at `uv` (a material without transforms reads no
+// transform).
+vec2 textureUv(GpuMaterial m, int slot, vec2 uv) {
+  if ((materialFlags(m) & RB_MATERIAL_UV_TRANSFORM) == 0u) return uv;
   GpuTextureTransform t = textureTransforms[slot];
   vec3 h = vec3(uv, 1.0);
   return vec2(dot(t.u.xyz, h), dot(t.v.xyz, h));
 }
 
-vec4 sampleMaterial(int slot, vec2 uv, vec4 fallback) { return slot >= 0 ? RB_SAMPLE_MATERIAL(slot, textureUv(slot, uv)) : fallback; }
+vec4 sampleMaterial(GpuMaterial m, int slot, vec2 uv, vec4 fallback) {
+  return slot >= 0 ? RB_SAMPLE_MATERIAL(slot, textureUv(m, slot, uv)) : fallback;
+}
 
 // The layers at texture coordinate `uv` (`textured` false: the factors alone), the coat's
 // normal being the surface's N (the G-buffer raster applies the coat's normal map).
 Layers materialLayers(GpuMaterial m, vec2 uv, vec3 N, float ior, bool textured) {
   const vec4 one = vec4(1.0);
   Layers l = noLayers(N, ior);
-  l.clearcoat = m.clearcoat.x * (textured ? sampleMaterial(m.layerTextures.x, uv, one).r : 1.0);
-  l.clearcoatRoughness = clamp(m.clearcoat.y * (textured ? sampleMaterial(m.layerTextures.y, uv, one).g : 1.0), 0.0, 1.0);
-  l.specular = m.clearcoat.w * (textured ? sampleMaterial(m.layerTextures.w, uv, one).a : 1.0);
-  vec3 specularColor = m.specularColor.rgb * (textured ? sampleMaterial(m.layerTextures2.z, uv, one).rgb : vec3(1.0));
+  if ((materialFlags(m) & RB_MATERIAL_LAYERS) == 0u) return l;
+  l.clearcoat = m.clearcoat.x * (textured ? sampleMaterial(m, m.layerTextures.x, uv, one).r : 1.0);
+  l.clearcoatRoughness = clamp(m.clearcoat.y * (textured ? sampleMaterial(m, m.layerTextures.y, uv, one).g : 1.0), 0.0, 1.0);
+  l.specular = m.clearcoat.w * (textured ? sampleMaterial(m, m.layerTextures.w, uv, one).a : 1.0);
+  vec3 specularColor = m.specularColor.rgb * (textured ? sampleMaterial(m, m.layerTextures2.z, uv, one).rgb : vec3(1.0));
   l.specularF0 = min(l.specularF0 * specularColor, vec3(1.0));
-  l.sheenColor = m.sheen.rgb * (textured ? sampleMaterial(m.layerTextures2.x, uv, one).rgb : vec3(1.0));
-  l.sheenRoughness = m.sheen.w * (textured ? sampleMaterial(m.layerTextures2.y, uv, one).a : 1.0);
+  l.sheenColor = m.sheen.rgb * (textured ? sampleMaterial(m, m.layerTextures2.x, uv, one).rgb : vec3(1.0));
+  l.sheenRoughness = m.sheen.w * (textured ? sampleMaterial(m, m.layerTextures2.y, uv, one).a : 1.0);
   return l;
 }
 

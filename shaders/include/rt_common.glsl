@@ -67,13 +67,13 @@ HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec
   GpuMaterial m = materials[material];
   vec4 color = w0 * v0.color + bary.x * v1.color + bary.y * v2.color;
   h.baseColor = m.baseColorFactor * color;
-  h.baseColor *= sampleMaterial(m.textures.x, h.uv, vec4(1.0));
-  vec4 mr = sampleMaterial(m.textures.y, h.uv, vec4(1.0));
+  h.baseColor *= sampleMaterial(m, m.textures.x, h.uv, vec4(1.0));
+  vec4 mr = sampleMaterial(m, m.textures.y, h.uv, vec4(1.0));
   h.metallic = clamp(m.metallicRoughnessTransmissionIor.x * mr.b, 0.0, 1.0);
   h.roughness = clamp(m.metallicRoughnessTransmissionIor.y * mr.g, 0.0, 1.0);
   h.transmission = m.metallicRoughnessTransmissionIor.z;
   h.ior = m.metallicRoughnessTransmissionIor.w;
-  h.emissive = m.emissiveAlphaCutoff.rgb * sampleMaterial(m.textures.w, h.uv, vec4(1.0)).rgb;
+  h.emissive = m.emissiveAlphaCutoff.rgb * sampleMaterial(m, m.textures.w, h.uv, vec4(1.0)).rgb;
   h.material = material;
   h.layers = materialLayers(m, h.uv, h.normal, h.ior, true);
   return h;
@@ -92,7 +92,7 @@ bool candidateIsOpaque(RayQuery q) {
   vec2 uv = w0 * vec2(v0.positionU.w, v0.normalV.w) + bary.x * vec2(v1.positionU.w, v1.normalV.w) +
             bary.y * vec2(v2.positionU.w, v2.normalV.w);
   float alpha = m.baseColorFactor.a * (w0 * v0.color.a + bary.x * v1.color.a + bary.y * v2.color.a);
-  alpha *= sampleMaterial(m.textures.x, uv, vec4(1.0)).a;
+  alpha *= sampleMaterial(m, m.textures.x, uv, vec4(1.0)).a;
   return alpha >= m.emissiveAlphaCutoff.w;
 }
 

@@ -25,6 +25,8 @@
 #define RB_MATERIAL_DOUBLE_SIDED 1u
 #define RB_MATERIAL_ALPHA_MASK 2u
 #define RB_MATERIAL_UNLIT 4u
+#define RB_MATERIAL_LAYERS 8u        // clearcoat, sheen or specular other than glTF's defaults
+#define RB_MATERIAL_UV_TRANSFORM 16u  // a texture slot with a KHR_texture_transform
 
 // Ray-traced effects (FrameUniforms.rayTracing.x bits).
 #define RB_RT_SHADOWS 1u

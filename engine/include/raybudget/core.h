@@ -82,7 +82,7 @@ struct GBuffer {
   VkImageView normal = VK_NULL_HANDLE;         // R16G16B16A16_SFLOAT: world shading normal, unit xyz
   VkImageView baseMetal = VK_NULL_HANDLE;      // R8G8B8A8_UNORM: base colour rgb (linear), metallic a
   VkImageView roughTransIor = VK_NULL_HANDLE;  // R16G16B16A16_SFLOAT: roughness, transmission, IOR, unlit (0/1)
-  VkImageView emissive = VK_NULL_HANDLE;       // R16G16B16A16_SFLOAT: emitted radiance rgb
+  VkImageView emissive = VK_NULL_HANDLE;       // R16G16B16A16_SFLOAT: emitted radiance rgb, a 1 where `layers` holds layers
   VkImageView objectId = VK_NULL_HANDLE;       // R32_UINT: the scene's object ID, 0xFFFFFFFF where none (clear to it)
   VkImageView materialId = VK_NULL_HANDLE;     // R32_UINT: the scene's material index
   // R32G32B32A32_SFLOAT: position xyz in render space (world minus Context::renderOrigin(),

@@ -174,10 +174,14 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
     if (m.doubleSided) flags |= RB_MATERIAL_DOUBLE_SIDED;
     if (m.alphaMode == AlphaMode::Mask) flags |= RB_MATERIAL_ALPHA_MASK;
     if (m.unlit) flags |= RB_MATERIAL_UNLIT;
+    const bool customF0 = m.specularColor != glm::vec3(1.0f) || m.specularColorTexture >= 0;
+    if (m.clearcoat > 0.0f || m.sheenColor != glm::vec3(0.0f) || m.specular != 1.0f || m.specularTexture >= 0 || customF0) flags |= RB_MATERIAL_LAYERS;
+    for (int t : {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture, m.clearcoatTexture, m.clearcoatRoughnessTexture,
+                  m.clearcoatNormalTexture, m.sheenColorTexture, m.sheenRoughnessTexture, m.specularTexture, m.specularColorTexture})
+      if (t >= 0 && scene.textures[size_t(t)].uvTransform != glm::mat3(1.0f)) flags |= RB_MATERIAL_UV_TRANSFORM;
     g.normalScaleThicknessFlags = glm::vec4(m.normalScale, m.thickness, std::bit_cast<float>(flags), 0.0f);
     g.clearcoat = glm::vec4(m.clearcoat, m.clearcoatRoughness, m.clearcoatNormalScale, m.specular);
     g.sheen = glm::vec4(m.sheenColor, m.sheenRoughness);
-    const bool customF0 = m.specularColor != glm::vec3(1.0f) || m.specularColorTexture >= 0;
     g.specularColor = glm::vec4(m.specularColor, customF0 ? 1.0f : 0.0f);
     g.layerTextures = glm::ivec4(slot(m.clearcoatTexture, false), slot(m.clearcoatRoughnessTexture, false), slot(m.clearcoatNormalTexture, false),
                                  slot(m.specularTexture, false));
