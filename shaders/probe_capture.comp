@@ -23,9 +23,10 @@ void main() {
   uvec3 id = gl_GlobalInvocationID;
   if (id.x >= RB_ENV_SIZE || id.y >= RB_ENV_SIZE) return;
   uint probe = push.objectMaterial.x;
-  vec3 dir = cubeDirection(id.z, id.xy, RB_ENV_SIZE);
+  uint face = push.objectMaterial.y + id.z;  // the dispatch's first face, then one per z
+  vec3 dir = cubeDirection(face, id.xy, RB_ENV_SIZE);
   uint work = 0u;
   vec3 radiance = traceRadiance(frame.probeCenter[probe].xyz, dir, 1u, work);
   bool against = rbFirstHitDistance < RB_PROBE_MIN_CLEARANCE * frame.ssr.z;
-  imageStore(probeRadianceImage, ivec3(id.xy, probe * 6u + id.z), vec4(radiance, rbFirstHitInside || against ? 0.0 : 1.0));
+  imageStore(probeRadianceImage, ivec3(id.xy, probe * 6u + face), vec4(radiance, rbFirstHitInside || against ? 0.0 : 1.0));
 }

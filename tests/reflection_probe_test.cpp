@@ -5,6 +5,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "shared/config.h"
+
 #include "support/procedural.h"
 #include "support/render_helpers.h"
 #include "support/test_scenes.h"
@@ -88,7 +90,8 @@ TEST(ReflectionProbes, AMirrorFacingAWallShowsTheWallWhereTheTracedReflectionDoe
 }
 
 // Captured on the first frame, skipped while nothing moves, captured again when an object
-// inside the box moves: the frame then equals a fresh renderer's.
+// inside the box moves, one face per frame and then one prefiltered level per frame (the old
+// probe shown meanwhile): when the last level is in, the frame equals a fresh renderer's.
 TEST(ReflectionProbes, AreCapturedOnceAndAgainWhenAnObjectInsideTheirBoxMoves) {
   MirrorAndWall m;
   Renderer renderer(m.scene, stillSettings(Policy::None));
@@ -102,9 +105,16 @@ TEST(ReflectionProbes, AreCapturedOnceAndAgainWhenAnObjectInsideTheirBoxMoves) {
   const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(-2.4f, 0.0f, 0.0f)) * m.scene.objects[m.patch].transform;
   renderer.setObjectTransform(m.patch, moved);
   setObjectTransform(m.scene, m.patch, moved);
-  const std::vector<FrameTiming> after = test::renderStill(renderer, m.camera, 1);
-  ASSERT_EQ(after.size(), 1u);
-  EXPECT_EQ(after[0].probesCaptured, 1u);
+  std::vector<FrameTiming> after = test::renderStill(renderer, m.camera, 1);
+  const FrameImages during = renderer.readback();
+  for (const FrameTiming& t : test::renderStill(renderer, m.camera, 6 + RB_ENV_MIPS - 1)) after.push_back(t);
+  ASSERT_EQ(after.size(), size_t(6 + RB_ENV_MIPS));
+  for (size_t i = 0; i + 1 < after.size(); ++i) {
+    EXPECT_EQ(after[i].probesCaptured, 0u) << "frame " << i << " captures a face or prefilters a level";
+    EXPECT_EQ(after[i].skipped[size_t(Pass::ReflectionProbes)], PassSkip::None);
+  }
+  EXPECT_EQ(after.back().probesCaptured, 1u) << "the last level completes the probe";
+  EXPECT_EQ(test::renderStill(renderer, m.camera, 1)[0].skipped[size_t(Pass::ReflectionProbes)], PassSkip::ProbesCurrent);
   const FrameImages updated = renderer.readback();
   const FrameImages fresh = renderOnce(m.scene, stillSettings(Policy::None), m.camera);
   float worst = 0.0f;
@@ -114,6 +124,12 @@ TEST(ReflectionProbes, AreCapturedOnceAndAgainWhenAnObjectInsideTheirBoxMoves) {
       worst = std::max(worst, std::max(d.r, std::max(d.g, d.b)));
     }
   EXPECT_LT(worst, 1e-3f) << "the moved patch is reflected where it is now";
+  // While the probe was captured again the mirror showed the old one (the patch where it was),
+  // over the same G-buffer.
+  float changed = 0.0f;
+  for (uint32_t y = 0; y < fresh.height; ++y)
+    for (uint32_t x = 0; x < fresh.width; ++x) changed = std::max(changed, glm::length(hdr(during, x, y) - hdr(updated, x, y)));
+  EXPECT_GT(changed, 0.05f) << "the completed recapture changes the reflection";
   test::expectValidationClean(renderer.validationMessages());
 }
 

@@ -8,8 +8,8 @@
 
 namespace raybudget::passes {
 
-void recordPrefilterLevels(const FrameContext& fc, const PassLayout& layout, uint32_t probe) {
-  for (uint32_t mip = 0; mip < RB_ENV_MIPS; ++mip) {
+void recordPrefilterLevels(const FrameContext& fc, const PassLayout& layout, uint32_t probe, uint32_t first, uint32_t count) {
+  for (uint32_t mip = first; mip < first + count; ++mip) {
     gpu::DrawPush push{};
     push.objectMaterial = glm::uvec4(mip, probe, 0u, 0u);
     layout.push(fc, push);

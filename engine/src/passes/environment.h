@@ -11,7 +11,7 @@ namespace raybudget::passes {
 // The bound prefilter pipeline (env_prefilter.comp, probe_prefilter.comp) over every
 // roughness level of RB_ENV_MIPS, one dispatch each: push x the level, y `probe` (the
 // reflection probe; unused for the sky).
-void recordPrefilterLevels(const FrameContext& fc, const PassLayout& layout, uint32_t probe);
+void recordPrefilterLevels(const FrameContext& fc, const PassLayout& layout, uint32_t probe, uint32_t first = 0, uint32_t count = RB_ENV_MIPS);
 
 class EnvironmentPass {
  public:

@@ -28,14 +28,17 @@ ReflectionProbePass::ReflectionProbePass(const vk::Context& ctx, PassLayouts& la
       layout_(layouts.create({capture, kSpirv_probe_prefilter_comp})),
       captureShader_(capture),
       probes_(std::move(probes)),
-      stale_(probes_.size(), true) {}
+      pending_(probes_.size(), kWhole) {}
 
 void ReflectionProbePass::objectMoved(const glm::vec4& before, const glm::vec4& after) {
+  // A recapture under way starts again: its faces so far may show the object where it was.
   for (size_t i = 0; i < probes_.size(); ++i)
-    if (sphereMeetsBox(before, probes_[i]) || sphereMeetsBox(after, probes_[i])) stale_[i] = true;
+    if ((sphereMeetsBox(before, probes_[i]) || sphereMeetsBox(after, probes_[i])) && pending_[i] != kWhole) pending_[i] = 0;
 }
 
-bool ReflectionProbePass::anyStale() const { return std::find(stale_.begin(), stale_.end(), true) != stale_.end(); }
+bool ReflectionProbePass::anyStale() const {
+  return std::any_of(pending_.begin(), pending_.end(), [](int p) { return p != kCurrent; });
+}
 
 void ReflectionProbePass::writeUniforms(gpu::FrameUniforms& u, bool use) const {
   u.probes = glm::uvec4(use ? uint32_t(probes_.size()) : 0u, 0u, 0u, 0u);
@@ -60,37 +63,74 @@ uint32_t ReflectionProbePass::record(const FrameContext& fc) {
   const FrameTargets& t = fc.targets;
   const uint32_t groups = vk::groupsFor(RB_ENV_SIZE, RB_TILE_SIZE);
   constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  // 1. The stale probes' radiance into mip 0 (the other layers keep theirs), then a blitted
-  // mip chain down to 1x1.
-  vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, capture_);
-  layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  uint32_t captured = 0;
+  // What each probe does this frame: capture (whole, or its next face) and prefilter (every
+  // level, or its next one).
+  struct Step {
+    uint32_t probe;
+    int face = -1;        // -1: none; 6: all
+    int level = -1;       // -1: none; RB_ENV_MIPS: all
+  };
+  std::vector<Step> steps;
+  uint32_t completed = 0;
+  bool mips = false;
   for (uint32_t p = 0; p < probes_.size(); ++p) {
-    if (!stale_[p]) continue;
-    gpu::DrawPush push{};
-    push.objectMaterial.x = p;
-    layout_.push(fc, push);
-    vkCmdDispatch(fc.cmd, groups, groups, 6);
-    ++captured;
+    int& s = pending_[p];
+    if (s == kCurrent) continue;
+    Step step{p};
+    if (s == kWhole) {
+      step = {p, 6, RB_ENV_MIPS};
+      s = kCurrent;
+    } else if (s < kFirstLevel) {  // a face of a recapture; the sixth brings the mip chain
+      step.face = s++;
+    } else {
+      step.level = s - kFirstLevel;
+      s = s + 1 == kFirstLevel + RB_ENV_MIPS ? kCurrent : s + 1;
+    }
+    mips = mips || step.face == 6 || step.face == 5;
+    completed += s == kCurrent;
+    steps.push_back(step);
   }
-  vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                   VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-  vk::generateMips(fc.cmd, t.probeRadiance);
+  const bool capturing = std::any_of(steps.begin(), steps.end(), [](const Step& s) { return s.face >= 0; });
+  const bool prefiltering = std::any_of(steps.begin(), steps.end(), [](const Step& s) { return s.level >= 0; });
 
-  // 2. GGX prefilter of the captured probes, one dispatch per probe and roughness level.
-  vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-  vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prefilter_);
-  for (uint32_t p = 0; p < probes_.size(); ++p) {
-    if (!stale_[p]) continue;
-    recordPrefilterLevels(fc, layout_, p);
-    stale_[p] = false;
+  // 1. Radiance into mip 0 (the other layers keep theirs); a blitted mip chain down to 1x1
+  // once a probe's faces are all in.
+  if (capturing) {
+    vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, capture_);
+    layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+    for (const Step& s : steps) {
+      if (s.face < 0) continue;
+      gpu::DrawPush push{};
+      push.objectMaterial = glm::uvec4(s.probe, s.face == 6 ? 0u : uint32_t(s.face), 0u, 0u);
+      layout_.push(fc, push);
+      vkCmdDispatch(fc.cmd, groups, groups, s.face == 6 ? 6 : 1);
+    }
+    if (mips) {
+      vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+      vk::generateMips(fc.cmd, t.probeRadiance);
+    } else {
+      vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                       VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
   }
-  vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  return captured;
+
+  // 2. GGX prefilter, one dispatch per probe and roughness level.
+  if (prefiltering) {
+    vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prefilter_);
+    layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+    for (const Step& s : steps) {
+      if (s.level == RB_ENV_MIPS) recordPrefilterLevels(fc, layout_, s.probe);
+      else if (s.level >= 0) recordPrefilterLevels(fc, layout_, s.probe, uint32_t(s.level), 1);
+    }
+    vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  }
+  return completed;
 }
 
 }  // namespace raybudget::passes

@@ -1,7 +1,10 @@
 // Raster fallback for reflections: cube maps of the scene captured from probe positions
 // (raybudget::reflectionProbesOf) and GGX-prefiltered like the sky, which the fallback reads
 // with parallax correction against each probe's box (shaders/include/environment.glsl). A
-// probe is captured on the first frame and again when an object inside its box moves.
+// probe is captured and prefiltered whole on the first frame; when an object inside its box
+// moves it is captured again one cube face per frame, then prefiltered one roughness level
+// per frame (12 frames; the fallback reads each level as it was until that level is
+// replaced), so no frame pays a whole capture.
 #pragma once
 #include <vector>
 
@@ -24,7 +27,8 @@ class ReflectionProbePass {
   // Marks the probes whose box an object's bounding sphere meets before or after it moved.
   void objectMoved(const glm::vec4& before, const glm::vec4& after);
   bool anyStale() const;
-  // Captures and prefilters the stale probes; how many.
+  // Captures what is due (whole probes, or the next face of a recapture) and prefilters the
+  // probes completed; how many were completed.
   uint32_t record(const FrameContext& fc);
   // Writes the probes' placement into the frame's uniforms (count 0 when `use` is false).
   void writeUniforms(gpu::FrameUniforms& u, bool use) const;
@@ -37,7 +41,10 @@ class ReflectionProbePass {
   const PassLayout& layout_;
   vk::Spirv captureShader_;
   std::vector<ReflectionProbe> probes_;
-  std::vector<bool> stale_;
+  // Per probe: kCurrent; kWhole (not captured yet); the next face of a recapture (0..5), then
+  // the next prefiltered level (kFirstLevel + level).
+  static constexpr int kCurrent = -1, kWhole = -2, kFirstLevel = 6;
+  std::vector<int> pending_;
   vk::Owned<VkPipeline> capture_;
   vk::Owned<VkPipeline> prefilter_;
 };
