@@ -52,57 +52,116 @@ float marchHiZ(vec3 origin, vec3 dir, float tStart, int levels) {
   return -1.0;
 }
 
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
-  // Rougher pixels (most of a frame) read two texels and write nothing: envReflection reads
-  // ssrImage only below the cut-off.
+// Where the previous frame shows world point `p` (false: off its screen).
+bool previousUv(vec3 p, out vec2 uv) {
+  vec4 before = frame.previousViewProj * vec4(p, 1.0);
+  uv = before.xy / before.w * 0.5 + 0.5;
+  return before.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)));
+}
+
+// The reflection seen on smooth surface `s`: rgb radiance, a confidence; `hitDistance` how far
+// along the mirror ray the surface it met lies (-1: none).
+vec4 reflectionAt(Surface s, out float hitDistance) {
+  hitDistance = -1.0;
   float cutoff = frame.ssr.y;
-  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
-  if (texelFetch(gObjectId, pixel, 0).r == RB_NO_OBJECT || rti.r >= cutoff || rti.a > 0.5) return;
-  vec4 result = vec4(0.0);
-  Surface s;
-  if (readSurface(pixel, s)) {
-    vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
-    vec3 R = reflect(-V, s.normal);
-    vec3 start = s.position + s.normal * 1e-3 * length(frame.cameraPositionNear.xyz - s.position);
-    // The ray's far end, pulled in front of the near plane where the ray comes back towards the camera.
-    float reach = frame.ssr.z;
-    vec4 c0 = frame.viewProj * vec4(start, 1.0), c1 = frame.viewProj * vec4(start + R * reach, 1.0);
-    float near = frame.cameraPositionNear.w;
-    if (c1.w < near) {
-      reach *= (c0.w - near) / max(c0.w - c1.w, 1e-6) * 0.99;
-      c1 = frame.viewProj * vec4(start + R * reach, 1.0);
-    }
-    vec2 size = vec2(frame.sizeLightsFrame.xy);
-    vec3 s0 = vec3((c0.xy / c0.w * 0.5 + 0.5) * size, c0.z / c0.w), s1 = vec3((c1.xy / c1.w * 0.5 + 0.5) * size, c1.z / c1.w);
-    vec3 dir = s1 - s0;
-    float pixels = max(abs(dir.x), abs(dir.y));
-    int levels = textureQueryLevels(depthPyramid);
-    float t = pixels > 1.0 ? marchHiZ(s0, dir, 1.5 / pixels, levels) : -1.0;
-    if (t >= 0.0) {
-      vec3 p = s0 + dir * t;
-      ivec2 hit = ivec2(p.xy);
-      // The ray's distance from the camera (1/w is linear in screen space) against the surface's:
-      // a hit only within a thin shell behind the surface, else the ray passed behind it.
-      float rayW = 1.0 / mix(1.0 / c0.w, 1.0 / c1.w, t);
-      vec4 hitPosition = texelFetch(gPosition, hit, 0);
-      float surfaceW = (frame.viewProj * vec4(hitPosition.xyz, 1.0)).w;
-      vec3 hitNormal = normalize(texelFetch(gNormal, hit, 0).xyz);
-      bool front = dot(hitNormal, R) < 0.0;
-      float shell = 0.02 * surfaceW + 0.002 * frame.ssr.z;  // relative to the distance and the scene's size
-      if (texelFetch(gObjectId, hit, 0).r != RB_NO_OBJECT && rayW - surfaceW < shell && front) {
-        vec4 before = frame.previousViewProj * vec4(hitPosition.xyz, 1.0);
-        vec2 uv = before.xy / before.w * 0.5 + 0.5;
-        if (before.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
-          vec2 edge = min(uv, 1.0 - uv), hitEdge = min(p.xy / size, 1.0 - p.xy / size);
-          float fade = clamp(min(min(edge.x, edge.y), min(hitEdge.x, hitEdge.y)) / 0.05, 0.0, 1.0);
-          fade *= 1.0 - smoothstep(0.6 * cutoff, cutoff, s.roughness);
-          fade *= clamp(-dot(hitNormal, R) * 4.0, 0.0, 1.0);  // grazing and back-facing hits fade out
-          result = vec4(textureLod(previousFrame, uv, 0.0).rgb, fade);
-        }
-      }
-    }
+  vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
+  vec3 R = reflect(-V, s.normal);
+  vec3 start = s.position + s.normal * 1e-3 * length(frame.cameraPositionNear.xyz - s.position);
+  // The ray's far end, pulled in front of the near plane where the ray comes back towards the camera.
+  float reach = frame.ssr.z;
+  vec4 c0 = frame.viewProj * vec4(start, 1.0), c1 = frame.viewProj * vec4(start + R * reach, 1.0);
+  float near = frame.cameraPositionNear.w;
+  if (c1.w < near) {
+    reach *= (c0.w - near) / max(c0.w - c1.w, 1e-6) * 0.99;
+    c1 = frame.viewProj * vec4(start + R * reach, 1.0);
   }
-  imageStore(ssrImage, pixel, result);
+  vec2 size = vec2(frame.sizeLightsFrame.xy);
+  vec3 s0 = vec3((c0.xy / c0.w * 0.5 + 0.5) * size, c0.z / c0.w), s1 = vec3((c1.xy / c1.w * 0.5 + 0.5) * size, c1.z / c1.w);
+  vec3 dir = s1 - s0;
+  float pixels = max(abs(dir.x), abs(dir.y));
+  int levels = textureQueryLevels(depthPyramid);
+  float t = pixels > 1.0 ? marchHiZ(s0, dir, 1.5 / pixels, levels) : -1.0;
+  if (t < 0.0) return vec4(0.0);
+  vec3 p = s0 + dir * t;
+  ivec2 hit = ivec2(p.xy);
+  // The ray's distance from the camera (1/w is linear in screen space) against the surface's:
+  // a hit only within a thin shell behind the surface, else the ray passed behind it.
+  float rayW = 1.0 / mix(1.0 / c0.w, 1.0 / c1.w, t);
+  vec4 hitPosition = texelFetch(gPosition, hit, 0);
+  float surfaceW = (frame.viewProj * vec4(hitPosition.xyz, 1.0)).w;
+  vec3 hitNormal = normalize(texelFetch(gNormal, hit, 0).xyz);
+  bool front = dot(hitNormal, R) < 0.0;
+  float shell = 0.02 * surfaceW + 0.002 * frame.ssr.z;  // relative to the distance and the scene's size
+  if (texelFetch(gObjectId, hit, 0).r == RB_NO_OBJECT || rayW - surfaceW >= shell || !front) return vec4(0.0);
+  vec2 uv;
+  if (!previousUv(hitPosition.xyz, uv)) return vec4(0.0);
+  hitDistance = dot(hitPosition.xyz - s.position, R);
+  vec2 edge = min(uv, 1.0 - uv), hitEdge = min(p.xy / size, 1.0 - p.xy / size);
+  float fade = clamp(min(min(edge.x, edge.y), min(hitEdge.x, hitEdge.y)) / 0.05, 0.0, 1.0);
+  fade *= 1.0 - smoothstep(0.6 * cutoff, cutoff, s.roughness);
+  fade *= clamp(-dot(hitNormal, R) * 4.0, 0.0, 1.0);  // grazing and back-facing hits fade out
+  return vec4(textureLod(previousFrame, uv, 0.0).rgb, fade);
+}
+
+// Whether `pixel` shows a smooth surface (rougher pixels, most of a frame, read two texels
+// and get nothing written: envReflection reads ssrImage only below the cut-off).
+bool wantsReflection(ivec2 pixel) {
+  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return false;
+  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
+  return texelFetch(gObjectId, pixel, 0).r != RB_NO_OBJECT && rti.r < frame.ssr.y && rti.a <= 0.5;
+}
+
+// The reflection on `s`, a neighbour of the surface `marched` whose ray met a surface
+// `hitDistance` along it: `s`'s own mirror ray is taken to meet a surface as far along, and
+// where the frame has a surface there (within the march's shell) the previous frame is read
+// where it showed that point, with the marched pixel's confidence; elsewhere the marched
+// pixel's result stands.
+vec4 neighbourReflection(Surface s, vec4 marchedResult, float hitDistance) {
+  if (hitDistance <= 0.0) return marchedResult;
+  vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
+  vec3 p = s.position + reflect(-V, s.normal) * hitDistance;
+  vec4 clip = frame.viewProj * vec4(p, 1.0);
+  vec2 size = vec2(frame.sizeLightsFrame.xy);
+  vec2 screen = (clip.xy / clip.w * 0.5 + 0.5) * size;
+  if (clip.w <= 0.0 || any(lessThan(screen, vec2(0.0))) || any(greaterThanEqual(screen, size))) return marchedResult;
+  ivec2 at = ivec2(screen);
+  vec3 q = texelFetch(gPosition, at, 0).xyz;
+  float surfaceW = (frame.viewProj * vec4(q, 1.0)).w;
+  if (texelFetch(gObjectId, at, 0).r == RB_NO_OBJECT || abs(clip.w - surfaceW) >= 0.02 * surfaceW + 0.002 * frame.ssr.z) return marchedResult;
+  // One refinement: the point along the ray as far as the surface found there.
+  vec3 R = reflect(-V, s.normal);
+  vec2 uv;
+  if (!previousUv(s.position + R * max(dot(q - s.position, R), 0.0), uv)) return marchedResult;
+  // The texel there, as a marched ray reads it (a filtered read would blur edges).
+  return vec4(texelFetch(previousFrame, ivec2(uv * vec2(textureSize(previousFrame, 0))), 0).rgb, marchedResult.a);
+}
+
+// One invocation per 2x2 quad: the first pixel of the quad that wants a reflection marches
+// its ray; the quad's other pixels of the same surface (object, normal within 18 degrees,
+// distance within 2%) reuse its hit distance along their own rays (neighbourReflection); a
+// pixel of another surface in the quad marches its own. A quarter of the marches where
+// surfaces span several quads.
+void main() {
+  ivec2 quad = ivec2(gl_GlobalInvocationID.xy) * 2;
+  if (any(greaterThanEqual(uvec2(quad), frame.sizeLightsFrame.xy))) return;
+  Surface marched;
+  vec4 marchedResult = vec4(0.0);
+  float hitDistance = -1.0;
+  bool haveMarched = false;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 pixel = quad + ivec2(i & 1, i >> 1);
+    Surface s;
+    if (!wantsReflection(pixel) || !readSurface(pixel, s)) continue;
+    float distance = length(s.position - frame.cameraPositionNear.xyz);
+    bool same = haveMarched && s.objectId == marched.objectId && dot(s.normal, marched.normal) > 0.95 &&
+                abs(distance - length(marched.position - frame.cameraPositionNear.xyz)) < 0.02 * distance;
+    if (same) {
+      imageStore(ssrImage, pixel, neighbourReflection(s, marchedResult, hitDistance));
+      continue;
+    }
+    marchedResult = reflectionAt(s, hitDistance);
+    marched = s;
+    haveMarched = true;
+    imageStore(ssrImage, pixel, marchedResult);
+  }
 }

@@ -235,6 +235,57 @@ TEST(HostDevice, AFrameRecordedIntoTheHostsCommandBufferFromItsGBufferMatches) {
   test::expectValidationClean(host.validationMessages());
 }
 
+// A host's G-buffer without the optional layers target: each pixel's clearcoat, sheen and
+// specular come from its material's factors, which shades a scene of factor-only layered
+// materials as the standalone renderer (which writes the layers) does, within the layers
+// target's 8-bit quantisation.
+TEST(HostDevice, AHostGBufferWithoutLayersShadesLayeredMaterialsFromTheirFactors) {
+  Scene scene = loadScene(test::defaultScenePath());
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    Material& m = scene.materials[i];
+    if (i % 3 == 0) m.clearcoat = 1.0f, m.clearcoatRoughness = 0.2f;
+    if (i % 3 == 1) m.sheenColor = glm::vec3(0.9f, 0.5f, 0.2f), m.sheenRoughness = 0.5f;
+    if (i % 3 == 2) m.specular = 0.5f, m.specularColor = glm::vec3(2.0f, 1.0f, 0.5f);
+  }
+  // Full RT: the glass traced (a host's G-buffer has no behind-glass frame to show).
+  const RenderSettings settings = test::settingsFor(Policy::All, 160, 90);
+  FrameImages own, plain;
+  Camera cam;
+  {
+    Renderer renderer(scene, settings);
+    cam = defaultCamera(scene, renderer.aspect());
+    renderer.render(cam);
+    own = renderer.readback(true);
+    test::expectValidationClean(renderer.validationMessages());
+  }
+  {
+    const Scene unlayered = loadScene(test::defaultScenePath());
+    Renderer renderer(unlayered, settings);
+    renderer.render(cam);
+    plain = renderer.readback();
+  }
+  test::TestHost host;
+  {
+    const vk::Context hostCtx(host.device());
+    const HostGBuffer gbuffer(hostCtx, own);
+    ASSERT_EQ(gbuffer.views.layers, VkImageView(VK_NULL_HANDLE));
+    RenderSettings onHost = settings;
+    onHost.validation = false;
+    core::Context core(host.device(), scene, onHost);
+    hostCtx.submitAndWait([&](VkCommandBuffer cmd) { core.recordFrame(cmd, cam, &gbuffer.views); });
+    const std::vector<uint8_t> hosted = readLdr(hostCtx, core.outputs(), 160, 90);
+    int worst = 0, layered = 0;
+    for (size_t c = 0; c < hosted.size(); ++c) {
+      if (c % 4 == 3) continue;
+      worst = std::max(worst, std::abs(int(hosted[c]) - int(own.ldrRgba8[c])));
+      layered = std::max(layered, std::abs(int(plain.ldrRgba8[c]) - int(own.ldrRgba8[c])));
+    }
+    EXPECT_LE(worst, 3) << "the factors give the layers the standalone G-buffer held";
+    EXPECT_GT(layered, 20) << "the layers change the frame";
+  }
+  test::expectValidationClean(host.validationMessages());
+}
+
 }  // namespace
 }  // namespace raybudget
 

@@ -38,7 +38,8 @@ void ScreenReflectionPass::record(const FrameContext& fc) {
     levelDone();
   }
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, march_);
-  vkCmdDispatch(fc.cmd, vk::groupsFor(t.width, RB_TILE_SIZE), vk::groupsFor(t.height, RB_TILE_SIZE), 1);
+  // One invocation per 2x2 quad (ssr.comp).
+  vkCmdDispatch(fc.cmd, vk::groupsFor((t.width + 1) / 2, RB_TILE_SIZE), vk::groupsFor((t.height + 1) / 2, RB_TILE_SIZE), 1);
 }
 
 }  // namespace raybudget::passes
