@@ -188,21 +188,25 @@ std::vector<uint8_t> readLdr(const vk::Context& host, const core::FrameOutputs& 
   return {p, p + size_t(width) * height * 4};
 }
 
+// The standalone renderer's frame of `scene` from its default camera (returned in `cam`),
+// with the G-buffer read back.
+FrameImages standaloneFrame(const Scene& scene, const RenderSettings& settings, Camera& cam) {
+  Renderer renderer(scene, settings);
+  cam = defaultCamera(scene, renderer.aspect());
+  renderer.render(cam);
+  FrameImages img = renderer.readback(true);
+  test::expectValidationClean(renderer.validationMessages());
+  return img;
+}
+
 // A standalone renderer's G-buffer, handed to the core on the host's device as the host's
 // own: the frame recorded into the host's command buffer shows the same pixels, skips the
 // raster, and reports its timings once its slot comes round again.
 TEST(HostDevice, AFrameRecordedIntoTheHostsCommandBufferFromItsGBufferMatches) {
   const Scene scene = loadScene(test::defaultScenePath());
   const RenderSettings settings = test::settingsFor(Policy::All, 160, 90);
-  FrameImages own;
   Camera cam;
-  {
-    Renderer renderer(scene, settings);
-    cam = defaultCamera(scene, renderer.aspect());
-    renderer.render(cam);
-    own = renderer.readback(true);
-    test::expectValidationClean(renderer.validationMessages());
-  }
+  const FrameImages own = standaloneFrame(scene, settings, cam);
   ASSERT_EQ(own.depth.size(), size_t(160 * 90));
   test::TestHost host;
   {
@@ -249,21 +253,9 @@ TEST(HostDevice, AHostGBufferWithoutLayersShadesLayeredMaterialsFromTheirFactors
   }
   // Full RT: the glass traced (a host's G-buffer has no behind-glass frame to show).
   const RenderSettings settings = test::settingsFor(Policy::All, 160, 90);
-  FrameImages own, plain;
   Camera cam;
-  {
-    Renderer renderer(scene, settings);
-    cam = defaultCamera(scene, renderer.aspect());
-    renderer.render(cam);
-    own = renderer.readback(true);
-    test::expectValidationClean(renderer.validationMessages());
-  }
-  {
-    const Scene unlayered = loadScene(test::defaultScenePath());
-    Renderer renderer(unlayered, settings);
-    renderer.render(cam);
-    plain = renderer.readback();
-  }
+  const FrameImages own = standaloneFrame(scene, settings, cam);
+  const FrameImages plain = standaloneFrame(loadScene(test::defaultScenePath()), settings, cam);
   test::TestHost host;
   {
     const vk::Context hostCtx(host.device());

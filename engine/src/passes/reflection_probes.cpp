@@ -93,13 +93,18 @@ uint32_t ReflectionProbePass::record(const FrameContext& fc) {
   const bool capturing = std::any_of(steps.begin(), steps.end(), [](const Step& s) { return s.face >= 0; });
   const bool prefiltering = std::any_of(steps.begin(), steps.end(), [](const Step& s) { return s.level >= 0; });
 
+  // The image from its readers (keeping what it holds) to `pipeline`'s storage writes.
+  auto writeWith = [&](const vk::Image& image, VkPipeline pipeline) {
+    vk::imageBarrier(fc.cmd, image, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+  };
+
   // 1. Radiance into mip 0 (the other layers keep theirs); a blitted mip chain down to 1x1
   // once a probe's faces are all in.
   if (capturing) {
-    vk::imageBarrier(fc.cmd, t.probeRadiance, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-    vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, capture_);
-    layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+    writeWith(t.probeRadiance, capture_);
     for (const Step& s : steps) {
       if (s.face < 0) continue;
       gpu::DrawPush push{};
@@ -119,10 +124,7 @@ uint32_t ReflectionProbePass::record(const FrameContext& fc) {
 
   // 2. GGX prefilter, one dispatch per probe and roughness level.
   if (prefiltering) {
-    vk::imageBarrier(fc.cmd, t.reflectionProbes, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-    vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prefilter_);
-    layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
+    writeWith(t.reflectionProbes, prefilter_);
     for (const Step& s : steps) {
       if (s.level == RB_ENV_MIPS) recordPrefilterLevels(fc, layout_, s.probe);
       else if (s.level >= 0) recordPrefilterLevels(fc, layout_, s.probe, uint32_t(s.level), 1);
