@@ -60,7 +60,7 @@ float surfaceF90(float metallic, Layers l) { return mix(l.specular, 1.0, metalli
 // BRDF"; alpha = roughness^2 as KHR_materials_sheen says) and Neubelt & Pettineo's visibility.
 float dCharlie(float NoH, float roughness) {
   float invAlpha = 1.0 / max(roughness * roughness, 1e-3);
-  float sin2h = max(1.0 - NoH * NoH, 0.0078125);  // 2^-7: keeps half floats finite
+  float sin2h = max(1.0 - NoH * NoH, 0.0078125);  // Filament's floor: no pow(0, x) at NoH = 1
   return (2.0 + invAlpha) * pow(sin2h, invAlpha * 0.5) / (2.0 * PI);
 }
 
