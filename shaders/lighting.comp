@@ -92,9 +92,8 @@ void main() {
   // ambient (sheen, and the coat's reflection of its surroundings) is the same whether the
   // base's reflection is traced or not.
   vec3 irradiance = textureLod(envMap, N, float(RB_ENV_MIPS - 1)).rgb;
-  vec3 ambient = irradiance * s.baseColor * (1.0 - s.metallic) * (1.0 - s.transmission) * layerAttenuation(s.layers, V);
   vec3 coat = s.layers.clearcoat > 0.0 ? surroundings(s.position, coatReflection(s.layers, V), s.layers.clearcoatRoughness) : vec3(0.0);
-  ambient += layersAmbient(s.layers, N, V, irradiance, coat);
+  vec3 ambient = ambientLight(s.baseColor, s.metallic, s.transmission, s.layers, N, V, irradiance, coat);
   color += ambient;
   imageStore(directImage, pixel, vec4(probed ? fallbackColor + ambient : color, 1.0));
   if (measuringItems() && !behindGlassPass()) {

@@ -52,6 +52,10 @@ float marchHiZ(vec3 origin, vec3 dir, float tStart, int levels) {
   return -1.0;
 }
 
+// How far behind the frame's surface at distance `surfaceW` a ray may pass and still count as
+// meeting it: relative to the distance and the scene's size.
+float hitShell(float surfaceW) { return 0.02 * surfaceW + 0.002 * frame.ssr.z; }
+
 // Where the previous frame shows world point `p` (false: off its screen).
 bool previousUv(vec3 p, out vec2 uv) {
   vec4 before = frame.previousViewProj * vec4(p, 1.0);
@@ -91,8 +95,7 @@ vec4 reflectionAt(Surface s, out float hitDistance) {
   float surfaceW = (frame.viewProj * vec4(hitPosition.xyz, 1.0)).w;
   vec3 hitNormal = normalize(texelFetch(gNormal, hit, 0).xyz);
   bool front = dot(hitNormal, R) < 0.0;
-  float shell = 0.02 * surfaceW + 0.002 * frame.ssr.z;  // relative to the distance and the scene's size
-  if (texelFetch(gObjectId, hit, 0).r == RB_NO_OBJECT || rayW - surfaceW >= shell || !front) return vec4(0.0);
+  if (texelFetch(gObjectId, hit, 0).r == RB_NO_OBJECT || rayW - surfaceW >= hitShell(surfaceW) || !front) return vec4(0.0);
   vec2 uv;
   if (!previousUv(hitPosition.xyz, uv)) return vec4(0.0);
   hitDistance = dot(hitPosition.xyz - s.position, R);
@@ -127,7 +130,7 @@ vec4 neighbourReflection(Surface s, vec4 marchedResult, float hitDistance) {
   ivec2 at = ivec2(screen);
   vec3 q = texelFetch(gPosition, at, 0).xyz;
   float surfaceW = (frame.viewProj * vec4(q, 1.0)).w;
-  if (texelFetch(gObjectId, at, 0).r == RB_NO_OBJECT || abs(clip.w - surfaceW) >= 0.02 * surfaceW + 0.002 * frame.ssr.z) return marchedResult;
+  if (texelFetch(gObjectId, at, 0).r == RB_NO_OBJECT || abs(clip.w - surfaceW) >= hitShell(surfaceW)) return marchedResult;
   // One refinement: the point along the ray as far as the surface found there.
   vec3 R = reflect(-V, s.normal);
   vec2 uv;

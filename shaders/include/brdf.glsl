@@ -138,18 +138,19 @@ float iblSheen(float NoV, float roughness) {
   return clamp(exp(a * NoV + b) + (roughness < 0.25 ? 0.0 : 0.1 * (roughness - 0.25)), 0.0, PI);
 }
 
-// What the layers add under environment light: the sheen lit by `irradiance` (the
-// environment's irradiance / pi at N), the coat reflecting `coatRadiance` (the prefiltered
-// environment along the coat's mirror direction at its roughness).
-vec3 layersAmbient(Layers l, vec3 N, vec3 V, vec3 irradiance, vec3 coatRadiance) {
-  vec3 c = vec3(0.0);
+// The diffuse base, the sheen and the coat under environment light: the base and the sheen lit
+// by `irradiance` (the environment's irradiance / pi at N), the coat reflecting `coatRadiance`
+// (the prefiltered surroundings along the coat's mirror direction at its roughness). The base's
+// specular reflection and transmission are the fallback's or the tracer's (layeredEnvWeights).
+vec3 ambientLight(vec3 baseColor, float metallic, float transmission, Layers l, vec3 N, vec3 V, vec3 irradiance, vec3 coatRadiance) {
+  vec3 c = irradiance * baseColor * (1.0 - metallic) * (1.0 - transmission) * layerAttenuation(l, V);
   if (maxOf(l.sheenColor) > 0.0) c += irradiance * l.sheenColor * iblSheen(clamp(dot(N, V), 0.0, 1.0), l.sheenRoughness);
   if (l.clearcoat > 0.0)
     c += coatRadiance * l.clearcoat * envBrdfApprox(vec3(0.04), l.clearcoatRoughness, clamp(dot(l.clearcoatNormal, V), 1e-4, 1.0));
   return c;
 }
 
-// The coat's mirror direction (for layersAmbient's coatRadiance).
+// The coat's mirror direction (for ambientLight's coatRadiance).
 vec3 coatReflection(Layers l, vec3 V) { return reflect(-V, l.clearcoatNormal); }
 
 #endif

@@ -152,11 +152,10 @@ vec3 shadeHit(HitSurface h, vec3 V, inout uint work) {
              visible;
   }
   vec3 irradiance = textureLod(envMap, h.normal, float(RB_ENV_MIPS - 1)).rgb;
-  color += irradiance * h.baseColor.rgb * (1.0 - h.metallic) * (1.0 - h.transmission) * layerAttenuation(h.layers, V);
   vec3 coat = h.layers.clearcoat > 0.0
                   ? textureLod(envMap, coatReflection(h.layers, V), h.layers.clearcoatRoughness * float(RB_ENV_MIPS - 1)).rgb
                   : vec3(0.0);
-  color += layersAmbient(h.layers, h.normal, V, irradiance, coat);
+  color += ambientLight(h.baseColor.rgb, h.metallic, h.transmission, h.layers, h.normal, V, irradiance, coat);
   return color;
 }
 
