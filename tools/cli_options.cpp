@@ -95,6 +95,9 @@ render options:
   --no-rt-shadows, --no-rt-reflections, --no-rt-refractions
                         keep that effect on its raster fallback even where traced
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
+  --full-size-shadow-maps
+                        every shadow map at --shadow-map-size (default: spot and point
+                        lights' maps sized from the screen coverage of their reach)
   --no-screen-space-transmission
                         glass falls back to the environment alone, not the opaque frame lit
                         behind it
@@ -251,6 +254,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--no-reflection-probes") c.settings.reflectionProbes = false;
     else if (a == "--no-screen-space-reflections") c.settings.screenSpaceReflections = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
+    else if (a == "--full-size-shadow-maps") c.settings.shadowMapsFitScreen = false;
     else sceneArgument(a, c.scene, " (see raybudget --help)");
   }
   if (c.scene.empty()) throw Error("render needs a scene file (see raybudget --help)");

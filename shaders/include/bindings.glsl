@@ -27,7 +27,7 @@ layout(set = 0, binding = 52) uniform usampler2D gLayers;  // material layers (g
 
 // Raster fallbacks.
 layout(set = 0, binding = 13) uniform sampler2DArrayShadow shadowMaps;      // directional + spot
-layout(set = 0, binding = 14) uniform samplerCubeArrayShadow pointShadows;  // 6 faces per point light
+layout(set = 0, binding = 14) uniform sampler2DArrayShadow pointShadows;    // 6 layers (cube faces) per point light
 layout(set = 0, binding = 15) uniform samplerCube envMap;                   // prefiltered, RB_ENV_MIPS mips
 layout(set = 0, binding = 16) uniform samplerCube skyMap;                   // sky radiance with mips
 
@@ -71,7 +71,7 @@ layout(set = 0, binding = 37, std430) buffer ItemCostBlock { GpuItemCost itemCos
 uint itemTotalsIndex() { return uint(itemCosts.length()) - 1u; }
 // The shadow maps of bindings 13 and 14 read as depths (no compare, nearest).
 layout(set = 0, binding = 38) uniform sampler2DArray shadowMapDepths;
-layout(set = 0, binding = 39) uniform samplerCubeArray pointShadowDepths;
+layout(set = 0, binding = 39) uniform sampler2DArray pointShadowDepths;
 // Per pixel, the effects whose rays were traced and shown there this frame (RB_RT_SHADOWS,
 // RB_RT_REFLECTIONS, RB_RT_REFRACTIONS bits; 0 where the fallbacks stand, and where a
 // reduced rate filled the pixel from traced neighbours); core::FrameOutputs::tracedMask.

@@ -2,10 +2,40 @@
 // half a texel around the point, a smooth 3x3-texel kernel for four fetches. Acne is
 // avoided by a normal offset of about 1.5 shadow texels (its world size is known per
 // light) plus the slope-scaled depth bias of the shadow pass.
+// A map sized from its screen coverage uses the share spotShadow.w of its layer's side
+// (ShadowMapPass::fit): coordinates are scaled into that corner and taps clamped inside it.
 #ifndef RB_SHADOWS_GLSL
 #define RB_SHADOWS_GLSL
 
 const vec2 kPcfOffsets[4] = vec2[4](vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(-0.5, 0.5), vec2(0.5, 0.5));
+
+// A tap's coordinates kept `margin` texels inside the used corner [0, share]^2 of a layer.
+vec2 insideUsed(vec2 uv, float share, vec2 texel, float margin) { return clamp(uv, texel * margin, vec2(share) - texel * margin); }
+
+// Cube-map face addressing (the Vulkan specification's table): the face a direction
+// leaves through (+X -X +Y -Y +Z -Z: 0..5) and where on it, in [0, 1]^2. The shadow pass
+// renders each face with the matching view (scene_gpu.cpp).
+vec2 cubeFaceUv(vec3 d, out float face) {
+  vec3 a = abs(d);
+  float ma, sc, tc;
+  if (a.x >= a.y && a.x >= a.z) {
+    face = d.x > 0.0 ? 0.0 : 1.0;
+    ma = a.x;
+    sc = d.x > 0.0 ? -d.z : d.z;
+    tc = -d.y;
+  } else if (a.y >= a.z) {
+    face = d.y > 0.0 ? 2.0 : 3.0;
+    ma = a.y;
+    sc = d.x;
+    tc = d.y > 0.0 ? d.z : -d.z;
+  } else {
+    face = d.z > 0.0 ? 4.0 : 5.0;
+    ma = a.z;
+    sc = d.z > 0.0 ? d.x : -d.x;
+    tc = -d.y;
+  }
+  return 0.5 * vec2(sc, tc) / ma + 0.5;
+}
 
 // Directional and spot lights: one layer of the 2D array each. `spread` scales the taps'
 // distance from the point (1: the PCF kernel, half a texel).
@@ -20,16 +50,18 @@ float shadowFromMap(GpuLight light, vec3 position, vec3 normal, float spread) {
   vec2 uv = p.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || p.z > 1.0) return 1.0;
   vec2 texel = 1.0 / vec2(textureSize(shadowMaps, 0).xy);
+  float share = light.spotShadow.w;
   float sum = 0.0;
-  for (int i = 0; i < 4; ++i) sum += texture(shadowMaps, vec4(uv + kPcfOffsets[i] * texel * spread, layer, p.z));
+  for (int i = 0; i < 4; ++i) sum += texture(shadowMaps, vec4(insideUsed(uv * share + kPcfOffsets[i] * texel * spread, share, texel, 0.5), layer, p.z));
   return sum * 0.25;
 }
 float shadowFromMap(GpuLight light, vec3 position, vec3 normal) { return shadowFromMap(light, position, normal, 1.0); }
 
-// Point lights: one cube (6 layers) of the cube array each. The reference depth is what the
-// face's 90-degree perspective projection wrote for this point: it depends only on the
-// largest axis of the light-to-point vector.
-float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spreadScale) {
+// Point lights: six layers (a cube's faces) each. The reference depth is what the face's
+// 90-degree perspective projection wrote for this point: it depends only on the largest axis
+// of the light-to-point vector, which also picks the face. Taps stay on that face (within
+// half a texel of its edge), where a hardware cube lookup would filter across the seam.
+float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spread) {
   float cube = light.spotShadow.z;
   if (cube < 0.0) return 1.0;
   float distanceToLight = length(position - light.positionRange.xyz);
@@ -38,12 +70,13 @@ float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spreadSca
   float d = max(abs(v.x), max(abs(v.y), abs(v.z)));
   if (d >= f || d <= n) return 1.0;
   float ref = f / (f - n) - f * n / ((f - n) * d);
-  vec3 dir = v / max(length(v), 1e-12);
-  vec3 up = abs(dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0);
-  vec3 t = normalize(cross(up, dir)), b = cross(dir, t);
-  float spread = light.shadowParams.x * spreadScale;  // one texel, in direction units
+  float face;
+  vec2 uv = cubeFaceUv(v, face);
+  vec2 texel = 1.0 / vec2(textureSize(pointShadows, 0).xy);
+  float share = light.spotShadow.w;
+  float layer = cube * 6.0 + face;
   float sum = 0.0;
-  for (int i = 0; i < 4; ++i) sum += texture(pointShadows, vec4(dir + (t * kPcfOffsets[i].x + b * kPcfOffsets[i].y) * spread, cube), ref);
+  for (int i = 0; i < 4; ++i) sum += texture(pointShadows, vec4(insideUsed(uv * share + kPcfOffsets[i] * texel * spread, share, texel, 0.5), layer, ref));
   return sum * 0.25;
 }
 float shadowFromCube(GpuLight light, vec3 position, vec3 normal) { return shadowFromCube(light, position, normal, 1.0); }
@@ -79,23 +112,13 @@ bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, float reach, o
 // (docs/SELECTION.md measures what this changes).
 #define RB_SHADOW_RAY_END_TEXELS 3.0
 
-float nearestDepth2D(vec2 uv, float layer, vec2 texel) {
+// `uv` in the layer's used corner (already scaled by `share`); gathers stay inside it.
+float nearestDepthInLayer(sampler2DArray depths, vec2 uv, float layer, float share) {
+  vec2 texel = 1.0 / vec2(textureSize(depths, 0).xy);
   float d = 1.0;
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) {
-      vec4 g = textureGather(shadowMapDepths, vec3(uv + vec2(x, y) * 2.0 * texel, layer));
-      d = min(d, min(min(g.x, g.y), min(g.z, g.w)));
-    }
-  return d;
-}
-
-float nearestDepthCube(vec3 dir, float cube, float texel) {
-  vec3 up = abs(dir.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0);
-  vec3 t = normalize(cross(up, dir)), b = cross(dir, t);
-  float d = 1.0;
-  for (int y = -1; y <= 1; ++y)
-    for (int x = -1; x <= 1; ++x) {
-      vec4 g = textureGather(pointShadowDepths, vec4(dir + (t * float(x) + b * float(y)) * 2.0 * texel, cube));
+      vec4 g = textureGather(depths, vec3(insideUsed(uv + vec2(x, y) * 2.0 * texel, share, texel, 1.0), layer));
       d = min(d, min(min(g.x, g.y), min(g.z, g.w)));
     }
   return d;
@@ -116,7 +139,9 @@ float shadowRayEnd(GpuLight light, vec3 origin, vec3 L, float dist) {
     vec3 a = abs(v);
     float w0 = max(a.x, max(a.y, a.z));
     if (w0 >= f || w0 <= n) return dist;
-    float d = nearestDepthCube(normalize(v), layer, light.shadowParams.x);
+    float face;
+    vec2 uv = cubeFaceUv(v, face);
+    float d = nearestDepthInLayer(pointShadowDepths, uv * light.spotShadow.w, layer * 6.0 + face, light.spotShadow.w);
     if (d >= 1.0) return dist;
     // The major axis's component shrinks linearly along the ray.
     float along = a.x >= max(a.y, a.z) ? abs(L.x) : (a.y >= a.z ? abs(L.y) : abs(L.z));
@@ -128,7 +153,7 @@ float shadowRayEnd(GpuLight light, vec3 origin, vec3 L, float dist) {
     vec3 p = c0.xyz / c0.w;
     vec2 uv = p.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || p.z > 1.0) return dist;
-    float d = nearestDepth2D(uv, layer, 1.0 / vec2(textureSize(shadowMapDepths, 0).xy));
+    float d = nearestDepthInLayer(shadowMapDepths, uv * light.spotShadow.w, layer, light.spotShadow.w);
     if (d >= 1.0) return dist;
     if (type == RB_LIGHT_SPOT) {
       // View depth falls linearly along the ray (c.w is the spot's view depth).

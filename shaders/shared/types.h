@@ -59,8 +59,10 @@ struct GpuLight {
   vec4 positionRange;   // xyz world position, w range (0 = infinite)
   vec4 directionType;   // xyz direction the light travels, w type (RB_LIGHT_*)
   vec4 colorIntensity;  // rgb colour * intensity, w unused
-  vec4 spotShadow;      // x cos(inner), y cos(outer), z shadow layer or cube (-1 none), w unused
-  vec4 shadowParams;    // x texel size (world units; per unit distance for spot/point), y near, z far
+  vec4 spotShadow;      // x cos(inner), y cos(outer), z shadow layer or cube (-1 none),
+                        //   w share of the layer's side the map uses (sized from screen coverage)
+  vec4 shadowParams;    // x texel size at the used size (world units; per unit distance for
+                        //   spot/point), y near, z far
   mat4 shadowViewProj;  // directional / spot: world -> shadow clip space
 };
 

@@ -80,6 +80,10 @@ struct RenderSettings {
   std::string device;              // substring of the Vulkan device name; empty: best available
   bool validation = false;         // Khronos validation + synchronization validation
   uint32_t shadowMapSize = 1024;   // directional/spot layers; point-light cube faces get half
+  // Each spot and point light's map takes the power-of-two size its reach covers on screen
+  // (at most shadowMapSize; a shadow texel about a pixel there), rendered again when that
+  // changes; off: every map at full size.
+  bool shadowMapsFitScreen = true;
   // Glass shows the opaque frame lit behind it (Pass::BehindGlass); off: the environment alone.
   bool screenSpaceTransmission = true;
   // Reflections and what glass shows off screen come from reflection probes captured from
@@ -172,6 +176,7 @@ struct FrameTiming {
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
   uint32_t shadowMapViews = 0;  // shadow-map layers and cube faces rendered (0: every map was current)
   uint32_t shadowMapDraws = 0;  // draw calls into them (the casters inside each view)
+  uint32_t shadowMapTexels = 0; // texels of the rendered views (each map's side from its screen coverage)
   uint32_t probesCaptured = 0;  // reflection probes captured (0: every probe was current)
   // Budgeted policies: the stage budget T, the part of it the selection got for the
   // candidates' work (T less the stage's learned fixed cost: coverage, select, the trace

@@ -113,7 +113,7 @@ struct Context::Impl {
         behindGlassCopy(ctx, layouts, kSpirv_behind_glass_comp),
         traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows)),
         traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects)) {
-    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows);
+    if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows, targets);
     for (Slot& slot : slots) {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
       slot.gbuffer = targets.gbufferViews();
@@ -148,6 +148,7 @@ struct Context::Impl {
     t.tlasRebuildMs = slot.tlasRebuildMs;
     t.shadowMapViews = slot.shadowMapsRecorded.views;
     t.shadowMapDraws = slot.shadowMapsRecorded.draws;
+    t.shadowMapTexels = slot.shadowMapsRecorded.texels;
     t.probesCaptured = slot.probesCaptured;
     t.skipped = slot.skipped;
     const uint32_t s = uint32_t(&slot - slots);
@@ -427,6 +428,8 @@ struct Context::Impl {
     bindGBuffer(slot, host ? *host : targets.gbufferViews());
     const float aspect = float(settings.width) / float(settings.height);
     const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
+    if (shadowMaps && settings.shadowMapsFitScreen)
+      shadowMaps->fit(scene.shadows, viewProj, camera.position, 0.5f * float(settings.height) / std::tan(0.5f * camera.yfov));
     slot.behindGlass = behindGlassSkip(host != nullptr, viewProj, slot.behindGlassRect);
     slot.ssr = ssrSkip();
     writeUniforms(slot, camera);

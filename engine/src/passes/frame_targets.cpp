@@ -86,8 +86,9 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   for (uint32_t l = 0; l < shadows.mapLayers; ++l)
     t.shadowMapLayers.push_back(vk::createView(ctx, t.shadowMaps, VK_IMAGE_VIEW_TYPE_2D, 0, 1, l, 1));
   const uint32_t cubes = std::max(shadows.pointCubes, 1u);
-  t.pointShadows = image2d(ctx, kDepthFormat, t.cubeSize, t.cubeSize, depthUsage, 6 * cubes, true);
-  if (cubes == 1) t.pointShadows.view = vk::createView(ctx, t.pointShadows, VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, 0, 1, 0, 6);
+  // Sampled as a 2D array (face = layer) with the faces addressed in the shader: a cube
+  // sized from its screen coverage uses only a corner of each face.
+  t.pointShadows = image2d(ctx, kDepthFormat, t.cubeSize, t.cubeSize, depthUsage, 6 * cubes);
   for (uint32_t f = 0; f < 6 * shadows.pointCubes; ++f)
     t.pointShadowFaces.push_back(vk::createView(ctx, t.pointShadows, VK_IMAGE_VIEW_TYPE_2D, 0, 1, f, 1));
 

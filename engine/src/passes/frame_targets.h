@@ -34,7 +34,7 @@ struct FrameTargets {
   // Raster fallbacks.
   vk::Image shadowMaps;                            // 2D array, one layer per directional/spot light
   std::vector<vk::Owned<VkImageView>> shadowMapLayers;
-  vk::Image pointShadows;                          // cube array, 6 layers per point light
+  vk::Image pointShadows;                          // 2D array, 6 layers (cube faces) per point light
   std::vector<vk::Owned<VkImageView>> pointShadowFaces;
   vk::Image sky, env;                              // cube maps with RB_ENV_MIPS mips
   vk::Owned<VkImageView> skyStorageView;           // mip 0

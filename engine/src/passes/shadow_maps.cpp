@@ -1,6 +1,9 @@
 #include "passes/shadow_maps.h"
 
 #include <algorithm>
+#include <cstddef>
+
+#include <glm/geometric.hpp>
 
 #include "shadow_frag.h"
 #include "shadow_vert.h"
@@ -15,8 +18,12 @@ constexpr VkAccessFlags2 kDepthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_REA
 
 }  // namespace
 
-ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views)
-    : layout_(layouts.create({kSpirv_shadow_vert, kSpirv_shadow_frag})), stale_(views.mapLayers + 6 * views.pointCubes, true) {
+ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views, const FrameTargets& targets)
+    : layout_(layouts.create({kSpirv_shadow_vert, kSpirv_shadow_frag})),
+      stale_(views.mapLayers + 6 * views.pointCubes, true),
+      resized_(views.mapLayers + views.pointCubes, false) {
+  for (uint32_t v = 0; v < views.mapLayers + views.pointCubes; ++v) full_.push_back(v < views.mapLayers ? targets.shadowMapSize : targets.cubeSize);
+  size_ = full_;
   vk::GraphicsPipelineDesc d;
   d.vertex = kSpirv_shadow_vert;
   d.depthFormat = kDepthFormat;
@@ -38,6 +45,54 @@ void ShadowMapPass::objectMoved(const ShadowViews& views, const glm::vec4& befor
     if (sees(views.mapViewProj[l])) stale_[l] = true;
   for (uint32_t f = 0; f < 6 * views.pointCubes; ++f)
     if (sees(views.cubeFaceViewProj[f])) stale_[views.mapLayers + f] = true;
+}
+
+uint32_t ShadowMapPass::neededSize(const glm::vec4& reach, uint32_t full, const glm::mat4& cameraViewProj, const glm::vec3& eye,
+                                   float focalPixels) {
+  if (reach.w < 0.0f) return full;
+  if (!sphereInFrustum(cameraViewProj, reach)) return std::min(kMinSize, full);
+  const float d = glm::length(glm::vec3(reach) - eye);
+  if (d <= reach.w * 1.001f) return full;
+  // The reach's diameter on screen, in pixels: 2 tan(angular radius) times the focal length.
+  const float pixels = 2.0f * reach.w / std::sqrt(d * d - reach.w * reach.w) * focalPixels;
+  uint32_t size = kMinSize;
+  while (size < full && float(size) < pixels) size *= 2;
+  return std::min(size, full);
+}
+
+void ShadowMapPass::fit(const ShadowViews& views, const glm::mat4& cameraViewProj, const glm::vec3& eye, float focalPixels) {
+  for (uint32_t v = 0; v < size_.size(); ++v) {
+    const uint32_t need = neededSize(views.reach[v], full_[v], cameraViewProj, eye, focalPixels);
+    uint32_t size = size_[v];
+    if (!fitted_ || need > size) size = need;
+    else if (4 * need <= size) size = 2 * need;
+    if (size == size_[v]) continue;
+    size_[v] = size;
+    resized_[v] = true;
+    if (v < views.mapLayers) stale_[v] = true;
+    else std::fill_n(stale_.begin() + views.mapLayers + 6 * (v - views.mapLayers), 6, true);
+  }
+  fitted_ = true;
+}
+
+void ShadowMapPass::recordLightUpdates(const FrameContext& fc) {
+  const ShadowViews& views = fc.scene.shadows;
+  bool any = false;
+  for (uint32_t v = 0; v < size_.size(); ++v) {
+    if (!resized_[v]) continue;
+    resized_[v] = false;
+    any = true;
+    // GpuLight's spotShadow.w and shadowParams.x are adjacent: one 8-byte update.
+    const float share = float(size_[v]) / float(full_[v]);
+    const float values[2] = {share, views.fullSizeTexel[v] / share};
+    static_assert(offsetof(gpu::GpuLight, shadowParams) == offsetof(gpu::GpuLight, spotShadow) + 16);
+    vkCmdUpdateBuffer(fc.cmd, fc.scene.lights.buffer, views.light[v] * sizeof(gpu::GpuLight) + offsetof(gpu::GpuLight, spotShadow) + 12,
+                      sizeof(values), values);
+  }
+  // The frame-start barrier ordered the earlier frames' reads before the update.
+  if (any)
+    vk::memoryBarrier(fc.cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_UNIFORM_READ_BIT);
 }
 
 bool ShadowMapPass::anyStale() const { return std::find(stale_.begin(), stale_.end(), true) != stale_.end(); }
@@ -87,6 +142,7 @@ uint32_t ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uin
 ShadowMapPass::Recorded ShadowMapPass::record(const FrameContext& fc) {
   const FrameTargets& t = fc.targets;
   const ShadowViews& views = fc.scene.shadows;
+  recordLightUpdates(fc);
   std::vector<const vk::Image*> rendered;
   if (views.mapLayers > 0) rendered.push_back(&t.shadowMaps);
   if (views.pointCubes > 0) rendered.push_back(&t.pointShadows);
@@ -97,12 +153,13 @@ ShadowMapPass::Recorded ShadowMapPass::record(const FrameContext& fc) {
   Recorded out;
   auto render = [&](VkImageView view, uint32_t size, const glm::mat4& viewProj) {
     out.draws += renderView(fc, view, size, viewProj);
+    out.texels += size * size;
     ++out.views;
   };
   for (uint32_t l = 0; l < views.mapLayers; ++l)
-    if (stale_[l]) render(t.shadowMapLayers[l], t.shadowMapSize, views.mapViewProj[l]);
+    if (stale_[l]) render(t.shadowMapLayers[l], size_[l], views.mapViewProj[l]);
   for (uint32_t f = 0; f < 6 * views.pointCubes; ++f)
-    if (stale_[views.mapLayers + f]) render(t.pointShadowFaces[f], t.cubeSize, views.cubeFaceViewProj[f]);
+    if (stale_[views.mapLayers + f]) render(t.pointShadowFaces[f], size_[views.mapLayers + f / 6], views.cubeFaceViewProj[f]);
   for (const vk::Image* img : rendered)
     vk::imageBarrier(fc.cmd, *img, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,

@@ -102,7 +102,7 @@ std::vector<std::string> missingRequirements(const DeviceCapabilities& c, const 
   feature(c.maintenance4, "maintenance4", "glslang's SPIR-V 1.6 uses LocalSizeId");
   feature(c.runtimeDescriptorArray, "runtimeDescriptorArray", "the scene's texture array");
   feature(c.sampledImageArrayNonUniformIndexing, "shaderSampledImageArrayNonUniformIndexing", "per-pixel material textures");
-  feature(c.features.imageCubeArray, "imageCubeArray", "point-light shadow maps");
+  feature(c.features.imageCubeArray, "imageCubeArray", "reflection probes");
   feature(!c.hasExtension(VK_KHR_SHADER_CLOCK_EXTENSION_NAME) || c.shaderSubgroupClock, "shaderSubgroupClock", "item cost measurement");
   auto limit = [&](uint32_t have, uint32_t need, const char* name) {
     if (have < need) out.push_back(device + name + " is " + std::to_string(have) + ", at least " + std::to_string(need) + " is needed");
