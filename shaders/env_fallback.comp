@@ -8,7 +8,8 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/screen_pixel.glsl"
 
 // Raster fallback for reflections and refractions (include/env_fallback.glsl). Writes
-// indirectImage; the ray-traced passes replace it for the paths they trace.
+// reflectionImage and refractionImage; the ray-traced passes replace them for the paths they
+// trace.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {
@@ -16,9 +17,11 @@ void main() {
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   Surface s;
   if (!readSurface(pixel, s) || s.unlit) {
-    imageStore(indirectImage, pixel, vec4(0.0));
+    imageStore(reflectionImage, pixel, vec4(0.0));
+    imageStore(refractionImage, pixel, vec4(0.0));
     return;
   }
   vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
-  imageStore(indirectImage, pixel, vec4(envReflection(s, V, behindGlassPass() ? ivec2(-1) : pixel) + envTransmission(s, V), 1.0));
+  imageStore(reflectionImage, pixel, vec4(envReflection(s, V, behindGlassPass() ? ivec2(-1) : pixel), 1.0));
+  imageStore(refractionImage, pixel, vec4(envTransmission(s, V), 1.0));
 }

@@ -97,7 +97,7 @@ void main() {
   color += ambient;
   imageStore(directImage, pixel, vec4(probed ? fallbackColor + ambient : color, 1.0));
   if (measuringItems() && !behindGlassPass()) {
-    vec3 indirect = imageLoad(indirectImage, pixel).rgb;
+    vec3 indirect = indirectLight(pixel);
     float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
     addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0), uvec3(0u));
   }

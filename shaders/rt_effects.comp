@@ -23,7 +23,7 @@
 // refract out. Fresnel splits reflection and transmission. Each path is traced where its
 // item (the object's reflections, its refractions) is selected, the other keeps the
 // environment fallback (include/env_fallback.glsl); replaces the fallback's result in
-// indirectImage for the pixels it traces. With RB_RT_MEASURE_ITEMS each traced path adds its
+// reflectionImage or refractionImage for the pixels it traces. With RB_RT_MEASURE_ITEMS each traced path adds its
 // work and the display-space difference it made against the fallback to its item. A path whose
 // item the probe traces here (include/probe.glsl) is measured and not shown. An item at a
 // reduced ray rate (include/rates.glsl) traces its pixels of this frame, and the tile's
@@ -89,7 +89,8 @@ bvec2 pendingPaths(Surface s, ivec2 pixel) {
 }
 
 // Fills the paths pending at `pixel` from the tile's traced neighbours: their weighted mean
-// change against the fallback is added to this pixel's fallback in indirectImage. Filling the
+// change against the fallback is added to this pixel's fallback (reflectionImage,
+// refractionImage). Filling the
 // change rather than the radiance keeps this pixel's own environment where the neighbours'
 // rays escaped to it, and spares each filled pixel its weights and environment lookups (which
 // cost about as much as the fill's gather on lavapipe).
@@ -116,9 +117,8 @@ void fillPending(ivec2 pixel, Surface s, bvec2 pending) {
       weights.y += w;
     }
   }
-  if (all(lessThan(weights, vec2(RB_FILL_MIN_WEIGHT)))) return;
-  vec3 change = (weights.x >= RB_FILL_MIN_WEIGHT ? sum[0] / weights.x : vec3(0.0)) + (weights.y >= RB_FILL_MIN_WEIGHT ? sum[1] / weights.y : vec3(0.0));
-  imageStore(indirectImage, pixel, vec4(imageLoad(indirectImage, pixel).rgb + change, 1.0));
+  if (weights.x >= RB_FILL_MIN_WEIGHT) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + sum[0] / weights.x, 1.0));
+  if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + sum[1] / weights.y, 1.0));
 }
 
 void traceEffects(ivec2 pixel, bool lit, Surface s) {
@@ -156,7 +156,8 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
     color[path] = traceRadiance(origin, dir, depth, work[path]) * absorbed * (path == 0 ? specularWeight : transmitWeight);
     pathTicks[path] = clockNow() - pathStart;
   }
-  imageStore(indirectImage, pixel, vec4((probed[0] ? fallback[0] : color[0]) + (probed[1] ? fallback[1] : color[1]), 1.0));
+  if (reflects && !probed[0]) imageStore(reflectionImage, pixel, vec4(color[0], 1.0));
+  if (refracts && !probed[1]) imageStore(refractionImage, pixel, vec4(color[1], 1.0));
   markTraced(pixel, (reflects && !probed[0] ? RB_RT_REFLECTIONS : 0u) | (refracts && !probed[1] ? RB_RT_REFRACTIONS : 0u));
   // For the tile's fill: the paths traced here at a reduced rate.
   bool shared0 = reflects && !probed[0] && rates[0] != RB_RATE_FULL, shared1 = refracts && !probed[1] && rates[1] != RB_RATE_FULL;

@@ -1,6 +1,10 @@
 // The boundary with a host's device (raybudget/core.h): what a device lacks, in words, and
 // the renderer running on a device the host made, with the host's validation layers clean
 // and the same images as on its own device.
+#include <cstring>
+
+#include <glm/gtc/packing.hpp>
+#include <glm/gtx/component_wise.hpp>
 #include <gtest/gtest.h>
 
 #include "raybudget/raybudget.h"
@@ -167,11 +171,13 @@ struct HostGBuffer {
   }
 };
 
-// The composed image the core left in outputs(), copied out by the host.
-std::vector<uint8_t> readLdr(const vk::Context& host, const core::FrameOutputs& out, uint32_t width, uint32_t height) {
-  const vk::Buffer buffer = vk::createBuffer(host, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+// One of the images the core left in outputs(), `bytesPerPixel` wide, copied out by the host.
+std::vector<uint8_t> readOutput(const vk::Context& host, const core::FrameOutputs& out, VkImage image, uint32_t bytesPerPixel, uint32_t width,
+                                uint32_t height) {
+  const VkDeviceSize size = VkDeviceSize(width) * height * bytesPerPixel;
+  const vk::Buffer buffer = vk::createBuffer(host, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   auto layout = [&](VkCommandBuffer cmd, VkImageLayout from, VkImageLayout to) {
-    vk::imageBarrier(cmd, out.ldr, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+    vk::imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, from, to);
   };
@@ -180,12 +186,29 @@ std::vector<uint8_t> readLdr(const vk::Context& host, const core::FrameOutputs& 
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.imageExtent = {width, height, 1};
     layout(cmd, out.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    vkCmdCopyImageToBuffer(cmd, out.ldr, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer, 1, &copy);
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer, 1, &copy);
     layout(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.layout);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   });
   const auto* p = static_cast<const uint8_t*>(buffer.mapped);
-  return {p, p + size_t(width) * height * 4};
+  return {p, p + size};
+}
+
+// The composed image the core left in outputs().
+std::vector<uint8_t> readLdr(const vk::Context& host, const core::FrameOutputs& out, uint32_t width, uint32_t height) {
+  return readOutput(host, out, out.ldr, 4, width, height);
+}
+
+// An R16G16B16A16_SFLOAT output's RGB per pixel.
+std::vector<glm::vec3> readHalfRgb(const vk::Context& host, const core::FrameOutputs& out, VkImage image, uint32_t width, uint32_t height) {
+  const std::vector<uint8_t> bytes = readOutput(host, out, image, 8, width, height);
+  std::vector<glm::vec3> rgb(size_t(width) * height);
+  for (size_t p = 0; p < rgb.size(); ++p) {
+    uint16_t h[4];
+    std::memcpy(h, bytes.data() + 8 * p, sizeof(h));
+    rgb[p] = glm::vec3(glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2]));
+  }
+  return rgb;
 }
 
 // The standalone renderer's frame of `scene` from its default camera (returned in `cam`),
@@ -218,7 +241,7 @@ TEST(HostDevice, AFrameRecordedIntoTheHostsCommandBufferFromItsGBufferMatches) {
     hostCtx.submitAndWait([&](VkCommandBuffer cmd) { core.recordFrame(cmd, cam, &gbuffer.views); });
     EXPECT_TRUE(core.completedFrames().empty()) << "no slot came round yet";
     const core::FrameOutputs out = core.outputs();
-    EXPECT_TRUE(out.hdr && out.ldr && out.hdrView && out.ldrView && out.direct && out.indirect && out.shadowVisibility);
+    EXPECT_TRUE(out.hdr && out.ldr && out.hdrView && out.ldrView && out.direct && out.reflection && out.refraction && out.shadowVisibility);
     EXPECT_TRUE(readLdr(hostCtx, out, 160, 90) == own.ldrRgba8) << "the host's G-buffer gives the standalone frame";
     for (int i = 0; i < 2; ++i) hostCtx.submitAndWait([&](VkCommandBuffer cmd) { core.recordFrame(cmd, cam, &gbuffer.views); });
     const std::vector<FrameTiming> done = core.completedFrames();
@@ -235,6 +258,50 @@ TEST(HostDevice, AFrameRecordedIntoTheHostsCommandBufferFromItsGBufferMatches) {
     core::GBuffer missing = gbuffer.views;
     missing.position = VK_NULL_HANDLE;
     EXPECT_THROW(hostCtx.submitAndWait([&](VkCommandBuffer cmd) { core.recordFrame(cmd, cam, &missing); }), Error);
+  }
+  test::expectValidationClean(host.validationMessages());
+}
+
+// The outputs hold the frame's terms apart, as a host composing its own reflections or
+// refractions needs them: the HDR image is their sum, refracted light stands only on
+// transmissive surfaces, and the mirror and the glass carry the terms they show.
+TEST(HostDevice, TheOutputsHoldTheDirectReflectedAndRefractedLightApart) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const RenderSettings settings = test::settingsFor(Policy::All, 160, 90);
+  Camera cam;
+  const FrameImages own = standaloneFrame(scene, settings, cam);
+  const uint32_t mirror = test::objectNamed(scene, "mirror_panel"), glass = test::objectNamed(scene, "glass_sphere");
+  ASSERT_NE(mirror, test::kNoObjectNamed);
+  ASSERT_NE(glass, test::kNoObjectNamed);
+  test::TestHost host;
+  {
+    const vk::Context hostCtx(host.device());
+    const HostGBuffer gbuffer(hostCtx, own);
+    RenderSettings onHost = settings;
+    onHost.validation = false;
+    core::Context core(host.device(), scene, onHost);
+    hostCtx.submitAndWait([&](VkCommandBuffer cmd) { core.recordFrame(cmd, cam, &gbuffer.views); });
+    const core::FrameOutputs out = core.outputs();
+    const auto direct = readHalfRgb(hostCtx, out, out.direct, 160, 90), reflection = readHalfRgb(hostCtx, out, out.reflection, 160, 90),
+               refraction = readHalfRgb(hostCtx, out, out.refraction, 160, 90), hdr = readHalfRgb(hostCtx, out, out.hdr, 160, 90);
+    size_t mirrorPixels = 0, glassPixels = 0, opaqueRefracting = 0, sumsOff = 0;
+    glm::vec3 mirrorReflection(0.0f), glassRefraction(0.0f);
+    for (size_t p = 0; p < hdr.size(); ++p) {
+      const glm::vec3 sum = glm::max(direct[p] + reflection[p] + refraction[p], glm::vec3(0.0f));
+      if (glm::any(glm::greaterThan(glm::abs(sum - hdr[p]), 2e-3f * glm::max(sum, glm::vec3(1.0f))))) ++sumsOff;
+      const uint32_t id = own.objectIds[p];
+      if (id == 0xFFFFFFFFu) continue;
+      if (scene.materials[own.materialIds[p]].transmission == 0.0f && refraction[p] != glm::vec3(0.0f)) ++opaqueRefracting;
+      if (id == mirror) ++mirrorPixels, mirrorReflection += reflection[p];
+      if (id == glass) ++glassPixels, glassRefraction += refraction[p];
+    }
+    EXPECT_EQ(sumsOff, 0u) << "hdr = direct + reflection + refraction";
+    EXPECT_EQ(opaqueRefracting, 0u) << "refracted light only on transmissive surfaces";
+    ASSERT_GT(mirrorPixels, 20u);
+    ASSERT_GT(glassPixels, 20u);
+    // The mirror's image is its reflection; the clear glass shows mostly what is behind it.
+    EXPECT_GT(glm::compMin(mirrorReflection) / float(mirrorPixels), 0.05f);
+    EXPECT_GT(glm::compMin(glassRefraction) / float(glassPixels), 0.05f);
   }
   test::expectValidationClean(host.validationMessages());
 }

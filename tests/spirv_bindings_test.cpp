@@ -20,7 +20,7 @@ bool has(const std::vector<uint32_t>& bindings, uint32_t b) { return std::binary
 
 TEST(SpirvBindings, ComposeUsesItsImagesAndNothingOfTheTracer) {
   const std::vector<uint32_t> b = vk::usedBindings(kSpirv_compose_comp);
-  for (uint32_t want : {passes::kFrameUniforms, passes::kDirectImage, passes::kIndirectImage, passes::kHdrImage, passes::kLdrImage})
+  for (uint32_t want : {passes::kFrameUniforms, passes::kDirectImage, passes::kReflectionImage, passes::kRefractionImage, passes::kHdrImage, passes::kLdrImage})
     EXPECT_TRUE(has(b, want)) << "binding " << want;
   for (uint32_t unused : {passes::kBvhNodes, passes::kTextures, passes::kCoverage, passes::kShadowMaps, passes::kGPosition})
     EXPECT_FALSE(has(b, unused)) << "binding " << unused;
@@ -30,7 +30,7 @@ TEST(SpirvBindings, ComposeUsesItsImagesAndNothingOfTheTracer) {
 TEST(SpirvBindings, TheEffectsPassUsesTheTracerTheGBufferAndItsItemCounters) {
   for (vk::Spirv code : {vk::Spirv(kSpirv_rt_effects_comp), vk::Spirv(kSpirv_rt_effects_comp_native)}) {
     const std::vector<uint32_t> b = vk::usedBindings(code);
-    for (uint32_t want : {passes::kBvhNodes, passes::kGPosition, passes::kGNormal, passes::kIndirectImage, passes::kItemCosts,
+    for (uint32_t want : {passes::kBvhNodes, passes::kGPosition, passes::kGNormal, passes::kReflectionImage, passes::kRefractionImage, passes::kItemCosts,
                           passes::kTileList, passes::kEnvMap})
       EXPECT_TRUE(has(b, want)) << "binding " << want;
     EXPECT_FALSE(has(b, passes::kLdrImage));

@@ -33,7 +33,9 @@ layout(set = 0, binding = 16) uniform samplerCube skyMap;                   // s
 
 // Storage images written by the compute passes.
 layout(set = 0, binding = 17, rgba16f) uniform image2D directImage;
-layout(set = 0, binding = 18, rgba16f) uniform image2D indirectImage;
+// The reflected and the refracted light, apart so that a host can compose them apart.
+layout(set = 0, binding = 18, rgba16f) uniform image2D reflectionImage;
+layout(set = 0, binding = 53, rgba16f) uniform image2D refractionImage;
 layout(set = 0, binding = 19, rgba16f) uniform writeonly image2D hdrImage;
 layout(set = 0, binding = 20, rgba8) uniform writeonly image2D ldrImage;
 layout(set = 0, binding = 21, rgba16f) uniform writeonly imageCube skyStorage;
@@ -125,5 +127,7 @@ bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && (selected
 // Whether its item `effect` (RB_ITEM_*) is selected.
 bool itemSelected(uint objectId, uint effect) { return objectId != RB_NO_OBJECT && (selected[objectId] & (1u << effect)) != 0u; }
 bool measuringItems() { return (frame.rayTracing.w & RB_RT_MEASURE_ITEMS) != 0u; }
+// The reflected plus the refracted light at a pixel.
+vec3 indirectLight(ivec2 pixel) { return imageLoad(reflectionImage, pixel).rgb + imageLoad(refractionImage, pixel).rgb; }
 
 #endif

@@ -105,8 +105,11 @@ enum TracedEffect : uint32_t { kTracedShadows = 1u, kTracedReflections = 2u, kTr
 struct FrameOutputs {
   VkImage hdr = VK_NULL_HANDLE, ldr = VK_NULL_HANDLE;              // R16G16B16A16_SFLOAT linear HDR; R8G8B8A8_UNORM tonemapped sRGB
   VkImageView hdrView = VK_NULL_HANDLE, ldrView = VK_NULL_HANDLE;
-  VkImage direct = VK_NULL_HANDLE, indirect = VK_NULL_HANDLE;      // R16G16B16A16_SFLOAT: the lit surface, and its reflected + refracted light
-  VkImageView directView = VK_NULL_HANDLE, indirectView = VK_NULL_HANDLE;
+  // R16G16B16A16_SFLOAT, the terms hdr sums: the lit surface (direct light, emission, diffuse
+  // ambient); its reflected light; its refracted light. Each is ray traced where tracedMask
+  // says so and the raster fallback's elsewhere, so a host can keep one term and replace another.
+  VkImage direct = VK_NULL_HANDLE, reflection = VK_NULL_HANDLE, refraction = VK_NULL_HANDLE;
+  VkImageView directView = VK_NULL_HANDLE, reflectionView = VK_NULL_HANDLE, refractionView = VK_NULL_HANDLE;
   // R32_SFLOAT array, a layer per light: the ray-traced visibility of each light where
   // shadows were traced this frame
   VkImage shadowVisibility = VK_NULL_HANDLE;

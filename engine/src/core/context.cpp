@@ -123,7 +123,7 @@ struct Context::Impl {
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      for (const vk::Image* img : {&targets.direct, &targets.indirect, &targets.hdr, &targets.ldr, &targets.shadowMask, &targets.tracedMask})
+      for (const vk::Image* img : {&targets.direct, &targets.reflection, &targets.refraction, &targets.hdr, &targets.ldr, &targets.shadowMask, &targets.tracedMask})
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       passes::ShadowMapPass::initialize(cmd, targets);
@@ -501,9 +501,11 @@ FrameOutputs Context::outputs() const {
   o.hdrView = t.hdr.view;
   o.ldrView = t.ldr.view;
   o.direct = t.direct.image;
-  o.indirect = t.indirect.image;
+  o.reflection = t.reflection.image;
+  o.refraction = t.refraction.image;
   o.directView = t.direct.view;
-  o.indirectView = t.indirect.view;
+  o.reflectionView = t.reflection.view;
+  o.refractionView = t.refraction.view;
   o.shadowVisibility = t.shadowMask.image;
   o.shadowVisibilityLayers = t.shadowMask.desc.layers;
   o.tracedMask = t.tracedMask.image;

@@ -24,7 +24,7 @@ enum Binding : uint32_t {
   kEnvMap = 15,
   kSkyMap = 16,
   kDirectImage = 17,
-  kIndirectImage = 18,
+  kReflectionImage = 18,
   kHdrImage = 19,
   kLdrImage = 20,
   kSkyStorage = 21,
@@ -59,7 +59,8 @@ enum Binding : uint32_t {
   kSsrImage = 50,
   kTextureTransforms = 51,
   kGLayers = 52,
-  kBindingCount = 53,
+  kRefractionImage = 53,
+  kBindingCount = 54,
 };
 
 }  // namespace raybudget::passes

@@ -106,7 +106,7 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
       {samplers.nearest, gb.materialId, gb.layout},    {samplers.shadow, t.shadowMaps.view, ro}, {samplers.shadow, t.pointShadows.view, ro},
       {samplers.linear, t.env.view, ro},             {samplers.linear, t.sky.view, ro}};
   const VkImageLayout g = VK_IMAGE_LAYOUT_GENERAL;
-  const VkDescriptorImageInfo storage[] = {{VK_NULL_HANDLE, t.direct.view, g}, {VK_NULL_HANDLE, t.indirect.view, g},
+  const VkDescriptorImageInfo storage[] = {{VK_NULL_HANDLE, t.direct.view, g}, {VK_NULL_HANDLE, t.reflection.view, g},
                                            {VK_NULL_HANDLE, t.hdr.view, g},    {VK_NULL_HANDLE, t.ldr.view, g},
                                            {VK_NULL_HANDLE, t.skyStorageView, g}};
   // An array binding of per-mip storage views, `count` long: past the last view, the last one
@@ -152,6 +152,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   // A host G-buffer without material layers: a 1x1 image never read (frame.exposure.w is 0).
   const VkDescriptorImageInfo layers{samplers.nearest, gb.layers ? gb.layers : t.noLayers.view, gb.layers ? gb.layout : ro};
   write(kGLayers, 1, nullptr, &layers);
+  const VkDescriptorImageInfo refraction{VK_NULL_HANDLE, t.refraction.view, g};
+  write(kRefractionImage, 1, nullptr, &refraction);
   const VkDescriptorBufferInfo heuristic[] = {{selection.coverage.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectParams.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectRecords.buffer, 0, VK_WHOLE_SIZE},

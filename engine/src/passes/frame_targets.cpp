@@ -56,7 +56,8 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
     vk::uploadTexture(ctx, t.noLayers, std::vector<uint8_t>(16, 0));
   }
   t.direct = image2d(ctx, kHdrFormat, width, height, storage);
-  t.indirect = image2d(ctx, kHdrFormat, width, height, storage);
+  t.reflection = image2d(ctx, kHdrFormat, width, height, storage);
+  t.refraction = image2d(ctx, kHdrFormat, width, height, storage);
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage | VK_IMAGE_USAGE_SAMPLED_BIT);  // sampled: the next frame's reflections
   t.ssr = image2d(ctx, kHdrFormat, width, height, storage);
   const uint32_t levels = std::min<uint32_t>(uint32_t(std::floor(std::log2(double(std::max(width, height))))) + 1, RB_HIZ_LEVELS);

@@ -30,7 +30,7 @@ struct FrameTargets {
   vk::Image depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position, layers;
   vk::Image noLayers;  // 1x1, bound where a host's G-buffer has no layers
   // Compute outputs, kept in GENERAL layout.
-  vk::Image direct, indirect, hdr, ldr;
+  vk::Image direct, reflection, refraction, hdr, ldr;
   // Raster fallbacks.
   vk::Image shadowMaps;                            // 2D array, one layer per directional/spot light
   std::vector<vk::Owned<VkImageView>> shadowMapLayers;
