@@ -130,23 +130,30 @@ TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {
   EXPECT_EQ(select::itemValue(100, 1000, 0.5f, 0.0f, true, 2.0f, 0.5f), 0.0f) << "nothing to remove: no value";
 }
 
-TEST(CostModel, TimeScaleStartsAtThePriorAndMovesPartWayTowardsWhatWasMeasured) {
+TEST(CostModel, TimeScaleStartsAtThePriorThenFollowsTheMedianOfRecentFrames) {
   select::TimeScale k(640, 360);
   const double prior = select::priorMsPerUnit(CostUnit::Work, 640, 360);
   EXPECT_EQ(k.msPerUnit(CostUnit::Work), prior);
   EXPECT_EQ(k.learned(CostUnit::Work), 0.0);
   EXPECT_EQ(k.fixedMs(), 0.0);
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::PaperCost), 1e-4 * 640 * 360);
-  // Predicted 2 ms of work, measured 3 (no fixed cost known): 30% of the way to 1.5x.
+  // Predicted 2 ms of work, measured 3 (no fixed cost known): the first observation, 1.5x.
   k.learn(CostUnit::Work, {prior, 2.0 / prior, 3.0, 0.4, false});
-  EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), prior * (0.7 + 0.3 * 1.5));
+  EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 1.5 * prior);
   EXPECT_DOUBLE_EQ(k.overheadMs(), 0.4);
   EXPECT_EQ(k.learned(CostUnit::PaperCost), 0.0) << "the other unit keeps its prior";
-  // A 10x outlier moves it by at most 2x of the scale it was selected with.
-  const double before = k.msPerUnit(CostUnit::Work);
-  k.learn(CostUnit::Work, {before, 1.0 / before, 10.0, 0.2, false});
-  EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 0.7 * before + 0.3 * 2.0 * before);
-  EXPECT_DOUBLE_EQ(k.overheadMs(), 0.7 * 0.4 + 0.3 * 0.2);
+  const double learned = k.msPerUnit(CostUnit::Work);
+  for (int f = 0; f < 3; ++f) k.learn(CostUnit::Work, {learned, 1.0 / learned, 1.0, 0.4, false});
+  // One frame 10x slower (a shader compiled on first use, the machine busy) moves nothing.
+  k.learn(CostUnit::Work, {learned, 1.0 / learned, 10.0, 9.0, false});
+  EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), learned);
+  EXPECT_DOUBLE_EQ(k.overheadMs(), 0.4);
+  // A lasting change takes over once it fills half the window: 3x from the fourth frame on
+  // (the outlier above counts as one of them).
+  for (int f = 0; f < 2; ++f) k.learn(CostUnit::Work, {learned, 1.0 / learned, 3.0, 0.4, false});
+  EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), learned);
+  k.learn(CostUnit::Work, {learned, 1.0 / learned, 3.0, 0.4, false});
+  EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 3.0 * learned);
   // Nothing traced to measure: unchanged; candidates none of which fit: relaxed by 10%.
   const double now = k.msPerUnit(CostUnit::Work);
   k.learn(CostUnit::Work, {now, 0.0, 0.1, 0.2, false});
@@ -160,6 +167,20 @@ TEST(CostModel, TimeScaleStartsAtThePriorAndMovesPartWayTowardsWhatWasMeasured) 
   EXPECT_EQ(k.overheadMs(), 0.1);
   EXPECT_EQ(k.traceFixedMs(), 0.3);
   EXPECT_DOUBLE_EQ(k.fixedMs(), 0.4);
+  // ... and holds against one frame's outlier, as if it had been measured for a window.
+  k.learn(CostUnit::PaperCost, {2.5, 0.0, 2400.0, 9.0, false});
+  EXPECT_EQ(k.traceFixedMs(), 0.3) << "a nothing-traced frame timed at seconds";
+  EXPECT_EQ(k.overheadMs(), 0.1);
+}
+
+// A cold start: the first frame's coverage and select take 9 ms (pipelines and caches warming
+// up), the next ones 1.2: from the second frame on the fixed cost is the steady one.
+TEST(CostModel, AColdFirstFrameDoesNotHoldTheFixedCostUp) {
+  select::TimeScale k(640, 360);
+  k.learn(CostUnit::Work, {k.msPerUnit(CostUnit::Work), 0.0, 0.2, 9.0, false});
+  EXPECT_DOUBLE_EQ(k.fixedMs(), 9.2);
+  k.learn(CostUnit::Work, {k.msPerUnit(CostUnit::Work), 0.0, 0.2, 1.2, false});
+  EXPECT_DOUBLE_EQ(k.fixedMs(), 1.4);
 }
 
 // Frames that traced nothing time the trace passes' fixed cost (their dispatches over an

@@ -111,37 +111,46 @@ double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height) {
   return unit == CostUnit::PaperCost ? 1e-4 * double(width) * double(height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
 }
 
+double RecentMedian::value() const {
+  const size_t n = std::min(count_, kSize);
+  if (n == 0) return 0.0;
+  std::array<double, kSize> sorted = values_;
+  std::sort(sorted.begin(), sorted.begin() + n);
+  return sorted[(n - 1) / 2];
+}
+
 double TimeScale::msPerUnit(CostUnit unit) const {
-  const double k = learned_[size_t(unit)];
-  return k > 0.0 ? k : priorMsPerUnit(unit, width_, height_);
+  const RecentMedian& k = scales_[size_t(unit)];
+  return k.empty() ? priorMsPerUnit(unit, width_, height_) : k.value();
 }
 
 void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double overheadMs, double traceFixedMs) {
-  learned_ = {msPerWorkUnit, msPerPaperCost};
-  overheadMs_ = overheadMs;
-  traceFixedMs_ = traceFixedMs;
+  auto restore = [](RecentMedian& m, double x) { x > 0.0 ? m.fill(x) : m.clear(); };
+  restore(scales_[0], msPerWorkUnit);
+  restore(scales_[1], msPerPaperCost);
+  restore(overhead_, overheadMs);
+  restore(traceFixed_, traceFixedMs);
   forgetErrors();
 }
 
-// Each step moves 30% of the way (the timestamps arrive two frames late: a bigger step
-// overshoots). The scale moves to (trace - fixed) / work, clamped to 0.5-2x of the scale the
-// frame was selected with, so that a shader compiled on first use or a busy machine cannot
-// wreck the model.
+// The scale observed is (trace - fixed) / work, kept within 1/16-16x of the scale the frame
+// was selected with (a trace time under the fixed cost says nothing of the scale); the
+// timestamps arrive two frames late, which the median's window spans.
 void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
-  overheadMs_ = overheadMs_ > 0.0 ? 0.7 * overheadMs_ + 0.3 * m.overheadMs : m.overheadMs;
-  const size_t u = size_t(unit);
-  const double current = msPerUnit(unit), used = m.msPerUnitUsed;
+  overhead_.add(m.overheadMs);
+  RecentMedian& k = scales_[size_t(unit)];
+  const double used = m.msPerUnitUsed;
   if (m.work * used <= 1e-3) {  // nothing traced: the trace passes' time is their fixed cost
-    traceFixedMs_ = traceFixedMs_ > 0.0 ? 0.7 * traceFixedMs_ + 0.3 * m.traceMs : m.traceMs;
+    traceFixed_.add(m.traceMs);
     if (m.candidatesButNoneFit) {  // nothing to measure: let the model relax
-      learned_[u] = 0.9 * current;
+      k.empty() ? k.add(0.9 * msPerUnit(unit)) : k.scale(0.9);
       recordError(1.0);  // and the headroom, which would else stay
     }
     return;
   }
-  const double scale = (m.traceMs - traceFixedMs_) / m.work;
+  const double scale = (m.traceMs - traceFixedMs()) / m.work;
   recordError(scale / used);
-  learned_[u] = 0.7 * current + 0.3 * std::clamp(scale, 0.5 * used, 2.0 * used);
+  k.add(std::clamp(scale, used / 16.0, 16.0 * used));
 }
 
 double TimeScale::headroom(double confidence) const {

@@ -102,25 +102,53 @@ struct StageMeasurement {
   bool candidatesButNoneFit = false;
 };
 
+// The last kSize observations of a quantity and their median (the lower middle of an even
+// count): one frame's outlier (a first dispatch, the machine busy for a moment) never moves
+// it, and a lasting change takes over once it fills half the window.
+class RecentMedian {
+ public:
+  static constexpr size_t kSize = 7;
+  bool empty() const { return count_ == 0; }
+  double value() const;  // 0 when empty
+  void add(double x) { values_[count_++ % kSize] = x; }
+  // A saved value, as if it had been observed for a whole window.
+  void fill(double x) {
+    values_.fill(x);
+    count_ = kSize;
+  }
+  void scale(double factor) {
+    for (double& v : values_) v *= factor;
+  }
+  void clear() { count_ = 0; }
+
+ private:
+  std::array<double, kSize> values_{};
+  size_t count_ = 0;
+};
+
 // The stage's time, affine in the selection's work: t = overhead + fixed + scale · work.
 // overhead is the coverage and select passes (their timestamps, every frame), fixed the trace
 // passes' own cost (dispatch, tile list: their timestamps in frames that traced nothing), the
-// scale ms per unit of work, one per cost unit, from the frames that traced something.
+// scale ms per unit of work, one per cost unit, from the frames that traced something: each
+// the median of its last observations (RecentMedian). Moving averages were used before and
+// dropped: one cold first frame (9 ms of coverage and select against 1.2 after) or one
+// nothing-traced frame timed at seconds held the fixed cost above T for a whole benchmark
+// configuration, and a scale 10x off took ten frames over budget to learn at 30% a step.
 // A least-squares line through recent frames' (work, trace time) was tried for the fixed
-// cost and dropped: a budget-driven selection gives points of nearly the same work, and with
-// 15% noise the fit put a true 0.5 ms anywhere in 0.2-0.9 ms, then stuck at 2.2 ms after the
-// scene's cost per unit changed.
+// cost and dropped too: a budget-driven selection gives points of nearly the same work, and
+// with 15% noise the fit put a true 0.5 ms anywhere in 0.2-0.9 ms, then stuck at 2.2 ms after
+// the scene's cost per unit changed.
 class TimeScale {
  public:
   TimeScale(uint32_t width, uint32_t height) : width_(width), height_(height) {}
   // The learned scale, or the prior before any measurement.
   double msPerUnit(CostUnit unit) const;
   // 0 where nothing was learned.
-  double learned(CostUnit unit) const { return learned_[size_t(unit)]; }
-  double overheadMs() const { return overheadMs_; }
-  double traceFixedMs() const { return traceFixedMs_; }
+  double learned(CostUnit unit) const { return scales_[size_t(unit)].value(); }
+  double overheadMs() const { return overhead_.value(); }
+  double traceFixedMs() const { return traceFixed_.value(); }
   // The stage's fixed cost t0: overhead + the trace passes' fixed cost.
-  double fixedMs() const { return overheadMs_ + traceFixedMs_; }
+  double fixedMs() const { return overheadMs() + traceFixedMs(); }
   // The headroom the budget leaves for prediction errors: the `confidence` quantile of the
   // recent frames' measured over predicted work time over their median (the spread; the
   // bias is the scale's to learn), at least 1; 1 before kRatioWindow / 4 frames were measured.
@@ -139,8 +167,8 @@ class TimeScale {
 
  private:
   uint32_t width_, height_;
-  std::array<double, 2> learned_{0.0, 0.0};
-  double overheadMs_ = 0.0, traceFixedMs_ = 0.0;
+  std::array<RecentMedian, 2> scales_;  // per cost unit
+  RecentMedian overhead_, traceFixed_;
   static constexpr size_t kRatioWindow = 32;
   std::array<double, kRatioWindow> ratios_{};  // the last frames' measured / predicted work time
   size_t ratioCount_ = 0;
