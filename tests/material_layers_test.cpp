@@ -226,7 +226,9 @@ TEST(MaterialLayers, RasterAndTracedHitsShadeEachLayerAlike) {
       EXPECT_NEAR(traced[k], raster[k], 0.02f * std::max(raster[k], 0.02f))
           << c.name << " channel " << k << ": deferred " << raster[k] << ", traced hit " << traced[k];
     const glm::vec3 bare = layeredQuadRadiance(cases[3].material, c.tilt, false);
-    if (std::string(c.name) != "none") EXPECT_GT(glm::length(raster - bare), 0.1f * glm::length(bare)) << c.name << " changes the pixel";
+    if (std::string(c.name) != "none") {
+      EXPECT_GT(glm::length(raster - bare), 0.1f * glm::length(bare)) << c.name << " changes the pixel";
+    }
   }
   // The sheen's colour shows at a grazing view over the dark base.
   const glm::vec3 sheen = layeredQuadRadiance(cases[0].material, cases[0].tilt, false);
