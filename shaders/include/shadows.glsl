@@ -37,6 +37,15 @@ vec2 cubeFaceUv(vec3 d, out float face) {
   return 0.5 * vec2(sc, tc) / ma + 0.5;
 }
 
+// Four bilinear depth-compare taps half a texel (times `spread`) around `uv` (in [0, 1]^2 of
+// the map) in `layer`'s used corner, against `ref`.
+float pcf(sampler2DArrayShadow maps, vec2 uv, float layer, float share, float ref, float spread) {
+  vec2 texel = 1.0 / vec2(textureSize(maps, 0).xy);
+  float sum = 0.0;
+  for (int i = 0; i < 4; ++i) sum += texture(maps, vec4(insideUsed(uv * share + kPcfOffsets[i] * texel * spread, share, texel, 0.5), layer, ref));
+  return sum * 0.25;
+}
+
 // Directional and spot lights: one layer of the 2D array each. `spread` scales the taps'
 // distance from the point (1: the PCF kernel, half a texel).
 float shadowFromMap(GpuLight light, vec3 position, vec3 normal, float spread) {
@@ -49,11 +58,7 @@ float shadowFromMap(GpuLight light, vec3 position, vec3 normal, float spread) {
   p.xyz /= p.w;
   vec2 uv = p.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || p.z > 1.0) return 1.0;
-  vec2 texel = 1.0 / vec2(textureSize(shadowMaps, 0).xy);
-  float share = light.spotShadow.w;
-  float sum = 0.0;
-  for (int i = 0; i < 4; ++i) sum += texture(shadowMaps, vec4(insideUsed(uv * share + kPcfOffsets[i] * texel * spread, share, texel, 0.5), layer, p.z));
-  return sum * 0.25;
+  return pcf(shadowMaps, uv, layer, light.spotShadow.w, p.z, spread);
 }
 float shadowFromMap(GpuLight light, vec3 position, vec3 normal) { return shadowFromMap(light, position, normal, 1.0); }
 
@@ -72,12 +77,7 @@ float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spread) {
   float ref = f / (f - n) - f * n / ((f - n) * d);
   float face;
   vec2 uv = cubeFaceUv(v, face);
-  vec2 texel = 1.0 / vec2(textureSize(pointShadows, 0).xy);
-  float share = light.spotShadow.w;
-  float layer = cube * 6.0 + face;
-  float sum = 0.0;
-  for (int i = 0; i < 4; ++i) sum += texture(pointShadows, vec4(insideUsed(uv * share + kPcfOffsets[i] * texel * spread, share, texel, 0.5), layer, ref));
-  return sum * 0.25;
+  return pcf(pointShadows, uv, cube * 6.0 + face, light.spotShadow.w, ref, spread);
 }
 float shadowFromCube(GpuLight light, vec3 position, vec3 normal) { return shadowFromCube(light, position, normal, 1.0); }
 

@@ -74,17 +74,7 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
   const float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-3f);
   const float mapSize = float(settings.shadowMapSize);
   const float cubeSize = float(std::max(settings.shadowMapSize / 2, 16u));
-  auto addView = [&](uint32_t light, const glm::vec4& reach, float texel) {
-    views.light.push_back(light);
-    views.reach.push_back(reach);
-    views.fullSizeTexel.push_back(texel);
-  };
-  struct Cube {
-    uint32_t light;
-    glm::vec4 reach;
-    float texel;
-  };
-  std::vector<Cube> cubes;  // listed after every layer
+  std::vector<ShadowFit> cubeFits;  // listed after every layer's
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     gpu::GpuLight& g = lights[i];
@@ -96,7 +86,7 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
       g.shadowParams = glm::vec4(2.0f * radius / mapSize, radius * 0.5f, radius * 3.5f, 0.0f);
       g.spotShadow.z = float(views.mapLayers++);
       views.mapViewProj.push_back(g.shadowViewProj);
-      addView(uint32_t(i), glm::vec4(center, -1.0f), g.shadowParams.x);
+      views.fit.push_back({uint32_t(i), glm::vec4(center, -1.0f), g.shadowParams.x});
     } else {
       const float far = l.range > 0.0f ? l.range : farthestCorner(scene, l.position) * 1.01f;
       const float near = std::max(far * 1e-4f, 1e-3f);
@@ -107,7 +97,7 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
         g.shadowParams = glm::vec4(2.0f * std::tan(0.5f * fov) / mapSize, near, far, 0.0f);
         g.spotShadow.z = float(views.mapLayers++);
         views.mapViewProj.push_back(g.shadowViewProj);
-        addView(uint32_t(i), glm::vec4(l.position, far), g.shadowParams.x);
+        views.fit.push_back({uint32_t(i), glm::vec4(l.position, far), g.shadowParams.x});
       } else {
         // Cube faces in Vulkan order +X -X +Y -Y +Z -Z, with the up vectors that make the
         // rendered faces match cube-map addressing (no y flip).
@@ -117,11 +107,11 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
         for (int f = 0; f < 6; ++f) views.cubeFaceViewProj.push_back(proj * glm::lookAt(l.position, l.position + dirs[f], ups[f]));
         g.shadowParams = glm::vec4(2.0f / cubeSize, near, far, 0.0f);
         g.spotShadow.z = float(views.pointCubes++);
-        cubes.push_back({uint32_t(i), glm::vec4(l.position, far), g.shadowParams.x});
+        cubeFits.push_back({uint32_t(i), glm::vec4(l.position, far), g.shadowParams.x});
       }
     }
   }
-  for (const Cube& c : cubes) addView(c.light, c.reach, c.texel);
+  views.fit.insert(views.fit.end(), cubeFits.begin(), cubeFits.end());
 }
 
 }  // namespace

@@ -27,17 +27,21 @@ struct GpuTexture {
   VkSampler sampler;
 };
 
+// What sizing a light's map from its screen coverage needs (ShadowMapPass::fit): the light,
+// the sphere its shadows fall in (w < 0: everywhere, a directional light) and its texel size
+// at the full map size (GpuLight's shadowParams.x when the whole layer is used).
+struct ShadowFit {
+  uint32_t light;
+  glm::vec4 reach;
+  float fullSizeTexel;
+};
+
 struct ShadowViews {
   uint32_t mapLayers = 0;      // directional + spot lights with a shadow map
   uint32_t pointCubes = 0;     // point lights with a cube map
   std::vector<glm::mat4> mapViewProj;     // per layer
   std::vector<glm::mat4> cubeFaceViewProj;  // per cube face (6 per point light)
-  // Per layer, then per cube: the light it belongs to, the sphere its shadows fall in (w < 0:
-  // everywhere, a directional light) and its texel size at the full map size (GpuLight's
-  // shadowParams.x when the whole layer is used).
-  std::vector<uint32_t> light;
-  std::vector<glm::vec4> reach;
-  std::vector<float> fullSizeTexel;
+  std::vector<ShadowFit> fit;  // per layer, then per cube
 };
 
 struct SceneGpu {

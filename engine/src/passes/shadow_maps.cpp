@@ -62,7 +62,7 @@ uint32_t ShadowMapPass::neededSize(const glm::vec4& reach, uint32_t full, const 
 
 void ShadowMapPass::fit(const ShadowViews& views, const glm::mat4& cameraViewProj, const glm::vec3& eye, float focalPixels) {
   for (uint32_t v = 0; v < size_.size(); ++v) {
-    const uint32_t need = neededSize(views.reach[v], full_[v], cameraViewProj, eye, focalPixels);
+    const uint32_t need = neededSize(views.fit[v].reach, full_[v], cameraViewProj, eye, focalPixels);
     uint32_t size = size_[v];
     if (!fitted_ || need > size) size = need;
     else if (4 * need <= size) size = 2 * need;
@@ -84,9 +84,9 @@ void ShadowMapPass::recordLightUpdates(const FrameContext& fc) {
     any = true;
     // GpuLight's spotShadow.w and shadowParams.x are adjacent: one 8-byte update.
     const float share = float(size_[v]) / float(full_[v]);
-    const float values[2] = {share, views.fullSizeTexel[v] / share};
+    const float values[2] = {share, views.fit[v].fullSizeTexel / share};
     static_assert(offsetof(gpu::GpuLight, shadowParams) == offsetof(gpu::GpuLight, spotShadow) + 16);
-    vkCmdUpdateBuffer(fc.cmd, fc.scene.lights.buffer, views.light[v] * sizeof(gpu::GpuLight) + offsetof(gpu::GpuLight, spotShadow) + 12,
+    vkCmdUpdateBuffer(fc.cmd, fc.scene.lights.buffer, views.fit[v].light * sizeof(gpu::GpuLight) + offsetof(gpu::GpuLight, spotShadow) + 12,
                       sizeof(values), values);
   }
   // The frame-start barrier ordered the earlier frames' reads before the update.
