@@ -141,7 +141,10 @@ TEST(CostModel, TimeScaleStartsAtThePriorThenFollowsTheMedianOfRecentFrames) {
   k.learn(CostUnit::Work, {prior, 2.0 / prior, 3.0, 0.4, false});
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 1.5 * prior);
   EXPECT_DOUBLE_EQ(k.overheadMs(), 0.4);
-  EXPECT_EQ(k.learned(CostUnit::PaperCost), 0.0) << "the other unit keeps its prior";
+  EXPECT_EQ(k.learned(CostUnit::PaperCost), 0.0) << "the other units keep their prior";
+  EXPECT_EQ(k.learned(CostUnit::ItemWork), 0.0);
+  EXPECT_EQ(select::costUnitOf(Policy::Benefit), CostUnit::ItemWork) << "benefit's item work is a unit of its own";
+  EXPECT_EQ(select::costUnitOf(Policy::Random), CostUnit::Work);
   const double learned = k.msPerUnit(CostUnit::Work);
   for (int f = 0; f < 3; ++f) k.learn(CostUnit::Work, {learned, 1.0 / learned, 1.0, 0.4, false});
   // One frame 10x slower (a shader compiled on first use, the machine busy) moves nothing.
@@ -161,9 +164,10 @@ TEST(CostModel, TimeScaleStartsAtThePriorThenFollowsTheMedianOfRecentFrames) {
   k.learn(CostUnit::Work, {now, 0.0, 0.1, 0.2, true});
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 0.9 * now);
   // A saved model restores exactly; zeros mean the prior.
-  k.set(0.0, 2.5, 0.1, 0.3);
+  k.set(0.0, 2.5, 0.7, 0.1, 0.3);
   EXPECT_EQ(k.msPerUnit(CostUnit::Work), prior);
   EXPECT_EQ(k.msPerUnit(CostUnit::PaperCost), 2.5);
+  EXPECT_EQ(k.msPerUnit(CostUnit::ItemWork), 0.7);
   EXPECT_EQ(k.overheadMs(), 0.1);
   EXPECT_EQ(k.traceFixedMs(), 0.3);
   EXPECT_DOUBLE_EQ(k.fixedMs(), 0.4);
@@ -204,7 +208,7 @@ TEST(CostModel, HeadroomIsAQuantileOfTheRecentPredictionErrors) {
   EXPECT_EQ(k.headroom(0.9), 1.0) << "frames where nothing fitted relax it";
   for (int f = 0; f < 40; ++f) k.learn(CostUnit::Work, {used, work, ratios[f % 5] * used * work, 0.2, false});
   EXPECT_GT(k.headroom(0.9), 1.0);
-  k.set(used, 0.0, 0.2, 0.0);
+  k.set(used, 0.0, 0.0, 0.2, 0.0);
   EXPECT_EQ(k.headroom(0.9), 1.0) << "a saved state has no errors behind it";
 }
 

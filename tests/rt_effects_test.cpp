@@ -762,6 +762,7 @@ TEST(RtBudget, ASavedCostModelMakesAConfigurationIndependentOfWhatRanBefore) {
   EXPECT_GT(saved.msPerWorkUnit, 0.0);
   EXPECT_GT(saved.stageOverheadMs, 0.0) << "coverage and select take time, which T must pay for";
   EXPECT_EQ(saved.msPerPaperCost, 0.0) << "paper has not run: its unit is still the prior";
+  EXPECT_EQ(saved.msPerItemWorkUnit, 0.0) << "nor has benefit";
 
   renderer.restartSelection(Policy::Density, 0.4f);
   renderer.setCostModel(saved);
@@ -780,9 +781,9 @@ TEST(RtBudget, ASavedCostModelMakesAConfigurationIndependentOfWhatRanBefore) {
     EXPECT_LE(t.traceBudgetMs, t.budgetMs) << "the selection gets T less the coverage and select passes";
     EXPECT_GT(t.rtStageMs(), t.traceMs());
   }
-  EXPECT_THROW(renderer.setCostModel({-1.0, 0.0, 0.0}), Error);
-  EXPECT_THROW(renderer.setCostModel({0.0, std::nan(""), 0.0}), Error);
-  EXPECT_THROW(renderer.setCostModel({0.0, 0.0, 0.0, std::numeric_limits<double>::infinity()}), Error);
+  EXPECT_THROW(renderer.setCostModel({.msPerWorkUnit = -1.0}), Error);
+  EXPECT_THROW(renderer.setCostModel({.msPerPaperCost = std::nan("")}), Error);
+  EXPECT_THROW(renderer.setCostModel({.msPerItemWorkUnit = std::numeric_limits<double>::infinity()}), Error);
   test::expectValidationClean(renderer.validationMessages());
 }
 
@@ -798,10 +799,10 @@ TEST(RtBudget, ABudgetBelowTheStagesFixedCostTracesNothingAndSaysSo) {
   auto still = [&](Renderer& r) {  // four frames from the default view
     return test::renderStill(r, camera, 4);
   };
-  renderer.setCostModel({0.0, 0.0, 0.5, 0.3});
+  renderer.setCostModel({.stageOverheadMs = 0.5, .traceFixedMs = 0.3});
   std::vector<FrameTiming> below = still(renderer);
   renderer.restartSelection(Policy::Density, 1e6f);
-  renderer.setCostModel({0.0, 0.0, 0.5, 0.3});
+  renderer.setCostModel({.stageOverheadMs = 0.5, .traceFixedMs = 0.3});
   std::vector<FrameTiming> above = still(renderer);
   ASSERT_EQ(below.size(), 4u);
   ASSERT_EQ(above.size(), 4u);

@@ -97,6 +97,10 @@ std::string passCell(const FrameTiming& t, Pass p) {
 }
 
 // One configuration of the sweep: a policy at a budget (all and none: index 0, no budget).
+// The policy whose calibration learns `p`'s cost unit (CostModel): the paper's C, benefit's
+// item work, the other policies' object work.
+Policy costUnitPolicy(Policy p) { return p == Policy::Paper || p == Policy::Benefit ? p : Policy::Density; }
+
 struct Config {
   Policy policy;
   uint32_t budgetIndex = 0;
@@ -308,11 +312,16 @@ int runSweep(const SweepCommand& c) {
   csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
          "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
-  calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,stage_overhead_ms,trace_fixed_ms,budgets_ms\n";
-  const bool paper = std::any_of(c.policies.begin(), c.policies.end(), [](const SweepPolicy& p) { return p.policy == Policy::Paper; });
-  const bool work = std::any_of(c.policies.begin(), c.policies.end(), [](const SweepPolicy& p) { return p.policy != Policy::Paper; });
+  calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,ms_per_item_work_unit,stage_overhead_ms,trace_fixed_ms,budgets_ms\n";
+  // The cost units the policies predict in, each calibrated with a policy that uses it.
+  auto uses = [&](Policy unitPolicy) {
+    return std::any_of(c.policies.begin(), c.policies.end(), [&](const SweepPolicy& p) { return costUnitPolicy(p.policy) == unitPolicy; });
+  };
+  std::vector<Policy> calibrated;
+  for (const Policy p : {Policy::Paper, Policy::Density, Policy::Benefit})
+    if (uses(p)) calibrated.push_back(p);
   const uint32_t budgets = c.budgetList.empty() ? c.budgets : uint32_t(c.budgetList.size());
-  const uint32_t calibrationRuns = c.budgetList.empty() ? 2 + 1 + 2 * (uint32_t(paper) + uint32_t(work)) : 1;
+  const uint32_t calibrationRuns = c.budgetList.empty() ? 2 + 1 + 2 * uint32_t(calibrated.size()) : 1;
   const uint64_t perPath = uint64_t(c.frames + c.warmup) * (calibrationRuns + uint64_t(c.repeats) * (2 + uint64_t(c.classified) + c.policies.size() * budgets));
   Sweep sweep(c, scene, renderer, csv, perPath * c.paths.size());
   std::cout << "sweep " << c.scene << ": " << scene.objects.size() << " objects, device " << renderer.deviceName() << '\n';
@@ -337,9 +346,8 @@ int runSweep(const SweepCommand& c) {
       fixedMs = float(meanStageMs(sweep.run(pathName, path, {Policy::Density, 0, 1e-4f}, {})));
       // Those frames traced nothing: they timed the stage's fixed cost, which the model keeps.
       const CostModel fixedRun = renderer.costModel();
-      CostModel learned{0.0, 0.0, fixedRun.stageOverheadMs, fixedRun.traceFixedMs};
-      for (const Policy p : {Policy::Paper, Policy::Density}) {
-        if ((p == Policy::Paper && !paper) || (p == Policy::Density && !work)) continue;
+      CostModel learned{.stageOverheadMs = fixedRun.stageOverheadMs, .traceFixedMs = fixedRun.traceFixedMs};
+      for (const Policy p : calibrated) {
         sweep.startFrom(learned);
         for (int pass = 0; pass < 2; ++pass) {
           sweep.run(pathName, path, {p, 0, fullMs}, {});
@@ -353,7 +361,7 @@ int runSweep(const SweepCommand& c) {
       fullMs = float(median(full));
     }
     const CostModel model = renderer.costModel();
-    calibration << pathName << ',' << fullMs << ',' << fixedMs << ',' << model.msPerWorkUnit << ',' << model.msPerPaperCost << ',' << model.stageOverheadMs << ',' << model.traceFixedMs << ',';
+    calibration << pathName << ',' << fullMs << ',' << fixedMs << ',' << model.msPerWorkUnit << ',' << model.msPerPaperCost << ',' << model.msPerItemWorkUnit << ',' << model.stageOverheadMs << ',' << model.traceFixedMs << ',';
     for (size_t b = 0; b < points.size(); ++b) calibration << (b ? ";" : "") << points[b];
     calibration << '\n';
     std::printf("%s: full-RT stage %.3f ms, fixed stage cost %.4f ms, budgets %.4f..%.3f ms\n", pathName.c_str(), fullMs, fixedMs, points.front(), points.back());

@@ -105,7 +105,10 @@ float itemValue(uint32_t pixels, uint32_t screenPixels, float P, float benefit, 
   return E * hysteresis * K;
 }
 
-CostUnit costUnitOf(Policy policy) { return policy == Policy::Paper ? CostUnit::PaperCost : CostUnit::Work; }
+CostUnit costUnitOf(Policy policy) {
+  if (policy == Policy::Paper) return CostUnit::PaperCost;
+  return policy == Policy::Benefit ? CostUnit::ItemWork : CostUnit::Work;
+}
 
 double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height) {
   return unit == CostUnit::PaperCost ? 1e-4 * double(width) * double(height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
@@ -124,10 +127,11 @@ double TimeScale::msPerUnit(CostUnit unit) const {
   return k.empty() ? priorMsPerUnit(unit, width_, height_) : k.value();
 }
 
-void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double overheadMs, double traceFixedMs) {
+void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs) {
   auto restore = [](RecentMedian& m, double x) { x > 0.0 ? m.fill(x) : m.clear(); };
-  restore(scales_[0], msPerWorkUnit);
-  restore(scales_[1], msPerPaperCost);
+  restore(scales_[size_t(CostUnit::Work)], msPerWorkUnit);
+  restore(scales_[size_t(CostUnit::PaperCost)], msPerPaperCost);
+  restore(scales_[size_t(CostUnit::ItemWork)], msPerItemWorkUnit);
   restore(overhead_, overheadMs);
   restore(traceFixed_, traceFixedMs);
   forgetErrors();

@@ -85,7 +85,7 @@ bool probeStrideFits(uint32_t stride, double left, double budget, double toleran
 inline float predictedCost(float msPerUnit, float work) { return msPerUnit * work; }
 
 // Which time scale a policy's predicted work is measured in.
-enum class CostUnit : uint32_t { Work = 0, PaperCost = 1 };
+enum class CostUnit : uint32_t { Work = 0, PaperCost = 1, ItemWork = 2 };
 CostUnit costUnitOf(Policy policy);
 
 // The prior time scale, before any measurement: 1e-4 ms per ray (10 Mrays/s) of
@@ -158,7 +158,7 @@ class TimeScale {
   double headroom(double confidence) const;
   // A saved state (zeros: the prior, no fixed cost), without the recent errors behind the
   // headroom. Values are the caller's to validate.
-  void set(double msPerWorkUnit, double msPerPaperCost, double overheadMs, double traceFixedMs);
+  void set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs);
   // Forgets the recent errors (a restarted selection's headroom must not depend on what ran
   // before it).
   void forgetErrors() { ratioCount_ = 0; }
@@ -167,7 +167,7 @@ class TimeScale {
 
  private:
   uint32_t width_, height_;
-  std::array<RecentMedian, 2> scales_;  // per cost unit
+  std::array<RecentMedian, 3> scales_;  // per cost unit
   RecentMedian overhead_, traceFixed_;
   static constexpr size_t kRatioWindow = 32;
   std::array<double, kRatioWindow> ratios_{};  // the last frames' measured / predicted work time

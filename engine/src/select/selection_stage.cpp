@@ -446,11 +446,11 @@ void SelectionStage::restart(const RenderSettings& settings) { impl_->restart(se
 
 CostModel SelectionStage::costModel() const {
   const TimeScale& k = impl_->timeScale;
-  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.overheadMs(), k.traceFixedMs()};
+  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.learned(CostUnit::ItemWork), k.overheadMs(), k.traceFixedMs()};
 }
 
 void SelectionStage::setCostModel(const CostModel& m) {
-  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.stageOverheadMs, m.traceFixedMs);
+  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs);
 }
 
 std::vector<ObjectMetrics> SelectionStage::objectMetrics() const { return impl_->objectMetrics(); }
