@@ -23,9 +23,9 @@ TEST(CostModel, WorkPerPixelStartsFromTheFirstObservationThenAveragesWithEach) {
 }
 
 TEST(CostModel, PredictedWorkIsPixelsTimesWorkPerPixelOrQTimesThePriorAndPaperUsesC) {
-  EXPECT_EQ(select::predictedWork(Policy::Density, 7.0f, 100, 0.0f, 2.0f), 100.0f * 2.0f * float(RB_PRIOR_WORK_PER_RAY));
-  EXPECT_EQ(select::predictedWork(Policy::Nearest, 7.0f, 100, 12.5f, 2.0f), 1250.0f);
-  EXPECT_EQ(select::predictedWork(Policy::Paper, 7.0f, 100, 12.5f, 2.0f), 7.0f);
+  EXPECT_EQ(select::predictedWork(Policy::Density, 7.0f, 100, 0.0f, 2.0f, 5.0f), 100.0f * 2.0f * 5.0f);
+  EXPECT_EQ(select::predictedWork(Policy::Nearest, 7.0f, 100, 12.5f, 2.0f, 5.0f), 1250.0f);
+  EXPECT_EQ(select::predictedWork(Policy::Paper, 7.0f, 100, 12.5f, 2.0f, 5.0f), 7.0f);
   EXPECT_EQ(select::predictedCost(0.5f, 1250.0f), 625.0f);
 }
 
@@ -118,10 +118,10 @@ TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {
   // Before measurement: a shadow ray per light; reflections one more path, refractions two.
-  EXPECT_EQ(select::predictedItemWork(RB_ITEM_SHADOWS, 10, 0.0f, 3), 10.0f * 3.0f * float(RB_PRIOR_WORK_PER_RAY));
-  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFLECTIONS, 10, 0.0f, 3), 10.0f * 4.0f * float(RB_PRIOR_WORK_PER_RAY));
-  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFRACTIONS, 10, 0.0f, 3), 10.0f * 5.0f * float(RB_PRIOR_WORK_PER_RAY));
-  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFRACTIONS, 10, 7.5f, 3), 75.0f);
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_SHADOWS, 10, 0.0f, 3, 6.0f), 10.0f * 3.0f * 6.0f);
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFLECTIONS, 10, 0.0f, 3, 6.0f), 10.0f * 4.0f * 6.0f);
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFRACTIONS, 10, 0.0f, 3, 6.0f), 10.0f * 5.0f * 6.0f);
+  EXPECT_EQ(select::predictedItemWork(RB_ITEM_REFRACTIONS, 10, 7.5f, 3, 6.0f), 75.0f);
   // R' = A·P·b·(1 + S·I)·K with A = pixels / screen.
   EXPECT_FLOAT_EQ(select::itemValue(100, 1000, 0.5f, 0.2f, false, 2.0f, 0.5f), 0.1f * 0.5f * 0.2f * 2.0f);
   EXPECT_FLOAT_EQ(select::itemValue(100, 1000, 0.5f, 0.2f, true, 2.0f, 0.5f), 0.1f * 0.5f * 0.2f * 1.5f * 2.0f);
@@ -164,7 +164,7 @@ TEST(CostModel, TimeScaleStartsAtThePriorThenFollowsTheMedianOfRecentFrames) {
   k.learn(CostUnit::Work, {now, 0.0, 0.1, 0.2, true});
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 0.9 * now);
   // A saved model restores exactly; zeros mean the prior.
-  k.set(0.0, 2.5, 0.7, 0.1, 0.3);
+  k.set(0.0, 2.5, 0.7, 0.1, 0.3, 0.0);
   EXPECT_EQ(k.msPerUnit(CostUnit::Work), prior);
   EXPECT_EQ(k.msPerUnit(CostUnit::PaperCost), 2.5);
   EXPECT_EQ(k.msPerUnit(CostUnit::ItemWork), 0.7);
@@ -208,7 +208,7 @@ TEST(CostModel, HeadroomIsAQuantileOfTheRecentPredictionErrors) {
   EXPECT_EQ(k.headroom(0.9), 1.0) << "frames where nothing fitted relax it";
   for (int f = 0; f < 40; ++f) k.learn(CostUnit::Work, {used, work, ratios[f % 5] * used * work, 0.2, false});
   EXPECT_GT(k.headroom(0.9), 1.0);
-  k.set(used, 0.0, 0.0, 0.2, 0.0);
+  k.set(used, 0.0, 0.0, 0.2, 0.0, 0.0);
   EXPECT_EQ(k.headroom(0.9), 1.0) << "a saved state has no errors behind it";
 }
 
@@ -225,6 +225,71 @@ TEST(CostModel, FramesThatTraceNothingGiveTheFixedCostAndTheScaleFitsTheRest) {
   }
   EXPECT_NEAR(k.msPerUnit(CostUnit::Work), scale, 1e-3 * scale);
   EXPECT_NEAR(k.traceFixedMs(), fixed, 1e-4) << "frames that traced something leave the fixed cost";
+}
+
+// Frames that trace little of their budget (the probe's few tiles) time the fixed cost's
+// jitter, not the scale: they teach neither the scale nor the headroom. A frame that took far
+// more than it was given teaches both, however little was predicted.
+TEST(CostModel, FramesThatTraceLittleOfTheirBudgetTeachNeitherTheScaleNorTheHeadroom) {
+  select::TimeScale k(640, 360);
+  const double used = 1e-5, budget = 10.0;
+  k.set(used, 0.0, 0.0, 0.2, 0.3, 0.0);
+  for (int f = 0; f < 40; ++f)  // 0.2 ms predicted, 1.3 measured: 5x "off", 0.1 of the budget
+    k.learn(CostUnit::Work, {used, 0.2 / used, 0.3 + 1.0, 0.2, false, budget});
+  EXPECT_EQ(k.msPerUnit(CostUnit::Work), used);
+  EXPECT_EQ(k.headroom(0.9), 1.0);
+  for (int f = 0; f < 4; ++f)  // 0.5 ms predicted, 4.3 measured: over a quarter of the budget
+    k.learn(CostUnit::Work, {used, 0.5 / used, 0.3 + 4.0, 0.2, false, budget});
+  EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 8.0 * used) << "an under-prediction that matters is learned";
+  select::TimeScale full(640, 360);
+  full.set(used, 0.0, 0.0, 0.2, 0.3, 0.0);
+  for (int f = 0; f < 4; ++f) full.learn(CostUnit::Work, {used, 3.0 / used, 0.3 + 6.0, 0.2, false, budget});
+  EXPECT_DOUBLE_EQ(full.msPerUnit(CostUnit::Work), 2.0 * used) << "a frame that used its budget is learned";
+}
+
+// One cold frame among the headroom's first measurements is never its quantile.
+TEST(CostModel, ALoneOutlierDoesNotSetTheHeadroom) {
+  select::TimeScale k(640, 360);
+  const double used = 1e-5, work = 1e5;
+  k.learn(CostUnit::Work, {used, work, 600.0 * used * work, 0.2, false});  // a first dispatch
+  for (int f = 1; f < 8; ++f) k.learn(CostUnit::Work, {used, work, (f % 2 ? 1.0 : 1.2) * used * work, 0.2, false});
+  EXPECT_LT(k.headroom(0.9), 1.3);
+}
+
+// Before anything was traced, an item or object is priced at the work a ray costs: the recent
+// frames' trace time per ray over the unit's scale (at the priors, RB_PRIOR_WORK_PER_RAY).
+TEST(CostModel, WhatWasNeverTracedIsPricedAtTheMeasuredTimeOfARay) {
+  select::TimeScale k(640, 360);
+  EXPECT_DOUBLE_EQ(k.priorWorkPerRay(CostUnit::Work), RB_PRIOR_WORK_PER_RAY);
+  EXPECT_DOUBLE_EQ(k.priorWorkPerRay(CostUnit::ItemWork), RB_PRIOR_WORK_PER_RAY);
+  const double itemScale = 4e-5, msPerRay = 3e-4;
+  k.set(0.0, 0.0, itemScale, 0.2, 0.3, 0.0);
+  EXPECT_DOUBLE_EQ(k.priorWorkPerRay(CostUnit::ItemWork), select::kPriorMsPerRay / itemScale) << "the prior ray time, the learned scale";
+  for (int f = 0; f < 4; ++f) {  // 20 ms of work over 20/msPerRay rays
+    const double work = 20.0 / itemScale;
+    k.learn(CostUnit::ItemWork, {itemScale, work, 0.3 + 20.0, 0.2, false, 20.0, uint64_t(20.0 / msPerRay)});
+  }
+  EXPECT_NEAR(k.msPerRay(), msPerRay, 1e-4 * msPerRay);
+  EXPECT_NEAR(k.priorWorkPerRay(CostUnit::ItemWork), msPerRay / itemScale, 1e-4);
+  select::TimeScale restored(640, 360);
+  restored.set(0.0, 0.0, itemScale, 0.2, 0.3, k.learnedMsPerRay());
+  EXPECT_EQ(restored.priorWorkPerRay(CostUnit::ItemWork), k.priorWorkPerRay(CostUnit::ItemWork)) << "a saved model keeps it";
+}
+
+// A probe traces a left-out item on a few tiles, a sample often of its edge: the item's cost
+// per pixel moves towards it by a share that grows with the pixels probed, from the prior
+// before anything was learned. A selected item's own frame is averaged in as before.
+TEST(CostModel, AProbesFewTilesMoveAnItemsCostByAShareThatGrowsWithThePixelsProbed) {
+  const select::ItemLearned fresh{};
+  const float prior = 20.0f;
+  auto probed = [&](const select::ItemLearned& before, uint32_t pixels) {  // 1 work unit per pixel observed
+    return select::learnItem(0.05f, before, {pixels, 0, 0, pixels, true}, 0.0f, 0, prior).workPerPixel;
+  };
+  EXPECT_EQ(probed(fresh, 64), 20.0f - 19.0f / 8.0f) << "one tile: an eighth of the way from the prior";
+  EXPECT_EQ(probed(fresh, RB_PROBE_TRUSTED_PIXELS / 4), 20.0f - 19.0f / 4.0f);
+  EXPECT_EQ(probed(fresh, RB_PROBE_TRUSTED_PIXELS), 20.0f - 19.0f / 2.0f);
+  EXPECT_EQ(probed({8.0f, 0.0f, true}, RB_PROBE_TRUSTED_PIXELS), 4.5f) << "from what was learned, not the prior";
+  EXPECT_EQ(select::learnItem(0.05f, fresh, {64, 0, 0, 64, false}, 0.0f, 0, prior).workPerPixel, 1.0f) << "selected: its own pixels";
 }
 
 }  // namespace

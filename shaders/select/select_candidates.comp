@@ -5,7 +5,7 @@
 // objects keep the prior), and the counter restarts. Then every candidate object (visible,
 // something to trace, R > 0) becomes a selection candidate with its predicted cost, kappa
 // times its work: the paper's C for `paper`; for the other policies its pixels times its
-// work per pixel (Q times a prior per ray until measured). `benefit` makes each item of a
+// work per pixel (Q times the work a ray costs until measured). `benefit` makes each item of a
 // candidate object with pixels to trace a candidate instead, and each item first learns its
 // work per pixel and its benefit (below).
 #extension GL_KHR_shader_subgroup_basic : require
@@ -40,6 +40,18 @@ void append(bool add, uint id, float cost, float value, float distance) {
 // alone when nothing was learned yet (0).
 float averagedWith(float previous, float observed) { return previous > 0.0 ? 0.5 * (previous + observed) : observed; }
 
+// An item left out last frame was traced on the probe's few tiles alone, a sample of one to a
+// few 8x8 tiles that is often of its edge or its sky-facing part (NormalTangentMirrorTest's
+// shadows: 1.0 units per pixel on a probe's tile against 4.1 over the item, which priced the
+// whole object at a sixth of its time): the estimate, or the prior before one, moves towards
+// it by a power-of-two share that grows with the pixels probed (an exact product: a fused
+// multiply-add rounds alike).
+float probedWorkPerPixel(float previous, float prior, float observed, uint pixels) {
+  float from = previous > 0.0 ? previous : prior;
+  float share = pixels >= RB_PROBE_TRUSTED_PIXELS ? 0.5 : pixels >= RB_PROBE_TRUSTED_PIXELS / 4u ? 0.25 : 0.125;
+  return from + (observed - from) * share;
+}
+
 // Work units per clock tick over last frame's traced items (0: nothing timed).
 float ticksToWork() {
   GpuItemCost totals = items[push.walk.z * RB_ITEMS_PER_OBJECT];
@@ -52,6 +64,10 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   uint id = i * RB_ITEMS_PER_OBJECT + effect;
   GpuItemCost c = items[id];
   bool learnBenefit = (push.items.w & RB_BENEFIT_PRIOR_ONLY) == 0u;
+  // Rays per pixel before anything was measured: a shadow ray per light; a reflection or
+  // refraction path and the shadow rays of its hit (a refraction enters and leaves).
+  float rays = float(push.items.y) + (effect == RB_ITEM_SHADOWS ? 0.0 : float(effect));
+  float priorPerPixel = rays * push.budget.w;
   if (c.pixels > 0u) {  // traced last frame
     // Its cost per pixel: its time, in work units at the frame's exchange rate (shading,
     // texture lookups, the shadow classifier, divergence: what traversal work leaves out),
@@ -59,7 +75,8 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     bool timed = exchange > 0.0 && c.ticks > 0u;
     if (timed || c.work > 0u) {
       float observed = timed ? exactQuotient(float(c.ticks), float(c.pixels)) * exchange : exactQuotient(float(c.work), float(c.pixels));
-      c.workPerPixel = averagedWith(c.workPerPixel, observed);
+      c.workPerPixel = c.selectedLast == 0u ? probedWorkPerPixel(c.workPerPixel, priorPerPixel, observed, c.pixels)
+                                            : averagedWith(c.workPerPixel, observed);
     }
     if (learnBenefit) {
       float removed = exactQuotient(float(c.error), float(c.pixels) * RB_ERROR_UNITS);
@@ -76,10 +93,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u);
   uint pixels = itemPixels(i, effect);
   if (r.crCandidatePixels.z < 0.5 || pixels == 0u) return false;
-  // Rays per pixel before anything was measured: a shadow ray per light; a reflection or
-  // refraction path and the shadow rays of its hit (a refraction enters and leaves).
-  float rays = float(push.items.y) + (effect == RB_ITEM_SHADOWS ? 0.0 : float(effect));
-  float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : rays * float(RB_PRIOR_WORK_PER_RAY);
+  float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : priorPerPixel;
   // At a fixed reduced rate a share of the pixels is traced (a power of two: exact); with
   // rates chosen per item (share 1) the full rate's, which the segments share out.
   cost = push.budget.y * (float(pixels) * perPixel * rateShare(push.walk.w));
@@ -126,7 +140,7 @@ void main() {
     return;
   }
   float pixels = float(floatBitsToUint(r.crCandidatePixels.w));
-  float perPixel = oc.workPerPixel > 0.0 ? oc.workPerPixel : params[i].kqiS.y * float(RB_PRIOR_WORK_PER_RAY);
+  float perPixel = oc.workPerPixel > 0.0 ? oc.workPerPixel : params[i].kqiS.y * push.budget.w;
   float work = push.sizes.z == RB_SELECT_PAPER ? r.crCandidatePixels.x : pixels * perPixel;
   bool add = r.crCandidatePixels.z >= 0.5;
   append(add, i, push.budget.y * work, r.crCandidatePixels.y, r.apdv.z);

@@ -41,7 +41,8 @@ struct GpuObjectCost {
   uint unused;
 };
 
-// Prior traversal work (BVH nodes + triangles) per ray, before an object was measured.
+// Traversal work (BVH nodes + triangles) per ray at the prior time scale: the work a ray
+// costs before any frame was timed (cost_model.h's TimeScale::priorWorkPerRay).
 #define RB_PRIOR_WORK_PER_RAY 32.0
 
 // Items: each object offers one per effect, item = object * RB_ITEMS_PER_OBJECT + effect. The
@@ -75,9 +76,14 @@ struct GpuObjectCost {
 // not shown, on the 8x8 tiles whose turn it is this frame, one tile in `stride` each frame in
 // rotation (shaders/include/probe.glsl), with `stride` the least that keeps the probe's
 // predicted cost within its share of the budget. The frame's selection holds a probed item's
-// bit at RB_PROBE_SHIFT + effect; more than RB_PROBE_MAX_STRIDE needed: no probe that frame.
+// bit at RB_PROBE_SHIFT + effect; more than RB_PROBE_MAX_STRIDE needed: no probe that frame
+// (at 1/256, the most before, a budget under about a twentieth of what was left out, priced
+// from the prior, never probed and so never learned its items' costs).
 #define RB_PROBE_SHIFT 3u
-#define RB_PROBE_MAX_STRIDE 256u
+#define RB_PROBE_MAX_STRIDE 1024u
+// A probe's observed work per pixel moves an item's estimate by half from this many pixels
+// probed, by a quarter from a quarter of them, else by an eighth (cost_model.h's learnItem).
+#define RB_PROBE_TRUSTED_PIXELS 512u
 
 // Ray rates: the share of a selected item's pixels traced this frame: all, a checkerboard (1/2),
 // one pixel of each 2x2 quad (1/4) or of each 4x4 block (1/16), rotating over frames (shaders/include/rates.glsl); the
@@ -173,7 +179,8 @@ struct SelectPush {
   uvec4 sizes;   // x candidates, y padded (power of two), z policy (RB_SELECT_*), w seed
   uvec4 stage;   // x bitonic k or merge run, y bitonic j or merge pass, z which order (0 main, 1 relevance), w `paper` pointers N
                  // (`benefit` with RB_RATE_AUTO in select(): the item groups, max ID / RB_SEGMENT_SLOTS + 1)
-  vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work), z `benefit`'s probe budget
+  vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work), z `benefit`'s probe budget,
+                 // w frame mode: the work a ray costs (what was never traced is priced at)
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects, w `benefit`'s rate (RB_RATE_*)
   uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_WITHOUT_* bits
 };

@@ -226,6 +226,8 @@ struct CostModel {
   double msPerItemWorkUnit = 0.0;
   double stageOverheadMs = 0.0;
   double traceFixedMs = 0.0;
+  // Trace time per ray counted, what an item or object not traced yet is priced at.
+  double msPerRay = 0.0;
   bool operator==(const CostModel&) const = default;
 };
 // The time scale the selection uses before it has measured any: ms per unit of predicted

@@ -14,14 +14,20 @@ float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 float averagedWith(float previous, float observed) { return previous > 0.0f ? 0.5f * (previous + observed) : observed; }
 }  // namespace
 
+float probedWorkPerPixel(float previous, float prior, float observed, uint32_t pixels) {
+  const float from = previous > 0.0f ? previous : prior;
+  const float share = pixels >= RB_PROBE_TRUSTED_PIXELS ? 0.5f : pixels >= RB_PROBE_TRUSTED_PIXELS / 4u ? 0.25f : 0.125f;
+  return from + (observed - from) * share;
+}
+
 float learnedWorkPerPixel(float previous, uint32_t work, uint32_t pixels) {
   if (pixels == 0 || work == 0) return previous;
   return averagedWith(previous, exactQuotient(float(work), float(pixels)));
 }
 
-float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workPerPixel, float Q) {
+float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workPerPixel, float Q, float workPerRay) {
   if (policy == Policy::Paper) return paperCost;
-  const float perPixel = workPerPixel > 0.0f ? workPerPixel : Q * float(RB_PRIOR_WORK_PER_RAY);
+  const float perPixel = workPerPixel > 0.0f ? workPerPixel : Q * workPerRay;
   return float(pixels) * perPixel;
 }
 
@@ -70,15 +76,18 @@ float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
   return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
 }
 
-ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation) {
+ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation,
+                      float priorWorkPerPixel) {
   ItemLearned after = before;
   const bool learnBenefit = !(ablation & RB_BENEFIT_PRIOR_ONLY);
   const uint32_t pixels = counts.pixels;
   if (pixels > 0) {
-    if (exchange > 0.0f && counts.ticks > 0)
-      after.workPerPixel = averagedWith(before.workPerPixel, exactQuotient(float(counts.ticks), float(pixels)) * exchange);
-    else
-      after.workPerPixel = learnedWorkPerPixel(before.workPerPixel, counts.work, pixels);
+    const bool timed = exchange > 0.0f && counts.ticks > 0;
+    if (timed || counts.work > 0) {
+      const float observed = timed ? exactQuotient(float(counts.ticks), float(pixels)) * exchange : exactQuotient(float(counts.work), float(pixels));
+      after.workPerPixel = counts.probed ? probedWorkPerPixel(before.workPerPixel, priorWorkPerPixel, observed, pixels)
+                                         : averagedWith(before.workPerPixel, observed);
+    }
     if (learnBenefit) {
       const float removed = exactQuotient(float(counts.error), float(pixels) * float(RB_ERROR_UNITS));
       after.benefit = before.measured ? 0.5f * (before.benefit + removed) : removed;
@@ -92,9 +101,13 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
   return after;
 }
 
-float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, uint32_t lights) {
+float priorItemWorkPerPixel(uint32_t effect, uint32_t lights, float workPerRay) {
   const float rays = float(lights) + (effect == RB_ITEM_SHADOWS ? 0.0f : float(effect));
-  const float perPixel = workPerPixel > 0.0f ? workPerPixel : rays * float(RB_PRIOR_WORK_PER_RAY);
+  return rays * workPerRay;
+}
+
+float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, uint32_t lights, float workPerRay) {
+  const float perPixel = workPerPixel > 0.0f ? workPerPixel : priorItemWorkPerPixel(effect, lights, workPerRay);
   return float(pixels) * perPixel;
 }
 
@@ -111,7 +124,7 @@ CostUnit costUnitOf(Policy policy) {
 }
 
 double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height) {
-  return unit == CostUnit::PaperCost ? 1e-4 * double(width) * double(height) : 1e-4 / RB_PRIOR_WORK_PER_RAY;
+  return unit == CostUnit::PaperCost ? kPriorMsPerRay * double(width) * double(height) : kPriorMsPerRay / RB_PRIOR_WORK_PER_RAY;
 }
 
 double RecentMedian::value() const {
@@ -127,19 +140,25 @@ double TimeScale::msPerUnit(CostUnit unit) const {
   return k.empty() ? priorMsPerUnit(unit, width_, height_) : k.value();
 }
 
-void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs) {
+void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay) {
   auto restore = [](RecentMedian& m, double x) { x > 0.0 ? m.fill(x) : m.clear(); };
   restore(scales_[size_t(CostUnit::Work)], msPerWorkUnit);
   restore(scales_[size_t(CostUnit::PaperCost)], msPerPaperCost);
   restore(scales_[size_t(CostUnit::ItemWork)], msPerItemWorkUnit);
   restore(overhead_, overheadMs);
   restore(traceFixed_, traceFixedMs);
+  restore(msPerRay_, msPerRay);
   forgetErrors();
 }
 
 // The scale observed is (trace - fixed) / work, kept within 1/16-16x of the scale the frame
 // was selected with (a trace time under the fixed cost says nothing of the scale); the
-// timestamps arrive two frames late, which the median's window spans.
+// timestamps arrive two frames late, which the median's window spans. Only frames whose
+// predicted or measured work time is at least kInformativeShare of their budget teach the
+// scale and the headroom: a frame that traced the probe's few tiles alone (0.2 ms predicted
+// at T = 10 ms) times mostly the fixed cost's jitter and the per-tile cost, and read as
+// scales 5-20x off it held the headroom at 8-14x for 40 frames, so that only such frames
+// followed.
 void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   overhead_.add(m.overheadMs);
   RecentMedian& k = scales_[size_t(unit)];
@@ -152,9 +171,12 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
     }
     return;
   }
-  const double scale = (m.traceMs - traceFixedMs()) / m.work;
+  const double excess = m.traceMs - traceFixedMs();
+  if (std::max(m.work * used, excess) < kInformativeShare * m.budgetMs) return;
+  const double scale = excess / m.work;
   recordError(scale / used);
   k.add(std::clamp(scale, used / 16.0, 16.0 * used));
+  if (m.rays > 0 && excess > 0.0) msPerRay_.add(excess / double(m.rays));
 }
 
 double TimeScale::headroom(double confidence) const {
@@ -164,7 +186,8 @@ double TimeScale::headroom(double confidence) const {
   std::sort(sorted.begin(), sorted.begin() + n);
   // Relative to the median: a bias the scale is still learning away (the first frames, from
   // the prior) is not noise, and would otherwise hold the budget down for a whole window.
-  const size_t at = std::min(n - 1, size_t(confidence * double(n)));
+  // The index within n - 1: a lone outlier (a cold first dispatch) is never the 0.9 quantile.
+  const size_t at = size_t(confidence * double(n - 1));
   return std::max(1.0, sorted[at] / sorted[n / 2]);
 }
 

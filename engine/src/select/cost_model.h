@@ -37,10 +37,15 @@ RateSegment rateSegment(uint32_t effect, uint32_t k);
 // `previous` unchanged when the frame traced none of it).
 float learnedWorkPerPixel(float previous, uint32_t work, uint32_t pixels);
 
+// An item's work per pixel after a frame in which only the probe traced it: `previous` (or
+// `prior` before one was learned) moved towards `observed` by 1/2, 1/4 or 1/8 as `pixels`
+// reaches RB_PROBE_TRUSTED_PIXELS, a quarter of them, or not (select_candidates.comp's reason).
+float probedWorkPerPixel(float previous, float prior, float observed, uint32_t pixels);
+
 // A candidate's predicted work: the paper's C for `paper`; for the other policies its pixels
-// times its work per pixel, or times Q and a prior per ray (RB_PRIOR_WORK_PER_RAY) until
-// that is learned.
-float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workPerPixel, float Q);
+// times its work per pixel, or times Q and the work a ray costs (`workPerRay`,
+// TimeScale::priorWorkPerRay) until that is learned.
+float predictedWork(Policy policy, float paperCost, uint32_t pixels, float workPerPixel, float Q, float workPerRay);
 
 // Items (`benefit`): an object's shadows, reflections, refractions (RB_ITEM_*), each with its
 // own pixels, learned work per pixel and learned benefit b, the display error its tracing
@@ -57,16 +62,22 @@ struct ItemLearned {
 // An item's cost per pixel is learned from its clock ticks at `exchange` work units per tick
 // (itemTicksToWork: the frame's totals), or from its traversal work where nothing was timed
 // (exchange 0 or no ticks). `ablation`: RB_BENEFIT_* bits (RB_BENEFIT_PRIOR_ONLY: b stays the prior).
+// `probed`: the item was left out, so its counts are the probe's few tiles, which move the
+// work per pixel (or, before that was learned, `priorWorkPerPixel`) by a share growing with
+// the pixels probed (RB_PROBE_TRUSTED_PIXELS), not to their mean.
 struct ItemCounts {
   uint32_t work = 0, ticks = 0, error = 0, pixels = 0;
+  bool probed = false;
 };
-ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0);
+ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0,
+                      float priorWorkPerPixel = 0.0f);
 // Work units per tick from the frame's totals over every item (0: nothing timed).
 float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks);
 // An item candidate's predicted work: its pixels times its work per pixel, or before that
 // is learned, the rays per pixel (a shadow ray per light; a reflection or refraction path and
-// its hit's shadow rays) times a prior per ray.
-float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, uint32_t lights);
+// its hit's shadow rays) times the work a ray costs.
+float predictedItemWork(uint32_t effect, uint32_t pixels, float workPerPixel, uint32_t lights, float workPerRay);
+float priorItemWorkPerPixel(uint32_t effect, uint32_t lights, float workPerRay);
 // R' = (S·I + E)·K with the hysteresis relative to E: E·(1 + S·I)·K, E = A·P·b, A the item's
 // pixels over the screen's.
 // pixels over the screen's (`ablation`: RB_BENEFIT_WITHOUT_CENTRALITY: P = 1,
@@ -88,9 +99,10 @@ inline float predictedCost(float msPerUnit, float work) { return msPerUnit * wor
 enum class CostUnit : uint32_t { Work = 0, PaperCost = 1, ItemWork = 2 };
 CostUnit costUnitOf(Policy policy);
 
-// The prior time scale, before any measurement: 1e-4 ms per ray (10 Mrays/s) of
-// RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the screen, so
+// The prior time scale, before any measurement: 1e-4 ms per ray (kPriorMsPerRay, 10 Mrays/s)
+// of RB_PRIOR_WORK_PER_RAY work units; the paper's C is about rays per pixel of the screen, so
 // per unit of C, 1e-4 ms times the pixel count.
+constexpr double kPriorMsPerRay = 1e-4;
 double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height);
 
 // What one budgeted frame measured.
@@ -100,6 +112,8 @@ struct StageMeasurement {
   double traceMs = 0.0;        // the trace passes' timestamps
   double overheadMs = 0.0;     // the coverage and select passes' timestamps
   bool candidatesButNoneFit = false;
+  double budgetMs = 0.0;  // the selection's budget (0: every traced frame is informative)
+  uint64_t rays = 0;      // the rays the trace passes counted
 };
 
 // The last kSize observations of a quantity and their median (the lower middle of an even
@@ -156,9 +170,16 @@ class TimeScale {
   // frames if the errors recur. A frame whose candidates all failed to
   // fit counts as an exact prediction, so that a headroom that left nothing to trace relaxes.
   double headroom(double confidence) const;
+  // Before an item or object was traced, its work per ray in `unit`: the recent frames' trace
+  // time per counted ray (kPriorMsPerRay before any) over the unit's scale. A constant in work
+  // units was 10x the learned costs under a calibrated scale: too dear for the probe to run,
+  // so a restarted configuration never learned its items' costs.
+  double priorWorkPerRay(CostUnit unit) const { return msPerRay() / msPerUnit(unit); }
+  double msPerRay() const { return msPerRay_.empty() ? kPriorMsPerRay : msPerRay_.value(); }
+  double learnedMsPerRay() const { return msPerRay_.value(); }  // 0 where nothing was learned
   // A saved state (zeros: the prior, no fixed cost), without the recent errors behind the
   // headroom. Values are the caller's to validate.
-  void set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs);
+  void set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay);
   // Forgets the recent errors (a restarted selection's headroom must not depend on what ran
   // before it).
   void forgetErrors() { ratioCount_ = 0; }
@@ -168,8 +189,9 @@ class TimeScale {
  private:
   uint32_t width_, height_;
   std::array<RecentMedian, 3> scales_;  // per cost unit
-  RecentMedian overhead_, traceFixed_;
+  RecentMedian overhead_, traceFixed_, msPerRay_;
   static constexpr size_t kRatioWindow = 32;
+  static constexpr double kInformativeShare = 0.25;
   std::array<double, kRatioWindow> ratios_{};  // the last frames' measured / predicted work time
   size_t ratioCount_ = 0;
 };

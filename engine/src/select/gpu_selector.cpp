@@ -107,7 +107,7 @@ struct GpuSelector::Impl {
     vk::writeStorageBuffers(ctx, set.set, buffers);
   }
 
-  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa, const PolicyOptions& options,
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, FrameScale scale, const PolicyOptions& options,
                    const ItemFrame& items) {
     // `benefit` selects among items: up to RB_ITEMS_PER_OBJECT candidates per object.
     // With rates chosen per item, up to three segments per item.
@@ -116,7 +116,7 @@ struct GpuSelector::Impl {
     if (policy == Policy::Optimal || policy == Policy::All || policy == Policy::None)
       throw Error(std::string("frame selection runs the budgeted policies, not ") + policyName(policy));
     SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
-                    glm::vec4(budget, kappa, items.probeBudget, 0), glm::uvec4(options.paperHops, 1, objects, items.rate),
+                    glm::vec4(budget, scale.kappa, items.probeBudget, scale.workPerRay), glm::uvec4(options.paperHops, 1, objects, items.rate),
                     glm::uvec4(items.effects, items.lights, items.pixels, items.ablation)};
     vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);  // the candidate count
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -251,9 +251,9 @@ Selection GpuSelector::select(std::span<const Candidate> candidates, Policy poli
 }
 double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
 void GpuSelector::bindFrame(const FrameBuffers& buffers) { impl_->bindFrame(buffers); }
-void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa, const PolicyOptions& options,
+void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, FrameScale scale, const PolicyOptions& options,
                               const ItemFrame& items) const {
-  impl_->recordFrame(cmd, objects, policy, budget, kappa, options, items);
+  impl_->recordFrame(cmd, objects, policy, budget, scale, options, items);
 }
 VkBuffer GpuSelector::resultBuffer() const { return impl_->result.buffer; }
 VkBuffer GpuSelector::candidateBuffer() const { return impl_->candidates.buffer; }

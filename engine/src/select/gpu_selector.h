@@ -48,16 +48,21 @@ class GpuSelector {
     VkBuffer records, selection, params, costs, coverage, items;
   };
   void bindFrame(const FrameBuffers& buffers);
+  // The frame's time scale: ms per unit of work (kappa), and the work a ray costs, which
+  // prices what was never traced (TimeScale::priorWorkPerRay).
+  struct FrameScale {
+    float kappa = 0.0f, workPerRay = 0.0f;
+  };
   // Records, into the frame's command buffer, the selection among the objects' candidates
   // with costs kappa * work (cost_model.h: the paper's C for `paper`, else pixels times the
-  // learned work per pixel). Afterwards
+  // learned work per pixel, or before that rays times the work per ray). Afterwards
   // resultBuffer() holds uvec4(candidates, predicted cost bits (with `benefit`, the probe's
   // included), value bits, selected) and
   // uvec4(objects whose selection changed, the candidates' total cost in 2^-20 budget
   // units (lo, hi), 1 when the selection needed the sort).
   // With `benefit` the candidates are items (object * RB_ITEMS_PER_OBJECT + effect); the
   // capacity must hold RB_ITEMS_PER_OBJECT per object.
-  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, float kappa,
+  void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, FrameScale scale,
                    const PolicyOptions& options, const ItemFrame& items = {}) const;
   VkBuffer resultBuffer() const;
   // The frame's candidates (GpuCandidate, resultBuffer().x of them) for CPU-side stats.

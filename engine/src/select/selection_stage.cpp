@@ -92,6 +92,7 @@ struct SelectionStage::Impl {
     bool selected = false;      // the frame ran the select pass
     bool budgeted = false;      // ... with a budgeted policy
     double msPerUnit = 0.0;     // the time scale the frame was selected with
+    float workPerRay = 0.0f;    // and the work a ray costs, for what was never traced
     double traceFixedMs = 0.0;  // ... the trace passes' fixed cost it assumed
     ItemFrame items;  // ... and what `benefit` knew of the frame
     float traceBudgetMs = 0.0f;  // ... and the part of T it left for the work
@@ -159,6 +160,7 @@ struct SelectionStage::Impl {
     slot.selected = true;
     slot.budgeted = isBudgeted(s.policy);
     slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
+    slot.workPerRay = float(timeScale.priorWorkPerRay(costUnitOf(policy)));
     slot.traceFixedMs = timeScale.traceFixedMs();
     slot.belowFixedCost = double(s.budgetMs) <= timeScale.fixedMs();
     // Room for the prediction's recent errors (cost_model.h's headroom).
@@ -180,7 +182,7 @@ struct SelectionStage::Impl {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       }
-      selector->recordFrame(cmd, buffers.objects, policy, slot.selectBudgetMs, float(slot.msPerUnit), policyOptions(s), slot.items);
+      selector->recordFrame(cmd, buffers.objects, policy, slot.selectBudgetMs, {float(slot.msPerUnit), slot.workPerRay}, policyOptions(s), slot.items);
       readToTransfer(cmd);
       const VkBufferCopy result{0, 0, 48};
       vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.result.buffer, 1, &result);
@@ -223,7 +225,7 @@ struct SelectionStage::Impl {
     for (const gpu::GpuCandidate& c : candidates) {
       if (c.id >= buffers.objects || records[c.id].crCandidatePixels.z < 0.5f) return false;
       const gpu::GpuObjectRecord& r = records[c.id];
-      const float work = predictedWork(policy, r.crCandidatePixels.x, std::bit_cast<uint32_t>(r.crCandidatePixels.w), perPixel[c.id], params[c.id].kqiS.y);
+      const float work = predictedWork(policy, r.crCandidatePixels.x, std::bit_cast<uint32_t>(r.crCandidatePixels.w), perPixel[c.id], params[c.id].kqiS.y, slot.workPerRay);
       if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost)) return false;
     }
     return true;
@@ -265,8 +267,9 @@ struct SelectionStage::Impl {
     for (uint32_t id = 0; id < items; ++id) {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
       const gpu::GpuItemCost& b = before[id];
-      learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0}, {b.work, b.ticks, b.error, b.pixels}, exchange,
-                              frame.ablation);
+      learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0},
+                              {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0}, exchange, frame.ablation,
+                              priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
       // The rate: the setting's, or the walk's choice (which selectionMatchesCpu checks).
@@ -289,7 +292,7 @@ struct SelectionStage::Impl {
       if (item >= items) return false;
       const uint32_t i = item / RB_ITEMS_PER_OBJECT, e = item % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
       if (records[i].crCandidatePixels.z < 0.5f || pixels == 0) return false;
-      const float work = predictedItemWork(e, pixels, learned[item].workPerPixel, frame.lights) * rateShare(frame.rate);
+      const float work = predictedItemWork(e, pixels, learned[item].workPerPixel, frame.lights, slot.workPerRay) * rateShare(frame.rate);
       const glm::vec4 kqiS = params[i].kqiS;
       float cost = predictedCost(float(slot.msPerUnit), work);
       float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
@@ -343,7 +346,7 @@ struct SelectionStage::Impl {
     t.measuredTraceMs = t.traceMs();
     if (!s.learnTimeScale) return;
     timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWorkMs / slot.msPerUnit, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
-                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost});
+                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced});
   }
 
   std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads
@@ -446,11 +449,11 @@ void SelectionStage::restart(const RenderSettings& settings) { impl_->restart(se
 
 CostModel SelectionStage::costModel() const {
   const TimeScale& k = impl_->timeScale;
-  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.learned(CostUnit::ItemWork), k.overheadMs(), k.traceFixedMs()};
+  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.learned(CostUnit::ItemWork), k.overheadMs(), k.traceFixedMs(), k.learnedMsPerRay()};
 }
 
 void SelectionStage::setCostModel(const CostModel& m) {
-  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs);
+  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs, m.msPerRay);
 }
 
 std::vector<ObjectMetrics> SelectionStage::objectMetrics() const { return impl_->objectMetrics(); }
