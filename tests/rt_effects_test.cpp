@@ -829,6 +829,46 @@ TEST(RtBudget, ABudgetBelowTheStagesFixedCostTracesNothingAndSaysSo) {
   test::expectValidationClean(fresh.validationMessages());
 }
 
+// A budget the stage's fixed cost alone exceeds buys nothing, so the whole stage (coverage,
+// select, both trace passes) is left out and the frame is the raster fallbacks' own; a frame
+// now and then (SelectionStage::kRemeasureEvery) runs it to see whether that cost fell.
+TEST(RtBudget, ABudgetBelowTheFixedCostLeavesTheStageOutAndShowsTheFallbacks) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s = test::settingsFor(Policy::Benefit, 160, 96);
+  s.budgetMs = 1e3f;
+  // (Screen-space reflections read the previous frame, whose history holds the traced frames
+  // before for a while: with them the last bits of a pixel differ.)
+  s.screenSpaceReflections = false;
+  const Camera camera = defaultCamera(scene, 160.0f / 96.0f);
+  Renderer renderer(scene, s);
+  EXPECT_GT(test::renderStill(renderer, camera, 4).back().raysTraced, 0u);
+  renderer.setBudget(1e-3f);
+  std::vector<FrameTiming> below = test::renderStill(renderer, camera, 40);
+  // End on a frame that left the stage out, whose image is compared below.
+  while (below.back().skipped[size_t(Pass::Coverage)] != PassSkip::BudgetBelowFixedCost) below.push_back(test::renderStill(renderer, camera, 1).back());
+  size_t left = 0, ran = 0;
+  for (const FrameTiming& t : below) {
+    EXPECT_TRUE(t.budgetBelowFixedCost);
+    EXPECT_EQ(t.raysTraced, 0u);
+    const bool out = t.skipped[size_t(Pass::Coverage)] == PassSkip::BudgetBelowFixedCost;
+    if (out) {
+      for (Pass p : {Pass::Select, Pass::TraceShadows, Pass::TraceEffects}) EXPECT_EQ(t.skipped[size_t(p)], PassSkip::BudgetBelowFixedCost);
+      EXPECT_EQ(t.rtStageMs(), 0.0);
+    }
+    (out ? left : ran) += 1;
+  }
+  EXPECT_GE(left, 30u);
+  EXPECT_GE(ran, 1u) << "the fixed cost is measured again now and then";
+  const FrameImages image = renderer.readback();
+  RenderSettings n = s;
+  n.policy = Policy::None;
+  Renderer none(scene, n);
+  (void)test::renderStill(none, camera, 3);
+  EXPECT_EQ(image.hdrRgba16, none.readback().hdrRgba16) << "a frame without the stage is the raster frame";
+  test::expectValidationClean(renderer.validationMessages());
+  test::expectValidationClean(none.validationMessages());
+}
+
 // The reflections' roughness cut-off is a setting: a higher one traces reflection rays on
 // more surfaces (every pixel's at 1), a lower one on fewer; out of 0..1 it is refused.
 TEST(RtEffects, TheRoughnessCutOffDecidesWhichSurfacesTraceReflections) {

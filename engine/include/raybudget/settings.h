@@ -166,6 +166,7 @@ enum class PassSkip : uint8_t {
   NoPreviousFrame,                 // screen-space reflections: the first frame has no earlier image to reflect
   EveryPixelTracesReflections,     // screen-space reflections: `all` at full rate traces every smooth pixel's reflection
   NoSmoothMaterial,                // screen-space reflections: no material smooth enough for them
+  BudgetBelowFixedCost,            // coverage, select, trace: T at or below the stage's learned fixed cost
 };
 const char* passSkipText(PassSkip skip);
 

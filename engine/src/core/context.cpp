@@ -57,6 +57,7 @@ struct Context::Impl {
   };
 
   RenderSettings settings;
+  bool stageSkipped = false;  // the frame being recorded leaves the ray-tracing stage out (SelectionStage::skipsStage)
   SceneEffects effects;  // what the scene can show at all: no pass, no pipeline for the rest
   glm::vec3 sunDirection;
   vk::Context ctx;  // the host's device, borrowed
@@ -181,7 +182,7 @@ struct Context::Impl {
   // RB_RT_* bits of the effects traced this frame: those switched on that the scene can show;
   // with policy none, nothing.
   uint32_t tracedEffects() const {
-    if (settings.policy == Policy::None) return 0u;
+    if (settings.policy == Policy::None || stageSkipped) return 0u;
     const RayTracingSettings& rt = settings.rayTracing;
     return (rt.shadows && effects.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections && effects.reflections ? RB_RT_REFLECTIONS : 0u) |
            (rt.refractions && effects.refractions ? RB_RT_REFRACTIONS : 0u);
@@ -191,6 +192,7 @@ struct Context::Impl {
   PassSkip traceSkip(uint32_t bits, bool sceneHasIt) const {
     if (tracedEffects() & bits) return PassSkip::None;
     if (settings.policy == Policy::None) return PassSkip::PolicyTracesNothing;
+    if (stageSkipped) return PassSkip::BudgetBelowFixedCost;
     if (!sceneHasIt) return bits == RB_RT_SHADOWS ? PassSkip::NoLights : PassSkip::NoSmoothOrTransmissiveMaterial;
     return PassSkip::EffectsOff;
   }
@@ -385,7 +387,9 @@ struct Context::Impl {
     });
     // The classifier's counts are the items' pixels for `benefit`; otherwise only objectMetrics reads them.
     const bool classify = settings.objectMetrics || (traced && settings.policy == Policy::Benefit);
-    const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing : PassSkip::NoEffectInScene;
+    const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing
+                                   : stageSkipped                  ? PassSkip::BudgetBelowFixedCost
+                                                                   : PassSkip::NoEffectInScene;
     run(Pass::Coverage, settings.objectMetrics || traced ? PassSkip::None : nothingTraced,
         [&] { selection.recordCoverage(fc, classify); });
     if (traced) computeToCompute(cmd);
@@ -430,6 +434,8 @@ struct Context::Impl {
     const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
     if (shadowMaps && settings.shadowMapsFitScreen)
       shadowMaps->fit(scene.shadows, viewProj, camera.position, 0.5f * float(settings.height) / std::tan(0.5f * camera.yfov));
+    // A budget the stage's fixed cost alone exceeds buys nothing: the whole stage is left out.
+    stageSkipped = selection.skipsStage(frameIndex % kFramesInFlight, settings);
     slot.behindGlass = behindGlassSkip(host != nullptr, viewProj, slot.behindGlassRect);
     slot.ssr = ssrSkip();
     writeUniforms(slot, camera);

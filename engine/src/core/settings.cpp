@@ -66,6 +66,7 @@ const char* passSkipText(PassSkip skip) {
   switch (skip) {
     case PassSkip::None: return "";
     case PassSkip::PolicyTracesNothing: return "the policy traces nothing";
+    case PassSkip::BudgetBelowFixedCost: return "the budget is at or below the stage's fixed cost: nothing would be traced";
     case PassSkip::NoEffectInScene: return "the scene has nothing the switched-on effects could trace";
     case PassSkip::EffectsOff: return "its effects are switched off";
     case PassSkip::NoLights: return "no light (with a shadow map) in the scene";

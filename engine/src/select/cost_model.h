@@ -9,6 +9,7 @@
 // cost, which the selection takes off the stage budget T, and one scale per cost unit (our
 // work units; the paper's C).
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -123,6 +124,7 @@ class RecentMedian {
  public:
   static constexpr size_t kSize = 7;
   bool empty() const { return count_ == 0; }
+  size_t size() const { return std::min(count_, kSize); }
   double value() const;  // 0 when empty
   void add(double x) { values_[count_++ % kSize] = x; }
   // A saved value, as if it had been observed for a whole window.
@@ -163,6 +165,8 @@ class TimeScale {
   double traceFixedMs() const { return traceFixed_.value(); }
   // The stage's fixed cost t0: overhead + the trace passes' fixed cost.
   double fixedMs() const { return overheadMs() + traceFixedMs(); }
+  // How many frames the fixed cost's parts were observed in (a saved state counts as a window).
+  size_t fixedCostObservations() const { return std::min(overhead_.size(), traceFixed_.size()); }
   // The headroom the budget leaves for prediction errors: the `confidence` quantile of the
   // recent frames' measured over predicted work time over their median (the spread; the
   // bias is the scale's to learn), at least 1; 1 before kRatioWindow / 4 frames were measured.

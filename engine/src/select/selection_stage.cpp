@@ -90,6 +90,7 @@ struct SelectionStage::Impl {
     // before and after and the coverage counts.
     vk::Buffer costsBefore, costsAfter, records, params, itemsBefore, itemsAfter, coverage;
     bool selected = false;      // the frame ran the select pass
+    bool stageSkipped = false;  // the frame left the stage out (skipsStage)
     bool budgeted = false;      // ... with a budgeted policy
     double msPerUnit = 0.0;     // the time scale the frame was selected with
     float workPerRay = 0.0f;    // and the work a ray costs, for what was never traced
@@ -313,6 +314,11 @@ struct SelectionStage::Impl {
     const auto* header = static_cast<const uint32_t*>(slot.tileHeader.mapped);
     t.tracedTiles = slot.selected ? header[0] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
+    if (slot.stageSkipped) {
+      t.budgetMs = s.budgetMs;
+      t.budgetBelowFixedCost = true;
+      return;
+    }
     if (!slot.selected || !slot.budgeted) return;
     const Policy policy = toSelectPolicy(s.policy);
     const auto* r = static_cast<const uint32_t*>(slot.result.mapped);
@@ -350,6 +356,7 @@ struct SelectionStage::Impl {
   }
 
   std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads
+  uint32_t skippedInRow = 0;            // frames in a row that left the stage out (skipsStage)
 
   // K, Q and I (not S, which the GPU keeps in kqiS.w) of the changed objects.
   void uploadChangedParams(VkCommandBuffer cmd) {
@@ -422,6 +429,15 @@ void SelectionStage::beginFrame(VkCommandBuffer cmd, uint32_t slot) {
   impl_->slots[slot].selected = false;
   impl_->slots[slot].budgeted = false;
   impl_->uploadChangedParams(cmd);
+}
+
+bool SelectionStage::skipsStage(uint32_t slot, const RenderSettings& settings) {
+  Impl& m = *impl_;
+  const select::TimeScale& k = m.timeScale;
+  const bool below = isBudgeted(settings.policy) && k.fixedCostObservations() >= 3 && double(settings.budgetMs) <= k.fixedMs();
+  m.skippedInRow = below && m.skippedInRow + 1 < kRemeasureEvery ? m.skippedInRow + 1 : 0;
+  m.slots[slot].stageSkipped = m.skippedInRow > 0;
+  return m.slots[slot].stageSkipped;
 }
 
 void SelectionStage::setObjectParams(uint32_t object, float K, float Q, float I) {

@@ -35,6 +35,12 @@ class SelectionStage {
   void beginFrame(VkCommandBuffer cmd, uint32_t slot);
   // An object's K, Q, I from the next frame on (and after restarts); S stays the GPU's.
   void setObjectParams(uint32_t object, float K, float Q, float I);
+  // Whether frame slot `slot` leaves the whole stage (coverage, select, trace) out: a budgeted
+  // policy whose T is at or below the stage's fixed cost, learned from at least three frames.
+  // Every kRemeasureEvery-th frame in a row runs it anyway, so that a fixed cost that fell
+  // (or one learned from a slow start) is found out. Called once per frame, before the passes.
+  bool skipsStage(uint32_t slot, const RenderSettings& settings);
+  static constexpr uint32_t kRemeasureEvery = 32;
   // The coverage pass (with `classify`, the classifier's pixel counts too); barriers included.
   void recordCoverage(const passes::FrameContext& fc, bool classify) const;
   // The select pass for `slot`: with a budgeted policy the GPU selection within T less the
