@@ -343,9 +343,11 @@ int runSweep(const SweepCommand& c) {
     if (points.empty()) {
       full.push_back(meanStageMs(sweep.run(pathName, path, {Policy::All}, {})));
       fullMs = float(median(full));
-      fixedMs = float(meanStageMs(sweep.run(pathName, path, {Policy::Density, 0, 1e-4f}, {})));
-      // Those frames traced nothing: they timed the stage's fixed cost, which the model keeps.
+      // Frames under a budget nothing fits time the stage's fixed cost, which the model keeps
+      // (once it has, the stage leaves itself out: their mean stage time says nothing).
+      (void)sweep.run(pathName, path, {Policy::Density, 0, 1e-4f}, {});
       const CostModel fixedRun = renderer.costModel();
+      fixedMs = float(fixedRun.stageOverheadMs + fixedRun.traceFixedMs);
       CostModel learned{.stageOverheadMs = fixedRun.stageOverheadMs, .traceFixedMs = fixedRun.traceFixedMs};
       for (const Policy p : calibrated) {
         sweep.startFrom(learned);
