@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "raybudget/camera.h"
 #include "raybudget/scene.h"
+#include "support/procedural.h"
 
 namespace raybudget {
 namespace {
@@ -66,6 +71,40 @@ TEST(Camera, PathsFromTheStartCameraClipNothingOfTheScene) {
     EXPECT_GT(c.zfar, glm::length(c.position - c.target) + radius) << "orbit frame " << f;
   }
   EXPECT_LE(start.znear, 0.01f * radius) << "the fly-through enters the bounds";
+}
+
+// A single model (Suzanne's bounds) is flown over, clear of its box, and kept in view; a
+// level whose centre is open ground keeps the plain fly-through, looking ahead.
+TEST(Camera, AFlythroughClearsAModelInItsWayAndKeepsItInView) {
+  // A closed box the size of Suzanne's bounds, and the same box's walls without lid or floor.
+  const glm::mat4 size = glm::scale(glm::mat4(1.0f), glm::vec3(1.34f, 0.96f, 0.815f));
+  Scene scene = test::sceneWithMesh(test::subdividedCube(2), size);
+  const Object model = scene.objects[0];
+  const Camera start = pathStartCamera(scene, 16.0f / 9.0f);
+  const FlythroughShape shape = flythroughShape(scene, start);
+  EXPECT_TRUE(shape.lookAtTarget);
+  const float radius = 0.5f * glm::length(scene.boundsMax - scene.boundsMin);
+  EXPECT_NEAR(start.target.y + shape.overHeight, scene.boundsMax.y + 0.05f * radius, 1e-4f);
+  for (uint32_t f = 0; f < 9; ++f) {
+    const Camera c = flythroughCamera(start, f, 9, shape);
+    const glm::vec3 p = c.position;
+    EXPECT_FALSE(glm::all(glm::greaterThanEqual(p, model.boundsMin)) && glm::all(glm::lessThanEqual(p, model.boundsMax))) << "inside at frame " << f;
+    EXPECT_EQ(c.target, start.target) << "the model stays in view, frame " << f;
+  }
+  EXPECT_GT(flythroughCamera(start, 4, 9, shape).position.y, scene.boundsMax.y) << "over the top";
+  // A level: the path's middle is in the open between walls (nothing above it).
+  Scene level = scene;
+  Mesh& walls = level.meshes[level.objects[0].mesh];
+  std::vector<uint32_t> sides;
+  for (size_t t = 0; t + 2 < walls.indices.size(); t += 3) {
+    const float y = walls.vertices[walls.indices[t]].position.y + walls.vertices[walls.indices[t + 1]].position.y + walls.vertices[walls.indices[t + 2]].position.y;
+    if (std::fabs(y) < 2.9f) sides.insert(sides.end(), walls.indices.begin() + t, walls.indices.begin() + t + 3);  // not the lid or floor
+  }
+  walls.indices = sides;
+  const FlythroughShape open = flythroughShape(level, start);
+  EXPECT_FALSE(open.lookAtTarget);
+  EXPECT_EQ(open.overHeight, 0.0f);
+  EXPECT_EQ(flythroughCamera(start, 3, 9, open).position, flythroughCamera(start, 3, 9).position);
 }
 
 }  // namespace

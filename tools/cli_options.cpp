@@ -189,9 +189,9 @@ void sceneArgument(const std::string& arg, std::string& scene, const std::string
   scene = arg;
 }
 
-Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount) {
+Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount, FlythroughShape shape) {
   if (path == "orbit") return orbitCamera(start, frame, frameCount);
-  if (path == "flythrough") return flythroughCamera(start, frame, frameCount);
+  if (path == "flythrough") return flythroughCamera(start, frame, frameCount, shape);
   return start;
 }
 

@@ -28,8 +28,8 @@ RenderCommand parseRender(const std::vector<std::string>& args);
 extern const char* kUsage;
 
 // Frame `frame` of `frameCount` on the named camera path from `start`: "orbit",
-// "flythrough", or anything else the start itself (static).
-Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount);
+// "flythrough" (shaped by `shape`: flythroughShape), or anything else the start itself (static).
+Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount, FlythroughShape shape = {});
 
 // The median (the mean of the two middle values for an even count); 0 when empty.
 double median(std::vector<double> values);

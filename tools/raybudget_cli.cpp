@@ -48,6 +48,7 @@ int render(const raybudget::cli::RenderCommand& c) {
   StatsCsv stats(std::filesystem::path(c.out) / "stats.csv");
   std::vector<FrameTiming> all;
   const Camera start = c.camera == "static" ? defaultCamera(scene, renderer.aspect()) : pathStartCamera(scene, renderer.aspect());
+  const FlythroughShape shape = flythroughShape(scene, start);
   auto collect = [&](const std::vector<FrameTiming>& done) {
     for (const FrameTiming& t : done) {
       stats.add(t);
@@ -55,7 +56,7 @@ int render(const raybudget::cli::RenderCommand& c) {
     }
   };
   for (uint32_t f = 0; f < c.frames; ++f) {
-    collect(renderer.render(cli::cameraOnPath(c.camera, start, f, c.frames)));
+    collect(renderer.render(cli::cameraOnPath(c.camera, start, f, c.frames, shape)));
     // Waits for the frame: explaining each frame serialises the frames in flight.
     if (c.explain == cli::RenderCommand::Explain::Frames) cli::printFrameSelection(std::cout, f, renderer.objectMetrics());
   }

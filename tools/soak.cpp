@@ -143,9 +143,10 @@ int runSoak(const SoakCommand& c) {
   s.policy = Policy::All;
   Renderer renderer(scene, s);
   const Camera start = pathStartCamera(scene, renderer.aspect());
+  const FlythroughShape shape = flythroughShape(scene, start);
   auto cameraAt = [&](uint32_t f) {
     const uint32_t leg = f / c.pathFrames, step = f % c.pathFrames;
-    return leg % 2 == 0 ? orbitCamera(start, step, c.pathFrames) : flythroughCamera(start, step, c.pathFrames);
+    return leg % 2 == 0 ? orbitCamera(start, step, c.pathFrames) : flythroughCamera(start, step, c.pathFrames, shape);
   };
 
   std::vector<float> budgets = c.budgets;

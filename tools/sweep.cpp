@@ -55,9 +55,9 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
-std::vector<Camera> cameraPath(const std::string& name, const Camera& start, uint32_t frames) {
+std::vector<Camera> cameraPath(const std::string& name, const Camera& start, uint32_t frames, FlythroughShape shape) {
   std::vector<Camera> path;
-  for (uint32_t f = 0; f < frames; ++f) path.push_back(cameraOnPath(name, start, f, frames));
+  for (uint32_t f = 0; f < frames; ++f) path.push_back(cameraOnPath(name, start, f, frames, shape));
   return path;
 }
 
@@ -328,7 +328,7 @@ int runSweep(const SweepCommand& c) {
   const Camera start = pathStartCamera(scene, renderer.aspect());
   for (size_t pathIndex = 0; pathIndex < c.paths.size(); ++pathIndex) {
     const std::string& pathName = c.paths[pathIndex];
-    const std::vector<Camera> path = cameraPath(pathName, start, c.frames);
+    const std::vector<Camera> path = cameraPath(pathName, start, c.frames, flythroughShape(scene, start));
     writePathJson(out / "paths" / (pathName + ".json"), pathName, path);
     sweep.newPath();
     // Calibration, not recorded: the reference images (`all`, deterministic), the full-RT

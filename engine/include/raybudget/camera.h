@@ -29,8 +29,15 @@ void validateCamera(const Camera& camera, const std::string& where);
 // and distance: a deterministic orbit for benchmarks and tests.
 Camera orbitCamera(const Camera& start, uint32_t frame, uint32_t frameCount);
 
+// How a fly-through passes its target: at `overHeight` above it (0: a third of the start's
+// height), looking ahead along the path, or with `lookAtTarget` at the target throughout.
+struct FlythroughShape {
+  float overHeight = 0.0f;
+  bool lookAtTarget = false;
+};
+
 // Camera `frame` of `frameCount` on a fly-through: from `start` over its target and out to
 // the far side, looking ahead: the objects' pixels, distances and visibility change fast.
-Camera flythroughCamera(const Camera& start, uint32_t frame, uint32_t frameCount);
+Camera flythroughCamera(const Camera& start, uint32_t frame, uint32_t frameCount, FlythroughShape shape = {});
 
 }  // namespace raybudget

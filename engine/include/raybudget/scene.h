@@ -220,6 +220,14 @@ Camera defaultCamera(const Scene& scene, float aspect);
 // leave an enclosed scene).
 Camera pathStartCamera(const Scene& scene, float aspect);
 
+// The fly-through's shape for `scene` from `start` (pathStartCamera): where the path's middle,
+// a third of the start's height over the target, lies inside an object's bounds with some of
+// its triangles straight above (inside a model: flown through, a single model showed its
+// inside in a third of the frames and empty ground ahead in another), the path clears the
+// highest such object by 5% of the scene's radius and looks at the target throughout;
+// elsewhere (a level's open centre, between walls) the plain fly-through.
+FlythroughShape flythroughShape(const Scene& scene, const Camera& start);
+
 // The ray-traced effects a scene can show at all: shadows when it has a light; reflections
 // when some object's material can be smooth enough (roughness at most maxRoughness, the
 // least value of its roughness texture counted); refractions when one is transmissive.

@@ -45,18 +45,21 @@ Camera orbitCamera(const Camera& start, uint32_t frame, uint32_t frameCount) {
   return c;
 }
 
-Camera flythroughCamera(const Camera& start, uint32_t frame, uint32_t frameCount) {
+Camera flythroughCamera(const Camera& start, uint32_t frame, uint32_t frameCount, FlythroughShape shape) {
   Camera c = start;
   const float t = frameCount > 1 ? float(frame) / float(frameCount - 1) : 0.0f;
   const glm::vec3 offset = start.position - start.target;
-  // From the start, over the target at a third of the start's height, out to the far side
-  // at 0.6 of the distance, swaying sideways; looking a little ahead of the target's height.
-  const glm::vec3 far = start.target + glm::vec3(-0.6f * offset.x, 0.6f * offset.y, -0.6f * offset.z);
-  const glm::vec3 over = start.target + glm::vec3(0.0f, offset.y / 3.0f, 0.0f);
+  // From the start, over the target at a third of the start's height (or the shape's), out
+  // to the far side at 0.6 of the distance, swaying sideways; looking a little ahead of the
+  // target's height (or at the target).
+  const float overHeight = shape.overHeight > 0.0f ? shape.overHeight : offset.y / 3.0f;
+  const glm::vec3 far = start.target + glm::vec3(-0.6f * offset.x, std::max(0.6f * offset.y, overHeight), -0.6f * offset.z);
+  const glm::vec3 over = start.target + glm::vec3(0.0f, overHeight, 0.0f);
   const glm::vec3 along = t < 0.5f ? glm::mix(start.position, over, 2.0f * t) : glm::mix(over, far, 2.0f * t - 1.0f);
   glm::vec3 side = glm::cross(offset, start.up);
   side = glm::length(side) > 0.0f ? glm::normalize(side) : glm::vec3(1.0f, 0.0f, 0.0f);
   c.position = along + side * (0.25f * glm::length(offset) * std::sin(6.28318531f * t));
+  if (shape.lookAtTarget) return c;  // start.target
   const glm::vec3 ahead = far - start.position;
   c.target = glm::vec3(c.position.x, start.target.y, c.position.z) + 0.5f * ahead;
   return c;

@@ -52,6 +52,37 @@ Camera pathStartCamera(const Scene& scene, float aspect) {
   return c;
 }
 
+namespace {
+// Whether some triangle of `object` lies straight above `p`: p is under its surface (inside a
+// closed model, or under a roof), not in the open between walls.
+bool coveredBy(const Scene& scene, const Object& object, const glm::vec3& p) {
+  const Mesh& mesh = scene.meshes[object.mesh];
+  auto world = [&](uint32_t i) { return glm::vec3(object.transform * glm::vec4(mesh.vertices[i].position, 1.0f)); };
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a = world(mesh.indices[t]), b = world(mesh.indices[t + 1]), c = world(mesh.indices[t + 2]);
+    // Barycentrics of p in the triangle's projection on the ground plane.
+    const glm::vec2 e1(b.x - a.x, b.z - a.z), e2(c.x - a.x, c.z - a.z), d(p.x - a.x, p.z - a.z);
+    const float det = e1.x * e2.y - e1.y * e2.x;
+    if (std::fabs(det) < 1e-12f) continue;  // seen edge-on from above
+    const float u = (d.x * e2.y - d.y * e2.x) / det, v = (e1.x * d.y - e1.y * d.x) / det;
+    if (u >= 0.0f && v >= 0.0f && u + v <= 1.0f && a.y + u * (b.y - a.y) + v * (c.y - a.y) > p.y) return true;
+  }
+  return false;
+}
+}  // namespace
+
+FlythroughShape flythroughShape(const Scene& scene, const Camera& start) {
+  const glm::vec3 offset = start.position - start.target;
+  const glm::vec3 middle = start.target + glm::vec3(0.0f, offset.y / 3.0f, 0.0f);
+  float top = -std::numeric_limits<float>::infinity();
+  for (const Object& o : scene.objects)
+    if (glm::all(glm::greaterThanEqual(middle, o.boundsMin)) && glm::all(glm::lessThanEqual(middle, o.boundsMax)) && coveredBy(scene, o, middle))
+      top = std::max(top, o.boundsMax.y);
+  if (!std::isfinite(top)) return {};
+  const float radius = 0.5f * glm::length(scene.boundsMax - scene.boundsMin);
+  return {top - start.target.y + 0.05f * radius, true};
+}
+
 void validateTransform(const glm::mat4& transform, const std::string& where) {
   const float det = glm::determinant(glm::mat3(transform));
   for (int c = 0; c < 4; ++c)
