@@ -155,6 +155,9 @@ struct SelectionStage::Impl {
                          buffers.coverage.buffer, buffers.itemCosts.buffer});
   }
 
+  // T at or below the stage's learned fixed cost: nothing can be traced.
+  bool belowFixedCost(const RenderSettings& s) const { return double(s.budgetMs) <= timeScale.fixedMs(); }
+
   void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s) {
     const VkCommandBuffer cmd = fc.cmd;
     const Policy policy = toSelectPolicy(s.policy);
@@ -163,7 +166,7 @@ struct SelectionStage::Impl {
     slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
     slot.workPerRay = float(timeScale.priorWorkPerRay(costUnitOf(policy)));
     slot.traceFixedMs = timeScale.traceFixedMs();
-    slot.belowFixedCost = double(s.budgetMs) <= timeScale.fixedMs();
+    slot.belowFixedCost = belowFixedCost(s);
     // Room for the prediction's recent errors (cost_model.h's headroom).
     slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float((double(s.budgetMs) - timeScale.fixedMs()) / timeScale.headroom(s.budgetConfidence));
     // `benefit` keeps a share of the trace budget for the probe of what it leaves out.
@@ -433,8 +436,7 @@ void SelectionStage::beginFrame(VkCommandBuffer cmd, uint32_t slot) {
 
 bool SelectionStage::skipsStage(uint32_t slot, const RenderSettings& settings) {
   Impl& m = *impl_;
-  const select::TimeScale& k = m.timeScale;
-  const bool below = isBudgeted(settings.policy) && k.fixedCostObservations() >= 3 && double(settings.budgetMs) <= k.fixedMs();
+  const bool below = isBudgeted(settings.policy) && m.timeScale.fixedCostObservations() >= 3 && m.belowFixedCost(settings);
   m.skippedInRow = below && m.skippedInRow + 1 < kRemeasureEvery ? m.skippedInRow + 1 : 0;
   m.slots[slot].stageSkipped = m.skippedInRow > 0;
   return m.slots[slot].stageSkipped;
