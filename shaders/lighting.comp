@@ -53,10 +53,11 @@ void main() {
   // Ray-traced visibility replaces the shadow maps where the shadow pass traced: pixels of
   // objects whose shadow item is selected. Where the probe traced, it is measured, not shown.
   bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && !behindGlassPass();
-  bool rtShadows = rtEnabled && itemSelected(s.objectId, RB_ITEM_SHADOWS);
-  bool probed = rtEnabled && !rtShadows && itemProbed(s.objectId, RB_ITEM_SHADOWS, pixel);
+  Selection sel = selectionOf(s.objectId);
+  bool rtShadows = rtEnabled && itemSelected(sel, RB_ITEM_SHADOWS);
+  bool probed = rtEnabled && !rtShadows && itemProbed(sel, RB_ITEM_SHADOWS, pixel);
   // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.
-  bool traced = probed || (rtShadows && itemTracedHere(s.objectId, RB_ITEM_SHADOWS, pixel));
+  bool traced = probed || (rtShadows && itemTracedHere(sel, RB_ITEM_SHADOWS, pixel));
   bool measure = traced && measuringItems();
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {

@@ -69,9 +69,9 @@ bool transmittedRay(vec3 p, vec3 ng, vec3 V, vec3 n, float ior, uint materialId,
 // What each path traced here at a reduced rate changed against its fallback (traced minus
 // fallback, the surface's weights applied), for the tile's fill (include/tile_fill.glsl); bit 0
 // / 1 of fillPaths: which paths it holds.
-shared vec3 fillReflection[RB_TILE_PIXELS];
-shared vec3 fillRefraction[RB_TILE_PIXELS];
-shared uint fillPaths[RB_TILE_PIXELS];
+shared vec3 fillReflection[RB_FILL_SLOTS];
+shared vec3 fillRefraction[RB_FILL_SLOTS];
+shared uint fillPaths[RB_FILL_SLOTS];
 
 // Whether the frame traces the surface's reflection (transmission) path where its item is
 // traced: the effect is on, and the surface is smooth enough (transmissive).
@@ -82,10 +82,36 @@ bvec2 surfacePaths(Surface s) {
 }
 
 // The pixel's paths their selected items skip this frame at a reduced rate.
-bvec2 pendingPaths(Surface s, ivec2 pixel) {
+bvec2 pendingPaths(Surface s, Selection sel, ivec2 pixel) {
   bvec2 paths = surfacePaths(s);
-  return bvec2(paths.x && itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && !rateTraces(itemRate(s.objectId, RB_ITEM_REFLECTIONS), pixel),
-               paths.y && itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && !rateTraces(itemRate(s.objectId, RB_ITEM_REFRACTIONS), pixel));
+  return bvec2(paths.x && itemSelected(sel, RB_ITEM_REFLECTIONS) && !rateTraces(itemRate(sel, RB_ITEM_REFLECTIONS), pixel),
+               paths.y && itemSelected(sel, RB_ITEM_REFRACTIONS) && !rateTraces(itemRate(sel, RB_ITEM_REFRACTIONS), pixel));
+}
+
+// A traced neighbour as the fill reads it: its changes, the paths it holds (bits 0 and 1).
+void addFillSample(float w, uint paths, vec3 reflection, vec3 refraction, bvec2 pending, inout vec3 sum[2], inout vec2 weights) {
+  if (w <= 0.0) return;
+  if (pending.x && (paths & 1u) != 0u) {
+    sum[0] += w * reflection;
+    weights.x += w;
+  }
+  if (pending.y && (paths & 2u) != 0u) {
+    sum[1] += w * refraction;
+    weights.y += w;
+  }
+}
+
+// The tile's 1/16 samples with their changes (include/tile_fill.glsl's SixteenthSample).
+struct EffectSample {
+  SixteenthSample at;
+  uint paths;
+  vec3 reflection;
+  vec3 refraction;
+};
+
+EffectSample effectSample(int k) {
+  uint slot = RB_TILE_PIXELS + uint(k);
+  return EffectSample(sixteenthSample(k), fillPaths[slot], fillReflection[slot], fillRefraction[slot]);
 }
 
 // Fills the paths pending at `pixel` from the tile's traced neighbours: their weighted mean
@@ -94,42 +120,38 @@ bvec2 pendingPaths(Surface s, ivec2 pixel) {
 // change rather than the radiance keeps this pixel's own environment where the neighbours'
 // rays escaped to it, and spares each filled pixel its weights and environment lookups (which
 // cost about as much as the fill's gather on lavapipe).
-void fillPending(ivec2 pixel, Surface s, bvec2 pending) {
+void fillPending(ivec2 pixel, Surface s, Selection sel, bvec2 pending, EffectSample samples[4]) {
   FillCentre c = fillCentre(s.objectId, s.position, s.normal);
   // Both paths' items may run at different rates: the denser rate's neighbours are read (the
   // rates nest, so they hold the sparser one's samples near the pixel), each where either traced.
-  uint rates[2] = uint[2](pending.x ? itemRate(s.objectId, RB_ITEM_REFLECTIONS) : RB_RATE_SIXTEENTH,
-                          pending.y ? itemRate(s.objectId, RB_ITEM_REFRACTIONS) : RB_RATE_SIXTEENTH);
+  uint rates[2] = uint[2](pending.x ? itemRate(sel, RB_ITEM_REFLECTIONS) : RB_RATE_SIXTEENTH,
+                          pending.y ? itemRate(sel, RB_ITEM_REFRACTIONS) : RB_RATE_SIXTEENTH);
   uint rate = min(rates[0], rates[1]);  // the denser of the two (the codes grow as the rate falls)
   vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0));
   vec2 weights = vec2(0.0);
-  for (int k = 0; k < fillCandidates(rate); ++k) {
-    uint slot;
-    float w = fillWeight(c, rate, pixel, fillOffset(rate, pixel, k), slot);
-    if (w <= 0.0) continue;
-    uint paths = fillPaths[slot];
-    if (pending.x && (paths & 1u) != 0u) {
-      sum[0] += w * fillReflection[slot];
-      weights.x += w;
-    }
-    if (pending.y && (paths & 2u) != 0u) {
-      sum[1] += w * fillRefraction[slot];
-      weights.y += w;
+  if (rate == RB_RATE_SIXTEENTH) {
+    for (int k = 0; k < 4; ++k)
+      addFillSample(sixteenthWeight(c, samples[k].at, pixel), samples[k].paths, samples[k].reflection, samples[k].refraction, pending, sum, weights);
+  } else {
+    for (int k = 0; k < 9; ++k) {
+      uint slot;
+      float w = fillWeight(c, rate, pixel, fillOffset(k), slot);
+      if (w > 0.0) addFillSample(w, fillPaths[slot], fillReflection[slot], fillRefraction[slot], pending, sum, weights);
     }
   }
   if (weights.x >= RB_FILL_MIN_WEIGHT) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + sum[0] / weights.x, 1.0));
   if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + sum[1] / weights.y, 1.0));
 }
 
-void traceEffects(ivec2 pixel, bool lit, Surface s) {
+void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel) {
   if (!lit) return;
   // Per path: whether its item is probed here rather than selected.
-  bool probed[2] = bool[2](!itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && itemProbed(s.objectId, RB_ITEM_REFLECTIONS, pixel),
-                           !itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && itemProbed(s.objectId, RB_ITEM_REFRACTIONS, pixel));
-  uint rates[2] = uint[2](itemRate(s.objectId, RB_ITEM_REFLECTIONS), itemRate(s.objectId, RB_ITEM_REFRACTIONS));
+  bool probed[2] = bool[2](!itemSelected(sel, RB_ITEM_REFLECTIONS) && itemProbed(sel, RB_ITEM_REFLECTIONS, pixel),
+                           !itemSelected(sel, RB_ITEM_REFRACTIONS) && itemProbed(sel, RB_ITEM_REFRACTIONS, pixel));
+  uint rates[2] = uint[2](itemRate(sel, RB_ITEM_REFLECTIONS), itemRate(sel, RB_ITEM_REFRACTIONS));
   bvec2 paths = surfacePaths(s);
-  bool reflects = paths.x && ((itemSelected(s.objectId, RB_ITEM_REFLECTIONS) && rateTraces(rates[0], pixel)) || probed[0]);
-  bool refracts = paths.y && ((itemSelected(s.objectId, RB_ITEM_REFRACTIONS) && rateTraces(rates[1], pixel)) || probed[1]);
+  bool reflects = paths.x && ((itemSelected(sel, RB_ITEM_REFLECTIONS) && rateTraces(rates[0], pixel)) || probed[0]);
+  bool refracts = paths.y && ((itemSelected(sel, RB_ITEM_REFRACTIONS) && rateTraces(rates[1], pixel)) || probed[1]);
   if (!reflects && !refracts) return;  // the environment fallback stands
   uint start = clockNow();
   vec3 p, ng;
@@ -162,11 +184,13 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
   // For the tile's fill: the paths traced here at a reduced rate.
   bool shared0 = reflects && !probed[0] && rates[0] != RB_RATE_FULL, shared1 = refracts && !probed[1] && rates[1] != RB_RATE_FULL;
   if (shared0 || shared1) {
-    uint i = fillIndex(pixel);
-    shareFillSource(pixel, s.objectId, s.position, s.normal);  // (the filled pixel's centre is its s.position too)
-    fillPaths[i] = (shared0 ? 1u : 0u) | (shared1 ? 2u : 0u);
-    fillReflection[i] = color[0] - fallback[0];
-    fillRefraction[i] = color[1] - fallback[1];
+    uvec2 slots = fillSlots(pixel);
+    shareFillSource(slots, s.objectId, s.position, s.normal);  // (the filled pixel's centre is its s.position too)
+    for (int n = 0; n < 2; ++n) {
+      fillPaths[slots[n]] = (shared0 ? 1u : 0u) | (shared1 ? 2u : 0u);
+      fillReflection[slots[n]] = color[0] - fallback[0];
+      fillRefraction[slots[n]] = color[1] - fallback[1];
+    }
   }
   addObjectWork(s.objectId, (probed[0] ? 0u : work[0]) + (probed[1] ? 0u : work[1]));
   if (measuringItems()) {
@@ -187,11 +211,11 @@ void traceEffects(ivec2 pixel, bool lit, Surface s) {
 
 // Which of the pixel's paths (x reflection, y transmission) its items trace here this frame
 // (selected and traced at their rate, or probed), and which a reduced rate leaves to the fill.
-void pathsHere(uint objectId, ivec2 pixel, out bvec2 traced, out bvec2 skipped) {
-  bvec2 selected = bvec2(itemSelected(objectId, RB_ITEM_REFLECTIONS), itemSelected(objectId, RB_ITEM_REFRACTIONS));
-  bvec2 rateHere = bvec2(itemTracedHere(objectId, RB_ITEM_REFLECTIONS, pixel), itemTracedHere(objectId, RB_ITEM_REFRACTIONS, pixel));
-  traced = bvec2((selected.x && rateHere.x) || (!selected.x && itemProbed(objectId, RB_ITEM_REFLECTIONS, pixel)),
-                 (selected.y && rateHere.y) || (!selected.y && itemProbed(objectId, RB_ITEM_REFRACTIONS, pixel)));
+void pathsHere(Selection sel, ivec2 pixel, out bvec2 traced, out bvec2 skipped) {
+  bvec2 selected = bvec2(itemSelected(sel, RB_ITEM_REFLECTIONS), itemSelected(sel, RB_ITEM_REFRACTIONS));
+  bvec2 rateHere = bvec2(itemTracedHere(sel, RB_ITEM_REFLECTIONS, pixel), itemTracedHere(sel, RB_ITEM_REFRACTIONS, pixel));
+  traced = bvec2((selected.x && rateHere.x) || (!selected.x && itemProbed(sel, RB_ITEM_REFLECTIONS, pixel)),
+                 (selected.y && rateHere.y) || (!selected.y && itemProbed(sel, RB_ITEM_REFRACTIONS, pixel)));
   skipped = bvec2(selected.x && !rateHere.x, selected.y && !rateHere.y);
 }
 
@@ -204,18 +228,20 @@ void main() {
   Surface s;
   bvec2 pending = bvec2(false);
   uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
+  Selection sel = selectionOf(objectId);
   if (objectId != RB_NO_OBJECT) {
     bvec2 traced, skipped;
-    pathsHere(objectId, pixel, traced, skipped);
+    pathsHere(sel, pixel, traced, skipped);
     if (any(traced)) {
       bool lit = readSurface(pixel, s) && !s.unlit;
-      traceEffects(pixel, lit, s);
-      if (lit) pending = pendingPaths(s, pixel);
+      traceEffects(pixel, lit, s, sel);
+      if (lit) pending = pendingPaths(s, sel, pixel);
     } else if (fills && any(skipped) && readFillSurface(pixel, objectId, s)) {
-      pending = pendingPaths(s, pixel);
+      pending = pendingPaths(s, sel, pixel);
     }
   }
   if (!fills) return;
   barrier();
-  if (any(pending)) fillPending(pixel, s, pending);
+  EffectSample samples[4] = EffectSample[4](effectSample(0), effectSample(1), effectSample(2), effectSample(3));
+  if (any(pending)) fillPending(pixel, s, sel, pending, samples);
 }

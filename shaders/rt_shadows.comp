@@ -27,7 +27,7 @@ layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 
 // (include/tile_fill.glsl): the traced visibility minus the map's there, a byte per light
 // (-1..1 as 0..254; a traced pixel writes every light; the fill reads only the slots of traced
 // pixels on its object).
-shared uint fillLights[RB_TILE_PIXELS * (RB_MAX_LIGHTS / 4)];
+shared uint fillLights[RB_FILL_SLOTS * (RB_MAX_LIGHTS / 4)];
 
 uint correctionByte(float correction) { return uint(round((clamp(correction, -1.0, 1.0) + 1.0) * 127.0)); }
 
@@ -40,15 +40,18 @@ float fillCorrection(uint slot, uint light) {
 // reduced rate skips this frame reads only what its fill needs (gbuffer.glsl's readFillSurface) and
 // runs no light loop, classifier or counters before the barrier: on lavapipe those cost about
 // as much per pixel as a quarter rate's rays, so a skipped pixel that ran them made a rate
-// save little. `skipped` returns that pixel's fill centre (object RB_NO_OBJECT: nothing to fill).
-void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
+// save little. `skipped` returns that pixel's fill centre (object RB_NO_OBJECT: nothing to fill)
+// and `sel` its object's selection.
+void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection sel) {
+  sel = Selection(0u);
   skipped.objectId = RB_NO_OBJECT;
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   uint objectId = texelFetch(gObjectId, pixel, 0).r;
   if (objectId == RB_NO_OBJECT) return;
-  bool probe = !itemSelected(objectId, RB_ITEM_SHADOWS);
-  if (probe && !itemProbed(objectId, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
-  uint rate = probe ? RB_RATE_FULL : itemRate(objectId, RB_ITEM_SHADOWS);
+  sel = selectionOf(objectId);
+  bool probe = !itemSelected(sel, RB_ITEM_SHADOWS);
+  if (probe && !itemProbed(sel, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
+  uint rate = probe ? RB_RATE_FULL : itemRate(sel, RB_ITEM_SHADOWS);
   bool share = fills && rate != RB_RATE_FULL;
   Surface s;
   if (!rateTraces(rate, pixel)) {
@@ -63,6 +66,7 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
   bool classify = (frame.rayTracing.w & RB_RT_CLASSIFY_SHADOWS) != 0u;
   bool shorten = (frame.rayTracing.w & RB_RT_SHORTEN_SHADOW_RAYS) != 0u;
   uint work = 0u, word = 0u;
+  uvec2 slots = fillSlots(pixel);
   bool traced = false;  // some light's ray was traced here
   // Lights the classifier finds certain need no ray.
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
@@ -81,12 +85,12 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
     if (share) {
       word |= correctionByte(visible - mapped) << (8u * (i & 3u));
       if ((i & 3u) == 3u || i + 1u == frame.sizeLightsFrame.z) {
-        fillLights[fillIndex(pixel) * (RB_MAX_LIGHTS / 4) + i / 4u] = word;
+        for (int n = 0; n < 2; ++n) fillLights[slots[n] * (RB_MAX_LIGHTS / 4) + i / 4u] = word;
         word = 0u;
       }
     }
   }
-  if (share) shareFillSource(pixel, s.objectId, p, s.normal);
+  if (share) shareFillSource(slots, s.objectId, p, s.normal);
   if (traced && !probe) markTraced(pixel, RB_RT_SHADOWS);
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
@@ -101,12 +105,18 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped) {
 // Filling the correction, not the visibility, keeps the map's shadow edges at the map's
 // resolution where the rays agree with it, where a filled visibility makes every edge a
 // staircase of the rate's blocks.
-void fillPending(ivec2 pixel, FillCentre c) {
+void fillPending(ivec2 pixel, FillCentre c, Selection sel, SixteenthSample samples[4]) {
   float weights[9];
   uint slots[9];
-  uint rate = itemRate(c.objectId, RB_ITEM_SHADOWS);
-  int candidates = fillCandidates(rate);
-  for (int k = 0; k < candidates; ++k) weights[k] = fillWeight(c, rate, pixel, fillOffset(rate, pixel, k), slots[k]);
+  uint rate = itemRate(sel, RB_ITEM_SHADOWS);
+  bool sixteenth = rate == RB_RATE_SIXTEENTH;
+  int candidates = sixteenth ? 4 : 9;
+  for (int k = 0; k < candidates; ++k) {
+    if (sixteenth) {
+      weights[k] = sixteenthWeight(c, samples[k], pixel);
+      slots[k] = RB_TILE_PIXELS + uint(k);
+    } else weights[k] = fillWeight(c, rate, pixel, fillOffset(k), slots[k]);
+  }
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
     float dist, scale;
@@ -130,8 +140,10 @@ void main() {
   bool fills = fillsInPass();
   if (fills) clearFillSlot(pixel);
   FillCentre skipped;
-  traceShadows(pixel, fills, skipped);
+  Selection sel;
+  traceShadows(pixel, fills, skipped, sel);
   if (!fills) return;
   barrier();
-  if (skipped.objectId != RB_NO_OBJECT) fillPending(pixel, skipped);
+  SixteenthSample samples[4] = SixteenthSample[4](sixteenthSample(0), sixteenthSample(1), sixteenthSample(2), sixteenthSample(3));
+  if (skipped.objectId != RB_NO_OBJECT) fillPending(pixel, skipped, sel, samples);
 }

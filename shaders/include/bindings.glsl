@@ -121,11 +121,19 @@ bool screenTile(uint t, out uvec2 first, out uvec2 last) {
   return t < tilesX * tilesY;
 }
 
-// Whether the pixel's object has any item selected for ray tracing this frame (probed items
-// have bits of their own: include/probe.glsl).
-bool pixelSelected(uint objectId) { return objectId != RB_NO_OBJECT && (selected[objectId] & RB_ITEMS_ALL) != 0u; }
+// What the selection holds for a pixel's object: its items, their rates and probes (0 for no
+// object). A pass reads it once per pixel: on lavapipe each read of a buffer at an index that
+// differs per lane is a loop over the lanes, and the buffer is written elsewhere, so repeated
+// reads are not merged.
+struct Selection {
+  uint word;
+};
+Selection selectionOf(uint objectId) { return Selection(objectId == RB_NO_OBJECT ? 0u : selected[objectId]); }
+// Whether the object has any item selected for ray tracing this frame (probed items have bits
+// of their own: include/probe.glsl).
+bool anySelected(Selection sel) { return (sel.word & RB_ITEMS_ALL) != 0u; }
 // Whether its item `effect` (RB_ITEM_*) is selected.
-bool itemSelected(uint objectId, uint effect) { return objectId != RB_NO_OBJECT && (selected[objectId] & (1u << effect)) != 0u; }
+bool itemSelected(Selection sel, uint effect) { return (sel.word & (1u << effect)) != 0u; }
 bool measuringItems() { return (frame.rayTracing.w & RB_RT_MEASURE_ITEMS) != 0u; }
 // The reflected plus the refracted light at a pixel.
 vec3 indirectLight(ivec2 pixel) { return imageLoad(reflectionImage, pixel).rgb + imageLoad(refractionImage, pixel).rgb; }

@@ -23,8 +23,8 @@ bool probeTile(uvec2 tile) {
 }
 
 // Whether the pixel's item `effect` is left out by the selection but probed here this frame.
-bool itemProbed(uint objectId, uint effect, ivec2 pixel) {
-  return objectId != RB_NO_OBJECT && (selected[objectId] & (1u << (RB_PROBE_SHIFT + effect))) != 0u && probeTile(uvec2(pixel) / RB_TILE_SIZE);
+bool itemProbed(Selection sel, uint effect, ivec2 pixel) {
+  return (sel.word & (1u << (RB_PROBE_SHIFT + effect))) != 0u && probeTile(uvec2(pixel) / RB_TILE_SIZE);
 }
 
 #endif

@@ -4,9 +4,7 @@
 #define RB_RATES_GLSL
 
 // The rate of the pixel's item `effect` (RB_RATE_FULL where nothing is selected).
-uint itemRate(uint objectId, uint effect) {
-  return objectId == RB_NO_OBJECT ? RB_RATE_FULL : (selected[objectId] >> (RB_RATE_SHIFT + 2u * effect)) & 3u;
-}
+uint itemRate(Selection sel, uint effect) { return (sel.word >> (RB_RATE_SHIFT + 2u * effect)) & 3u; }
 
 // The pixel of each 2x2 quad that 1/4 traces in frame `f`: top left, top right, bottom right,
 // bottom left in turn. Its x + y has the parity of f, so it is one of the pixels 1/2 traces
@@ -32,6 +30,6 @@ bool rateTraces(uint rate, ivec2 pixel) {
 }
 
 // Whether the pixel's selected item `effect` is traced here this frame.
-bool itemTracedHere(uint objectId, uint effect, ivec2 pixel) { return rateTraces(itemRate(objectId, effect), pixel); }
+bool itemTracedHere(Selection sel, uint effect, ivec2 pixel) { return rateTraces(itemRate(sel, effect), pixel); }
 
 #endif

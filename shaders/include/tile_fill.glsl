@@ -21,10 +21,12 @@
 #define RB_FILL_MIN_WEIGHT 1e-3
 #define RB_TILE_PIXELS (RB_TILE_SIZE * RB_TILE_SIZE)
 
-// Per pixel of the tile: the object it traced for (RB_NO_OBJECT: nothing to share), where.
-shared uint fillObject[RB_TILE_PIXELS];
-shared vec3 fillPosition[RB_TILE_PIXELS];
-shared vec3 fillNormal[RB_TILE_PIXELS];
+// Per pixel of the tile: the object it traced for (RB_NO_OBJECT: nothing to share), where;
+// the last four slots copy the pixels 1/16 traces, one per 4x4 block (sixteenthSample).
+#define RB_FILL_SLOTS (RB_TILE_PIXELS + 4)
+shared uint fillObject[RB_FILL_SLOTS];
+shared vec3 fillPosition[RB_FILL_SLOTS];
+shared vec3 fillNormal[RB_FILL_SLOTS];
 
 // Whether the trace passes fill this frame (the pipeline's specialization, set where RB_RT_RATES
 // is): uniform, so the barrier stays in uniform control flow, and the plain pipeline's
@@ -37,14 +39,29 @@ uint fillIndex(ivec2 pixel) {
   return uint(a.y * RB_TILE_SIZE + a.x);
 }
 
-// Each invocation clears its own pixel's slot before its pass writes anything.
-void clearFillSlot(ivec2 pixel) { fillObject[fillIndex(pixel)] = RB_NO_OBJECT; }
-
-void shareFillSource(ivec2 pixel, uint objectId, vec3 position, vec3 normal) {
+// The slots a pixel shares into: its own, and where 1/16 traces it this frame its block's copy
+// (else its own again).
+uvec2 fillSlots(ivec2 pixel) {
   uint i = fillIndex(pixel);
-  fillObject[i] = objectId;
-  fillPosition[i] = position;
-  fillNormal[i] = normal;
+  uvec2 a = uvec2(pixel & (RB_TILE_SIZE - 1));
+  bool sixteenth = all(equal(a & 3u, sixteenthOffset(frame.sizeLightsFrame.w)));
+  return uvec2(i, sixteenth ? RB_TILE_PIXELS + (a.x >> 2u) + 2u * (a.y >> 2u) : i);
+}
+
+// Each invocation clears its own pixel's slots before its pass writes anything (the copy's
+// too: no other invocation writes it).
+void clearFillSlot(ivec2 pixel) {
+  uvec2 slots = fillSlots(pixel);
+  fillObject[slots.x] = RB_NO_OBJECT;
+  fillObject[slots.y] = RB_NO_OBJECT;
+}
+
+void shareFillSource(uvec2 slots, uint objectId, vec3 position, vec3 normal) {
+  for (int n = 0; n < 2; ++n) {
+    fillObject[slots[n]] = objectId;
+    fillPosition[slots[n]] = position;
+    fillNormal[slots[n]] = normal;
+  }
 }
 
 struct FillCentre {
@@ -58,17 +75,24 @@ FillCentre fillCentre(uint objectId, vec3 position, vec3 normal) {
   return FillCentre(objectId, position, normal, 1.0 / (RB_FILL_PLANE * max(length(position - frame.cameraPositionNear.xyz), 1e-6)));
 }
 
-// The neighbours a pixel's fill reads at `rate`: how many, and the k-th one's offset.
-int fillCandidates(uint rate) { return rate == RB_RATE_SIXTEENTH ? 4 : 9; }
-ivec2 fillOffset(uint rate, ivec2 pixel, int k) {
-  if (rate != RB_RATE_SIXTEENTH) return ivec2(k % 3 - 1, k / 3 - 1);
-  return (pixel & ~(RB_TILE_SIZE - 1)) + ivec2(sixteenthOffset(frame.sizeLightsFrame.w)) + ivec2(k & 1, k >> 1) * 4 - pixel;
+// The k-th of the 3x3 neighbours a pixel's fill reads at 1/2 and 1/4.
+ivec2 fillOffset(int k) { return ivec2(k % 3 - 1, k / 3 - 1); }
+
+// The depth and normal weights of a neighbour at `position` with `normal` for the fill of c.
+float fillSimilarity(FillCentre c, vec3 position, vec3 normal) {
+  float plane = max(0.0, 1.0 - abs(dot(c.normal, position - c.position)) * c.planeScale);
+  float facing = max(dot(c.normal, normal), 0.0);
+  facing *= facing;  // ^RB_FILL_NORMAL_POWER by squaring: four multiplies where pow is a log and an exp
+  facing *= facing;
+  facing *= facing;
+  facing *= facing;
+  return plane * facing;
 }
 
-// The slot of the neighbour at `offset` from `pixel` and its weight; 0 where the item's `rate`
-// did not trace it this frame (1 to 4 of 1/4's 9 are left: tested first, the cheap way, as
-// shared memory is slow to gather from on lavapipe), outside the tile, on another object or
-// where nothing was shared.
+// The slot of the neighbour at `offset` from `pixel` and its weight at 1/2 or 1/4; 0 where the
+// item's `rate` did not trace it this frame (1 to 4 of 1/4's 9 are left: tested first, the
+// cheap way, as shared memory is slow to gather from on lavapipe), outside the tile, on another
+// object or where nothing was shared.
 float fillWeight(FillCentre c, uint rate, ivec2 pixel, ivec2 offset, out uint slot) {
   ivec2 a = (pixel & (RB_TILE_SIZE - 1)) + offset;
   slot = 0u;
@@ -76,15 +100,34 @@ float fillWeight(FillCentre c, uint rate, ivec2 pixel, ivec2 offset, out uint sl
   if (any(lessThan(a, ivec2(0))) || any(greaterThanEqual(a, ivec2(RB_TILE_SIZE)))) return 0.0;
   slot = uint(a.y * RB_TILE_SIZE + a.x);
   if (fillObject[slot] != c.objectId) return 0.0;
-  float plane = max(0.0, 1.0 - abs(dot(c.normal, fillPosition[slot] - c.position)) * c.planeScale);
-  float facing = max(dot(c.normal, fillNormal[slot]), 0.0);
-  facing *= facing;  // ^RB_FILL_NORMAL_POWER by squaring: four multiplies where pow is a log and an exp
-  facing *= facing;
-  facing *= facing;
-  facing *= facing;
   int d2 = offset.x * offset.x + offset.y * offset.y;
-  float near = rate == RB_RATE_SIXTEENTH ? exp(-0.125 * float(d2)) : (d2 == 0 ? 1.0 : (d2 == 1 ? 0.60653066 : 0.36787944));  // exp(-d2 / 2)
-  return near * plane * facing;
+  float near = d2 == 0 ? 1.0 : (d2 == 1 ? 0.60653066 : 0.36787944);  // exp(-d2 / 2)
+  return near * fillSimilarity(c, fillPosition[slot], fillNormal[slot]);
+}
+
+// 1/16 traces the same four pixels in every tile, so every pixel of the tile fills from the
+// same four samples. They are copied to the last four slots, whose constant indices lavapipe
+// reads once for all lanes, where an index that differs per lane (or is computed from a
+// uniform buffer) it reads lane by lane: those gathers were most of 1/16's fill time. The
+// shader reads them once, in its uniform control flow after the barrier.
+struct SixteenthSample {
+  ivec2 at;  // in the tile
+  uint objectId;
+  vec3 position;
+  vec3 normal;
+};
+
+SixteenthSample sixteenthSample(int k) {
+  uint slot = RB_TILE_PIXELS + uint(k);
+  ivec2 at = ivec2(sixteenthOffset(frame.sizeLightsFrame.w) + uvec2(k & 1, k >> 1) * 4u);
+  return SixteenthSample(at, fillObject[slot], fillPosition[slot], fillNormal[slot]);
+}
+
+// The weight of a 1/16 sample for the fill of `pixel` (0 on another object or none).
+float sixteenthWeight(FillCentre c, SixteenthSample t, ivec2 pixel) {
+  if (t.objectId != c.objectId) return 0.0;
+  ivec2 d = t.at - (pixel & (RB_TILE_SIZE - 1));
+  return exp(-0.125 * float(d.x * d.x + d.y * d.y)) * fillSimilarity(c, t.position, t.normal);
 }
 
 #endif
