@@ -220,7 +220,7 @@ void pathsHere(Selection sel, ivec2 pixel, out bvec2 traced, out bvec2 skipped) 
 }
 
 void main() {
-  ivec2 pixel = tilePixel();
+  ivec2 pixel = tilePixel(RB_EFFECT_TILES);
   bool fills = fillsInPass();
   if (fills) clearFillSlot(pixel);
   // A pixel whose items trace nothing here reads no more of the G-buffer than its object (and,

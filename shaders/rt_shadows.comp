@@ -136,7 +136,7 @@ void fillPending(ivec2 pixel, FillCentre c, Selection sel, SixteenthSample sampl
 }
 
 void main() {
-  ivec2 pixel = tilePixel();
+  ivec2 pixel = tilePixel(RB_SHADOW_TILES);
   bool fills = fillsInPass();
   if (fills) clearFillSlot(pixel);
   FillCentre skipped;

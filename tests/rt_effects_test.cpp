@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -405,6 +406,55 @@ TEST(RtPolicy, TracesTheTilesOfSelectedObjectsOnACrowdedGrid) {
   EXPECT_EQ(t.back().selectedObjects, selectedObjects);
   EXPECT_EQ(t.back().tracedTiles, tiles);
   test::expectValidationClean(renderer.validationMessages());
+}
+
+// Each trace pass runs over its own tile list: the shadow pass over the tiles showing an
+// object whose shadow item is traced, the reflection and refraction pass over those showing
+// one whose reflection or refraction item is; a pass whose items are all left out runs over
+// none. On the court with `benefit` and room for every item; then without ray-traced shadows,
+// where the shadow pass's list is empty and the other's unchanged.
+TEST(RtPolicy, EachTracePassRunsOverTheTilesOfItsOwnItems) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  std::optional<uint32_t> effectTilesWithShadows;
+  for (const bool shadows : {true, false}) {
+    RenderSettings s;
+    s.width = 200;
+    s.height = 120;
+    s.validation = true;
+    s.policy = Policy::Benefit;
+    s.budgetMs = 1e5f;         // every item fits
+    s.learnTimeScale = false;  // (and stays fitting)
+    s.objectMetrics = true;
+    s.rayTracing.shadows = shadows;
+    Renderer renderer(scene, s);
+    const Camera camera = defaultCamera(scene, 200.0f / 120.0f);
+    const std::vector<FrameTiming> t = test::renderStill(renderer, camera, 3);
+    ASSERT_EQ(t.size(), 3u);
+    const FrameImages img = renderer.readback();
+    const std::vector<ObjectMetrics> metrics = renderer.objectMetrics();
+    constexpr uint32_t kShadows = 1u << RB_ITEM_SHADOWS, kEffects = (1u << RB_ITEM_REFLECTIONS) | (1u << RB_ITEM_REFRACTIONS);
+    size_t shadowTiles = 0, effectTiles = 0, either = 0;
+    for (const std::set<uint32_t>& objects : test::objectsPerTile(img.objectIds, s.width, s.height)) {
+      uint32_t items = 0;
+      for (uint32_t id : objects) items |= metrics[id].selectedItems;
+      shadowTiles += (items & kShadows) != 0;
+      effectTiles += (items & kEffects) != 0;
+      either += items != 0;
+    }
+    EXPECT_EQ(t.back().shadowTiles, shadowTiles) << "shadows " << shadows;
+    EXPECT_EQ(t.back().effectTiles, effectTiles) << "shadows " << shadows;
+    EXPECT_EQ(t.back().tracedTiles, either) << "shadows " << shadows;
+    EXPECT_GT(effectTiles, 0u) << "the court's mirror, chrome and glass";
+    if (shadows) {
+      EXPECT_LT(effectTiles, shadowTiles) << "few objects reflect or refract; every lit one casts";
+      effectTilesWithShadows = t.back().effectTiles;
+    } else {
+      EXPECT_EQ(t.back().shadowTiles, 0u);
+      ASSERT_TRUE(effectTilesWithShadows.has_value());
+      EXPECT_EQ(t.back().effectTiles, *effectTilesWithShadows);
+    }
+    test::expectValidationClean(renderer.validationMessages());
+  }
 }
 
 }  // namespace

@@ -63,7 +63,9 @@ void printPassPlan(std::ostream& out, const Renderer& renderer, const std::vecto
   }
   out << "last frame, pixels per effect (those that could take rays / those traced, by ray rate):\n";
   for (int i = 0; i < 3; ++i) out << formatted("  %-12s %9.0f / %9.0f\n", kEffects[i], need[i], traced[i]);
-  out << formatted("  rays traced: %u in %u tiles\n", frames.empty() ? 0u : frames.back().raysTraced, frames.empty() ? 0u : frames.back().tracedTiles);
+  const FrameTiming last = frames.empty() ? FrameTiming{} : frames.back();
+  out << formatted("  rays traced: %u in %u tiles (%u for shadows, %u for reflections and refractions)\n", last.raysTraced, last.tracedTiles,
+                   last.shadowTiles, last.effectTiles);
 }
 
 void printFrameSelection(std::ostream& out, uint64_t frame, const std::vector<ObjectMetrics>& metrics) {

@@ -56,13 +56,19 @@ layout(set = 0, binding = 29) uniform sampler2D gPosition;  // xyz world positio
 layout(set = 0, binding = 30, std430) buffer CoverageBlock { GpuCoverage coverage[]; };
 layout(set = 0, binding = 31, std430) readonly buffer ObjectParamsBlock { GpuObjectParams objectParams[]; };
 layout(set = 0, binding = 32, std430) buffer ObjectRecordBlock { GpuObjectRecord objectRecords[]; };
-// The selection (1: the object's pixels get ray-traced effects) and the 8x8 tiles holding
-// selected pixels; tileList.x doubles as the trace passes' indirect dispatch (x, y, z).
+// The selection (1: the object's pixels get ray-traced effects) and, per trace pass, the 8x8
+// tiles holding pixels it traces (tile_list.comp), each list's count doubling as the pass's
+// indirect dispatch (x, y, z). Apart, so that a pass never runs over the tiles of the other's
+// items (the shadow pass over a mirror's tiles cost a quarter of the mirror's 1/16 rate).
 layout(set = 0, binding = 33, std430) buffer SelectionBlock { uint selected[]; };
 layout(set = 0, binding = 34, std430) buffer TileListBlock {
-  uvec4 tileDispatch;  // x tile count (= groups in x), y 1, z 1, w rays the trace passes traced
-  uint tiles[];        // tile x | tile y << 16
+  uvec4 tileDispatch;    // the shadow pass's: x tiles (= groups in x), y 1, z 1, w rays the trace passes traced
+  uvec4 effectDispatch;  // the reflection and refraction pass's: x tiles, y 1, z 1, w tiles in either list
+  uint tiles[];          // the shadow pass's tiles, then from RB_EFFECT_TILES the other's: tile x | tile y << 16
 };
+// Where a trace pass's list starts in tiles[].
+#define RB_SHADOW_TILES 0u
+#define RB_EFFECT_TILES screenTileCount()
 
 layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost objectCosts[]; };
 // Per tile, RB_TILE_OBJECT_WORDS words: the objects it shows (shared/config.h).

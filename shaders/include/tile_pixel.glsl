@@ -10,8 +10,8 @@
 // traces (one per 2x2 quad), 16-31 the rest of those 1/2 traces, 32-63 the others. A SIMD batch or warp holding only pixels its items
 // skip then has nothing to do, where in row order every one would hold some pixels to trace
 // (a checkerboard leaves half of each row).
-ivec2 tilePixel() {
-  uint t = tiles[gl_WorkGroupID.x];
+ivec2 tilePixel(uint list) {
+  uint t = tiles[list + gl_WorkGroupID.x];
   ivec2 origin = ivec2(t & 0xFFFFu, t >> 16) * RB_TILE_SIZE;
   if ((frame.rayTracing.w & RB_RT_RATES) == 0u) return origin + ivec2(gl_LocalInvocationID.xy);
   uint i = gl_LocalInvocationIndex, group = i >> 4u, k = i & 15u;

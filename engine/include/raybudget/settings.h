@@ -174,6 +174,8 @@ struct FrameTiming {
   uint64_t frame = 0;
   double tlasRebuildMs = 0.0;  // CPU time rebuilding the TLAS for moved objects (0: static)
   uint32_t tracedTiles = 0;    // 8x8 tiles the trace passes ran over (0: none selected or nothing traced)
+  uint32_t shadowTiles = 0;    // of those, the shadow pass's: tiles showing a traced shadow item
+  uint32_t effectTiles = 0;    // and the reflection and refraction pass's
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
   uint32_t shadowMapViews = 0;  // shadow-map layers and cube faces rendered (0: every map was current)
   uint32_t shadowMapDraws = 0;  // draw calls into them (the casters inside each view)

@@ -112,8 +112,8 @@ struct Context::Impl {
         envFallback(ctx, layouts, kSpirv_env_fallback_comp),
         compose(ctx, layouts, kSpirv_compose_comp),
         behindGlassCopy(ctx, layouts, kSpirv_behind_glass_comp),
-        traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows)),
-        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects)) {
+        traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows), passes::TileList::Shadows),
+        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects), passes::TileList::Effects) {
     if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows, targets);
     for (Slot& slot : slots) {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);

@@ -14,15 +14,16 @@ vk::Owned<VkPipeline> tracePipeline(const vk::Context& ctx, VkPipelineLayout lay
 
 }  // namespace
 
-TracePass::TracePass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader)
-    : ctx_(ctx), layout_(layouts.create({shader})), shader_(shader) {}
+TracePass::TracePass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader, TileList tiles)
+    : ctx_(ctx), layout_(layouts.create({shader})), shader_(shader), tiles_(tiles) {}
 
 void TracePass::recordOverTiles(const FrameContext& fc, bool fill) {
   if (!fill && !plain_) plain_ = tracePipeline(ctx_, layout_.pipelineLayout, shader_, false);
   if (fill && !filling_) filling_ = tracePipeline(ctx_, layout_.pipelineLayout, shader_, true);
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fill ? filling_ : plain_);
   layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatchIndirect(fc.cmd, fc.selection.tileList.buffer, 0);
+  // Each list's header is a uvec4 whose xyz is its dispatch.
+  vkCmdDispatchIndirect(fc.cmd, fc.selection.tileList.buffer, 16 * VkDeviceSize(tiles_));
 }
 
 }  // namespace raybudget::passes

@@ -13,10 +13,14 @@
 
 namespace raybudget::passes {
 
+// The tile list a trace pass runs over (shaders/include/bindings.glsl's TileListBlock): the
+// tiles of its own items only.
+enum class TileList : uint32_t { Shadows = 0, Effects = 1 };
+
 class TracePass {
  public:
-  TracePass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader);
-  // Dispatches over the trace passes' tile list; `fill`: reduced ray rates are in the frame.
+  TracePass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader, TileList tiles);
+  // Dispatches over the pass's tile list; `fill`: reduced ray rates are in the frame.
   void recordOverTiles(const FrameContext& fc, bool fill);
   bool builtPlain() const { return bool(plain_); }
   bool builtFilling() const { return bool(filling_); }
@@ -25,6 +29,7 @@ class TracePass {
   const vk::Context& ctx_;
   const PassLayout& layout_;
   vk::Spirv shader_;
+  TileList tiles_;
   vk::Owned<VkPipeline> plain_, filling_;
 };
 

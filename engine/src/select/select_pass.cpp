@@ -16,7 +16,7 @@ SelectPass::SelectPass(const vk::Context& ctx, passes::PassLayouts& layouts)
 
 void SelectPass::record(const passes::FrameContext& fc, SelectMode mode, uint32_t rate) const {
   const VkCommandBuffer cmd = fc.cmd;
-  const uint32_t emptyDispatch[4] = {0, 1, 1, 0};  // no tiles yet: x = 0 groups
+  const uint32_t emptyDispatch[8] = {0, 1, 1, 0, 0, 1, 1, 0};  // both lists: no tiles yet, x = 0 groups
   vkCmdUpdateBuffer(cmd, fc.selection.tileList.buffer, 0, sizeof(emptyDispatch), emptyDispatch);
   const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};

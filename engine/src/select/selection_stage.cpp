@@ -81,7 +81,7 @@ void copyWhole(VkCommandBuffer cmd, VkBuffer from, const vk::Buffer& to) {
 struct SelectionStage::Impl {
   // What one frame in flight selected with, and host-visible copies of what it produced.
   struct Slot {
-    vk::Buffer tileHeader;    // the tile list's header: tiles, rays traced
+    vk::Buffer tileHeader;    // the tile lists' headers: rays traced, tiles in either list
     vk::Buffer result;        // the GPU selection's result (gpu_selector.h)
     vk::Buffer candidates;    // with optimalBound or checkCpu: the candidates
     vk::Buffer selection;     // with checkCpu: the selection flags
@@ -127,7 +127,7 @@ struct SelectionStage::Impl {
     ensureSelector(s);
     const VkDeviceSize records = std::max<VkDeviceSize>(1, buffers.objects);
     for (Slot& slot : slots) {
-      slot.tileHeader = vk::createBuffer(c, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      slot.tileHeader = vk::createBuffer(c, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.result = vk::createBuffer(c, 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       if (s.optimalBound || checkCpu)
         // Up to three rate segments per item (`benefit` with rates chosen per item).
@@ -315,7 +315,9 @@ struct SelectionStage::Impl {
 
   void retire(Slot& slot, const RenderSettings& s, FrameTiming& t) {
     const auto* header = static_cast<const uint32_t*>(slot.tileHeader.mapped);
-    t.tracedTiles = slot.selected ? header[0] : 0u;
+    t.tracedTiles = slot.selected ? header[7] : 0u;
+    t.shadowTiles = slot.selected ? header[0] : 0u;
+    t.effectTiles = slot.selected ? header[4] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
@@ -457,7 +459,7 @@ void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot,
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {
   if (!impl_->slots[slot].selected) return;
   readToTransfer(cmd);
-  const VkBufferCopy header{0, 0, 16};
+  const VkBufferCopy header{0, 0, 32};
   vkCmdCopyBuffer(cmd, impl_->buffers.tileList.buffer, impl_->slots[slot].tileHeader.buffer, 1, &header);
 }
 
