@@ -16,7 +16,9 @@ layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };
 // Frame mode: x candidates, y predicted cost and z value (float bits), w selected; then
 // x objects whose selection changed since the last frame, y and z the candidates' total cost
 // (allCandidatesFit), w 1 when the selection needed an order (FrameTiming::selectionSorted);
-// then x `benefit`'s items whose option (left out, or a rate) changed since the last frame.
+// then x `benefit`'s items whose option (left out, or a rate) changed since the last frame,
+// y the predicted cost of the selected candidates priced by the prior (float bits;
+// select_walk.comp's priorPricedCost).
 layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; uvec4 result2; uvec4 result3; };
 // Frame mode: the renderer's per-object records, selection and K/Q/I/S (shared/selection.h).
 layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectRecord records[]; };

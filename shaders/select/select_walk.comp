@@ -229,6 +229,35 @@ float setProbeStride(uint n) {
   return stride == 0u ? 0.0 : left / float(stride);
 }
 
+// Frame mode, after the walk: the predicted cost of the selected candidates whose item (or
+// object) was never traced, priced by the prior (its learned work per pixel is 0). The time
+// scale leaves frames mostly priced so out of the headroom (cost_model.h): the prior's error
+// is a bias the first traced frame removes, not the noise the headroom is for. `paper`'s cost
+// is the paper's C, never learned: 0.
+float priorPricedCost(uint n) {
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();  // the lanes' marks in the frame's selection (or the items' levels) are visible
+  uint policy = push.sizes.z;
+  if (policy == RB_SELECT_PAPER || policy == RB_SELECT_NONE) return 0.0;
+  float lanePart = 0.0;
+  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
+    GpuCandidate c = candidates[ci];
+    bool taken;
+    float learned;
+    if (policy == RB_SELECT_BENEFIT) {
+      uint item = candidateItem(c.id);
+      taken = rateSegmentsWalk() ? scratch[item] > c.id % RB_SEGMENT_SLOTS
+                                 : (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) != 0u;
+      learned = items[item].workPerPixel;
+    } else {
+      taken = (selected[c.id] & RB_ITEMS_ALL) != 0u;
+      learned = costs[c.id].workPerPixel;
+    }
+    if (taken && learned == 0.0) lanePart += c.cost;
+  }
+  return subgroupAdd(lanePart);
+}
+
 void main() {
   uint n = candidateCount(), policy = push.sizes.z;
   float budget = push.budget.x;
@@ -262,8 +291,10 @@ void main() {
   if (rateSegmentsWalk() && push.walk.y != 0u) markLevels();
   // The predicted cost includes the probe's (the time scale learns from the trace time).
   if (policy == RB_SELECT_BENEFIT && push.walk.y != 0u) p.cost += setProbeStride(n);
+  float prior = push.walk.y != 0u ? priorPricedCost(n) : 0.0;
   if (gl_SubgroupInvocationID == 0u) {
     result.yzw = uvec3(floatBitsToUint(p.cost), floatBitsToUint(p.value), p.count);
+    result3.y = floatBitsToUint(prior);
     result2.w = everything || policy == RB_SELECT_NONE ? 0u : 1u;  // the selection needed an order
   }
 }

@@ -115,6 +115,7 @@ struct StageMeasurement {
   bool candidatesButNoneFit = false;
   double budgetMs = 0.0;  // the selection's budget (0: every traced frame is informative)
   uint64_t rays = 0;      // the rays the trace passes counted
+  double priorWork = 0.0;  // of `work`, the part priced by the prior (items or objects never traced)
 };
 
 // The last kSize observations of a quantity and their median (the lower middle of an even
@@ -196,6 +197,9 @@ class TimeScale {
   RecentMedian overhead_, traceFixed_, msPerRay_;
   static constexpr size_t kRatioWindow = 32;
   static constexpr double kInformativeShare = 0.25;
+  // A frame whose predicted work is more than this share priced by the prior teaches neither
+  // the scale nor the headroom (it still teaches the time of a ray, which prices the prior).
+  static constexpr double kPriorPricedShare = 0.25;
   std::array<double, kRatioWindow> ratios_{};  // the last frames' measured / predicted work time
   size_t ratioCount_ = 0;
 };

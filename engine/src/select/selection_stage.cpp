@@ -223,6 +223,10 @@ struct SelectionStage::Impl {
         return false;
     }
     if (policy == Policy::Benefit) return itemsMatchCpu(slot, candidates);
+    double prior = 0.0;
+    for (const gpu::GpuCandidate& c : candidates)
+      if (policy != Policy::Paper && c.id < buffers.objects && (selected[c.id] & RB_ITEMS_ALL) && perPixel[c.id] == 0.0f) prior += c.cost;
+    if (!priorCostMatches(slot, prior)) return false;
     size_t expected = 0;
     for (uint32_t i = 0; i < buffers.objects; ++i) expected += records[i].crCandidatePixels.z > 0.5f ? 1 : 0;
     if (expected != candidates.size()) return false;
@@ -233,6 +237,14 @@ struct SelectionStage::Impl {
       if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost)) return false;
     }
     return true;
+  }
+
+  // Whether the walk's cost of the selected candidates priced by the prior (result word 9,
+  // select_walk.comp's priorPricedCost) equals the CPU's sum, summed in another order on the
+  // GPU: within a relative 1e-5.
+  static bool priorCostMatches(const Slot& slot, double cpu) {
+    const double gpu = std::bit_cast<float>(static_cast<const uint32_t*>(slot.result.mapped)[9]);
+    return std::abs(gpu - cpu) <= 1e-5 * cpu;
   }
 
   // `benefit`: whether each item's learned state (cost_model.h's learnItem), restarted
@@ -258,7 +270,7 @@ struct SelectionStage::Impl {
     const bool segments = frame.rate == RB_RATE_AUTO;
     auto itemOf = [&](uint32_t id) { return segments ? id / RB_SEGMENT_SLOTS : id; };
     const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
-    double left = 0.0;
+    double left = 0.0, prior = 0.0;
     for (const gpu::GpuCandidate& c : candidates) {
       const uint32_t item = itemOf(c.id);
       if (item < items && !((selected[item / RB_ITEMS_PER_OBJECT] >> (item % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
@@ -309,8 +321,16 @@ struct SelectionStage::Impl {
       }
       if (std::bit_cast<uint32_t>(cost) != std::bit_cast<uint32_t>(c.cost) || std::bit_cast<uint32_t>(value) != std::bit_cast<uint32_t>(c.value))
         return false;
+      // Taken: the item is selected, with rate segments up to the one reaching its rate.
+      bool taken = (selected[i] >> e) & 1u;
+      if (taken && segments) {
+        uint32_t level = 0;
+        while (level < rateSegments(e) && rateSegment(e, level).rate != selectedRate(selected[i], e)) ++level;
+        taken = c.id % RB_SEGMENT_SLOTS <= level;
+      }
+      if (taken && learned[item].workPerPixel == 0.0f) prior += c.cost;
     }
-    return true;
+    return priorCostMatches(slot, prior);
   }
 
   void retire(Slot& slot, const RenderSettings& s, FrameTiming& t) {
@@ -357,7 +377,8 @@ struct SelectionStage::Impl {
     t.measuredTraceMs = t.traceMs();
     if (!s.learnTimeScale) return;
     timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWorkMs / slot.msPerUnit, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
-                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced});
+                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced,
+                                         double(std::bit_cast<float>(r[9])) / slot.msPerUnit});
   }
 
   std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads
