@@ -115,16 +115,18 @@ struct GpuObjectCost {
 #define RB_KEEP_FULL_GAIN_REFRACTIONS 0.1
 // The share of an item's full-rate cost a rate costs: not the share of its rays, as every
 // pixel of the item still reads its surface and the skipped ones are filled (include/
-// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, the effects pass at 1/2, 1/4 and
-// 1/16 over full on orbits (12 frames, one run each): the court 0.57, 0.34 and 0.20, the plaza
-// 0.63, 0.37 and 0.21, the WaterBottle 0.76, 0.55 and 0.37.
+// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, the effects pass alone at 1/2,
+// 1/4 and 1/16 over full on orbits (12 frames, the mean of two runs), the median of the court
+// (0.66, 0.36, 0.20), the plaza (0.67, 0.41, 0.21), the WaterBottle (0.87, 0.61, 0.35),
+// MetalRoughSpheresNoTextures (0.74, 0.46, 0.25), TransmissionTest (0.59, 0.30, 0.13) and
+// Suzanne (0.70, 0.44, 0.24).
 #define RB_COST_HALF 0.7
-#define RB_COST_SIXTEENTH 0.25
-#define RB_COST_SIXTEENTH_TO_QUARTER 0.2  // RB_COST_QUARTER - RB_COST_SIXTEENTH
-#define RB_COST_QUARTER 0.45
-#define RB_COST_QUARTER_TO_FULL 0.55  // 1 - RB_COST_QUARTER
+#define RB_COST_SIXTEENTH 0.22
+#define RB_COST_SIXTEENTH_TO_QUARTER 0.21  // RB_COST_QUARTER - RB_COST_SIXTEENTH
+#define RB_COST_QUARTER 0.43
+#define RB_COST_QUARTER_TO_FULL 0.57  // 1 - RB_COST_QUARTER
 // Each hull is 1/16, 1/4, full: three segments, skip -> 1/16, 1/16 -> 1/4, 1/4 -> full, at
-// value per cost 2.4, 0.9 and 0.4 for reflections, 3.1, 0.6 and 0.18 for refractions. 1/2 lies
+// value per cost 2.7, 0.86 and 0.39 for reflections, 3.5, 0.57 and 0.18 for refractions. 1/2 lies
 // on the line from 1/4 to full within 0.01 of value (reflections 0.89 against 0.88, refractions
 // 0.95 against 0.945) and is left out of the hull.
 
