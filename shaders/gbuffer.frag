@@ -22,22 +22,12 @@ layout(location = 7) out uvec4 outLayers;
 #include "include/material_layers.glsl"
 #include "include/octahedral.glsl"
 
-// Perturbs N with a tangent-space normal map using a cotangent frame built from screen-space
-// derivatives (Schueler 2013), so meshes need no TANGENT attribute. `uv`: the map's texture
-// coordinates (after its transform).
+#include "include/normal_map.glsl"
+
+// Perturbs N with a tangent-space normal map in the frame of screen-space derivatives. `uv`:
+// the map's texture coordinates (after its transform).
 vec3 perturbNormal(vec3 N, vec3 mapped, float scale, vec2 uv) {
-  vec3 dp1 = dFdx(inWorld), dp2 = dFdy(inWorld);
-  vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
-  vec3 dp2perp = cross(dp2, N), dp1perp = cross(N, dp1);
-  vec3 T = dp2perp * duv1.x + dp1perp * duv2.x;
-  vec3 B = dp2perp * duv1.y + dp1perp * duv2.y;
-  float len = max(dot(T, T), dot(B, B));
-  if (len <= 1e-20) return N;
-  float invmax = inversesqrt(len);
-  vec3 t = mapped * 2.0 - 1.0;
-  t.xy *= scale;
-  vec3 p = mat3(T * invmax, -B * invmax, N) * t;
-  return dot(p, p) > 0.0 ? normalize(p) : N;
+  return perturbNormal(N, mapped, scale, dFdx(inWorld), dFdy(inWorld), dFdx(uv), dFdy(uv));
 }
 
 void main() {

@@ -157,16 +157,28 @@ TEST(MaterialLayers, TextureTransformAppliesInTheRasterAndTheTracer) {
   EXPECT_GT(changed, (floorPixels + mirrorPixels) / 4) << "the transform changes what is shown";
 }
 
+// A 2x2 normal map holding one tangent-space normal t (|t| = 1) everywhere, linear.
+int addFlatNormalMap(Scene& scene, glm::vec3 t) {
+  const glm::vec3 c = glm::round((t * 0.5f + 0.5f) * 255.0f);
+  Image img{"normals", 2, 2, {}};
+  for (int i = 0; i < 4; ++i) img.rgba.insert(img.rgba.end(), {uint8_t(c.x), uint8_t(c.y), uint8_t(c.z), 255});
+  scene.images.push_back(img);
+  scene.textures.push_back(Texture{int(scene.images.size() - 1), -1});
+  return int(scene.textures.size() - 1);
+}
+
 // A quad carrying `layered` faces down at y = 10 (turned by `tilt` about z), lit from below by
 // a directional light;
 // `mirrored`: seen in a small mirror at the origin from 5 above it (the tracer shades the
 // quad at the reflected ray's hit), else seen directly from the origin (the deferred
 // lighting shades it). The centre pixel sees the same point along the same direction in both.
-glm::vec3 layeredQuadRadiance(const Material& layered, float tilt, bool mirrored) {
+glm::vec3 layeredQuadRadiance(const Material& layered, float tilt, bool mirrored, glm::vec3 normalMap = {0, 0, 1}) {
   Scene scene;
   const glm::mat4 above = glm::translate(glm::mat4(1.0f), glm::vec3(0, 10, 0)) * glm::rotate(glm::mat4(1.0f), tilt, glm::vec3(0, 0, 1)) *
                           glm::rotate(glm::mat4(1.0f), glm::pi<float>(), glm::vec3(1, 0, 0));
-  test::addObject(scene, test::quad(4.0f), above, layered);
+  Material m = layered;
+  if (normalMap != glm::vec3(0, 0, 1)) m.normalTexture = addFlatNormalMap(scene, normalMap);
+  test::addObject(scene, texturedQuad(4.0f), above, m);
   if (mirrored) test::addObject(scene, test::quad(0.5f), glm::mat4(1.0f), test::mirror());
   Light sun;
   sun.type = LightType::Directional;
@@ -233,6 +245,76 @@ TEST(MaterialLayers, RasterAndTracedHitsShadeEachLayerAlike) {
   // The sheen's colour shows at a grazing view over the dark base.
   const glm::vec3 sheen = layeredQuadRadiance(cases[0].material, cases[0].tilt, false);
   EXPECT_GT(sheen.r, 2.0f * sheen.b) << "sheen colour (1, 0.4, 0.1): " << sheen.r << " " << sheen.g << " " << sheen.b;
+}
+
+
+// The raster's radiance at the centre of a diffuse quad facing up (u along +x, v along +z),
+// seen from above and lit by a directional light from `towardsLight`, with a normal map
+// holding `t` (none when t is +z).
+float normalMappedQuadRadiance(glm::vec3 t, glm::vec3 towardsLight) {
+  Scene scene;
+  Material diffuse;
+  diffuse.roughness = 1.0f;
+  diffuse.metallic = 0.0f;
+  if (t != glm::vec3(0, 0, 1)) diffuse.normalTexture = addFlatNormalMap(scene, t);
+  test::addObject(scene, texturedQuad(4.0f), glm::mat4(1.0f), diffuse);
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = -glm::normalize(towardsLight);
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  RenderSettings s = test::settingsFor(Policy::None, 17, 17);
+  s.skyIntensity = 0.0f;
+  s.reflectionProbes = false;
+  s.screenSpaceReflections = false;
+  Renderer renderer(scene, s);
+  Camera cam;
+  cam.position = {0.0f, 5.0f, 0.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.up = {0.0f, 0.0f, -1.0f};
+  cam.yfov = 0.1f;
+  test::renderStill(renderer, cam, 1);
+  const FrameImages img = renderer.readback();
+  test::expectValidationClean(renderer.validationMessages());
+  EXPECT_EQ(img.objectIds[8 * 17 + 8], 0u);
+  return hdr(img, 8, 8).g;
+}
+
+// glTF's tangent frame: the map's +X leans the normal towards increasing u, its +Y towards
+// decreasing v (the texture's up; glTF's v runs down the image). A light from that side then
+// lights the quad more than the flat normal, one from the other side less.
+TEST(NormalMap, TheMapsAxesFollowGltfsTangentFrame) {
+  const glm::vec3 leanX = glm::normalize(glm::vec3(0.6f, 0.0f, 0.8f)), leanY = glm::normalize(glm::vec3(0.0f, 0.6f, 0.8f));
+  struct Case {
+    const char* name;
+    glm::vec3 t, towards;  // the light's side: world +x is increasing u, world -z decreasing v
+  };
+  for (const Case& c : {Case{"+X towards +u", leanX, {1, 1, 0}}, Case{"+Y towards -v", leanY, {0, 1, -1}}}) {
+    const float flat = normalMappedQuadRadiance({0, 0, 1}, c.towards);
+    const float towards = normalMappedQuadRadiance(c.t, c.towards);
+    const float away = normalMappedQuadRadiance(c.t, glm::vec3(-c.towards.x, c.towards.y, -c.towards.z));
+    ASSERT_GT(flat, 0.05f) << c.name;
+    // N.L: 0.99 leaning towards the light, 0.71 flat, 0.14 leaning away.
+    EXPECT_NEAR(towards / flat, 0.99f / 0.707f, 0.08f) << c.name;
+    EXPECT_NEAR(away / flat, 0.141f / 0.707f, 0.08f) << c.name;
+  }
+}
+
+// A normal-mapped quad shades alike seen directly (the deferred lighting of the G-buffer's
+// perturbed normal) and in a mirror (the tracer's hit, its frame from the triangle's edges),
+// and the map changes it.
+TEST(NormalMap, RasterAndTracedHitsPerturbTheNormalAlike) {
+  Material base = layerCases()[3].material;
+  Material mapped = base;
+  for (const glm::vec3 t : {glm::vec3(0.6f, 0.0f, 0.8f), glm::vec3(0.0f, -0.6f, 0.8f), glm::vec3(-0.48f, 0.36f, 0.8f)}) {
+    const glm::vec3 raster = layeredQuadRadiance(mapped, 0.0f, false, t), traced = layeredQuadRadiance(mapped, 0.0f, true, t);
+    const glm::vec3 bare = layeredQuadRadiance(base, 0.0f, false);
+    ASSERT_GT(raster.r, 0.02f);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(traced[k], raster[k], 0.02f * std::max(raster[k], 0.02f))
+          << "t " << t.x << " " << t.y << " channel " << k << ": deferred " << raster[k] << ", traced hit " << traced[k];
+    EXPECT_GT(glm::length(raster - bare), 0.1f * glm::length(bare)) << "the map changes the pixel";
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "include/bindings.glsl"
 #include "include/brdf.glsl"
 #include "include/material_layers.glsl"
+#include "include/normal_map.glsl"
 #include "include/rayquery.glsl"
 #include "include/tile_pixel.glsl"
 #include "shared/offset_ray.h"
@@ -47,6 +48,14 @@ struct HitSurface {
 };
 
 // Interpolated attributes of triangle `primitive` of `object` at barycentrics (b1, b2).
+// N perturbed by the normal map in texture `slot` at a hit at `uv` on the triangle with edges
+// e1, e2 and vertex texture coordinates uv0..uv2 (each taken through the map's transform).
+vec3 mappedNormal(GpuMaterial m, int slot, vec3 N, float scale, vec3 e1, vec3 e2, vec2 uv0, vec2 uv1, vec2 uv2, vec2 uv) {
+  vec2 t0 = textureUv(m, slot, uv0);
+  return perturbNormal(N, RB_SAMPLE_MATERIAL(slot, textureUv(m, slot, uv)).xyz, scale, e1, e2, textureUv(m, slot, uv1) - t0,
+                       textureUv(m, slot, uv2) - t0);
+}
+
 HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec3 rayDir) {
   GpuObject o = objects[object];
   uint base = o.ids.y + primitive * 3u;
@@ -75,7 +84,15 @@ HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec
   h.ior = m.metallicRoughnessTransmissionIor.w;
   h.emissive = m.emissiveAlphaCutoff.rgb * sampleMaterial(m, m.textures.w, h.uv, vec4(1.0)).rgb;
   h.material = material;
+  // The normal maps, as the G-buffer raster applies them (gbuffer.frag): the base's, and the
+  // coat's on the unperturbed normal; the frame from the triangle's edges.
+  vec3 surfaceN = h.normal;
+  vec2 uv0 = vec2(v0.positionU.w, v0.normalV.w), uv1 = vec2(v1.positionU.w, v1.normalV.w), uv2 = vec2(v2.positionU.w, v2.normalV.w);
+  if (m.textures.z >= 0) h.normal = mappedNormal(m, m.textures.z, surfaceN, m.normalScaleThicknessFlags.x, p1 - p0, p2 - p0, uv0, uv1, uv2, h.uv);
   h.layers = materialLayers(m, h.uv, h.normal, h.ior, true);
+  h.layers.clearcoatNormal = surfaceN;
+  if ((materialFlags(m) & RB_MATERIAL_LAYERS) != 0u && m.layerTextures.z >= 0)
+    h.layers.clearcoatNormal = mappedNormal(m, m.layerTextures.z, surfaceN, m.clearcoat.z, p1 - p0, p2 - p0, uv0, uv1, uv2, h.uv);
   return h;
 }
 
