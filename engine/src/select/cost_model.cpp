@@ -174,13 +174,14 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   const double excess = m.traceMs - traceFixedMs();
   if (std::max(m.work * used, excess) < kInformativeShare * m.budgetMs) return;
   if (m.rays > 0 && excess > 0.0) msPerRay_.add(excess / double(m.rays));
+  const double scale = excess / m.work;
   // The prior's error is a bias the first traced frame of each item removes, not the noise the
   // headroom is for: from a restart, two such frames (3x and 6x their prediction) were the
   // 0.9 quantile that divided the budget by 2.9 on Suzanne's orbit, so the mirror that fitted
-  // T was left out for good.
-  if (m.priorWork > kPriorPricedShare * m.work) return;
-  const double scale = excess / m.work;
-  recordError(scale / used);
+  // T was left out for good. (The scale still learns from them: its median outvotes them, and
+  // a selection that keeps taking untraced objects, as density's can on an orbit, would else
+  // never learn it.)
+  if (m.priorWork <= kPriorPricedShare * m.work) recordError(scale / used);
   k.add(std::clamp(scale, used / 16.0, 16.0 * used));
 }
 

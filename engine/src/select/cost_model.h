@@ -197,8 +197,8 @@ class TimeScale {
   RecentMedian overhead_, traceFixed_, msPerRay_;
   static constexpr size_t kRatioWindow = 32;
   static constexpr double kInformativeShare = 0.25;
-  // A frame whose predicted work is more than this share priced by the prior teaches neither
-  // the scale nor the headroom (it still teaches the time of a ray, which prices the prior).
+  // A frame whose predicted work is more than this share priced by the prior does not teach
+  // the headroom (cost_model.cpp's learn says why).
   static constexpr double kPriorPricedShare = 0.25;
   std::array<double, kRatioWindow> ratios_{};  // the last frames' measured / predicted work time
   size_t ratioCount_ = 0;
