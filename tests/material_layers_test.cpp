@@ -157,6 +157,34 @@ TEST(MaterialLayers, TextureTransformAppliesInTheRasterAndTheTracer) {
   EXPECT_GT(changed, (floorPixels + mirrorPixels) / 4) << "the transform changes what is shown";
 }
 
+// The radiance at the centre of a 17x17 frame of `scene` lit by one directional light
+// travelling along `sunTravel` (no sky, probes or screen-space reflections), from a narrow
+// camera at `position` looking at `target` with -z up on screen; the centre pixel must show
+// object `centreObject`. An odd size: the centre pixel looks along the axis, so its view
+// direction is the same seen directly and in a mirror (which flips the screen's x).
+glm::vec3 centreRadiance(Scene scene, glm::vec3 sunTravel, Policy policy, glm::vec3 position, glm::vec3 target, uint32_t centreObject) {
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(sunTravel);
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  RenderSettings s = test::settingsFor(policy, 17, 17);
+  s.skyIntensity = 0.0f;
+  s.reflectionProbes = false;
+  s.screenSpaceReflections = false;
+  Renderer renderer(scene, s);
+  Camera cam;
+  cam.position = position;
+  cam.target = target;
+  cam.up = {0.0f, 0.0f, -1.0f};
+  cam.yfov = 0.1f;
+  test::renderStill(renderer, cam, 1);
+  const FrameImages img = renderer.readback();
+  test::expectValidationClean(renderer.validationMessages());
+  EXPECT_EQ(img.objectIds[8 * 17 + 8], centreObject);
+  return hdr(img, 8, 8);
+}
+
 // A 2x2 normal map holding one tangent-space normal t (|t| = 1) everywhere, linear.
 int addFlatNormalMap(Scene& scene, glm::vec3 t) {
   const glm::vec3 c = glm::round((t * 0.5f + 0.5f) * 255.0f);
@@ -180,28 +208,9 @@ glm::vec3 layeredQuadRadiance(const Material& layered, float tilt, bool mirrored
   if (normalMap != glm::vec3(0, 0, 1)) m.normalTexture = addFlatNormalMap(scene, normalMap);
   test::addObject(scene, texturedQuad(4.0f), above, m);
   if (mirrored) test::addObject(scene, test::quad(0.5f), glm::mat4(1.0f), test::mirror());
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.direction = glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f));  // travelling up: the mirror's shadow falls 3 units aside
-  sun.intensity = 3.0f;
-  scene.lights.push_back(sun);
-  // An odd size: the centre pixel looks along the axis, so its view direction is the same
-  // seen directly and in the mirror (which flips the screen's x).
-  RenderSettings s = test::settingsFor(Policy::All, 17, 17);
-  s.skyIntensity = 0.0f;
-  s.reflectionProbes = false;
-  s.screenSpaceReflections = false;
-  Renderer renderer(scene, s);
-  Camera cam;
-  cam.position = mirrored ? glm::vec3(0, 5, 0) : glm::vec3(0.0f);
-  cam.target = mirrored ? glm::vec3(0.0f) : glm::vec3(0, 10, 0);
-  cam.up = {0.0f, 0.0f, -1.0f};
-  cam.yfov = 0.1f;
-  test::renderStill(renderer, cam, 1);
-  const FrameImages img = renderer.readback();
-  test::expectValidationClean(renderer.validationMessages());
-  EXPECT_EQ(img.objectIds[8 * 17 + 8], mirrored ? 1u : 0u);
-  return hdr(img, 8, 8);
+  // Travelling up: the mirror's shadow falls 3 units aside.
+  return centreRadiance(scene, glm::vec3(0.3f, 1.0f, 0.0f), Policy::All, mirrored ? glm::vec3(0, 5, 0) : glm::vec3(0.0f),
+                        mirrored ? glm::vec3(0.0f) : glm::vec3(0, 10, 0), mirrored ? 1u : 0u);
 }
 
 struct LayerCase {
@@ -258,26 +267,7 @@ float normalMappedQuadRadiance(glm::vec3 t, glm::vec3 towardsLight) {
   diffuse.metallic = 0.0f;
   if (t != glm::vec3(0, 0, 1)) diffuse.normalTexture = addFlatNormalMap(scene, t);
   test::addObject(scene, texturedQuad(4.0f), glm::mat4(1.0f), diffuse);
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.direction = -glm::normalize(towardsLight);
-  sun.intensity = 3.0f;
-  scene.lights.push_back(sun);
-  RenderSettings s = test::settingsFor(Policy::None, 17, 17);
-  s.skyIntensity = 0.0f;
-  s.reflectionProbes = false;
-  s.screenSpaceReflections = false;
-  Renderer renderer(scene, s);
-  Camera cam;
-  cam.position = {0.0f, 5.0f, 0.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.up = {0.0f, 0.0f, -1.0f};
-  cam.yfov = 0.1f;
-  test::renderStill(renderer, cam, 1);
-  const FrameImages img = renderer.readback();
-  test::expectValidationClean(renderer.validationMessages());
-  EXPECT_EQ(img.objectIds[8 * 17 + 8], 0u);
-  return hdr(img, 8, 8).g;
+  return centreRadiance(scene, -towardsLight, Policy::None, glm::vec3(0, 5, 0), glm::vec3(0.0f), 0u).g;
 }
 
 // glTF's tangent frame: the map's +X leans the normal towards increasing u, its +Y towards
