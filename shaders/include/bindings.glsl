@@ -135,10 +135,7 @@ struct Selection {
   uint word;
 };
 Selection selectionOf(uint objectId) { return Selection(objectId == RB_NO_OBJECT ? 0u : selected[objectId]); }
-// Whether the object has any item selected for ray tracing this frame (probed items have bits
-// of their own: include/probe.glsl).
-bool anySelected(Selection sel) { return (sel.word & RB_ITEMS_ALL) != 0u; }
-// Whether its item `effect` (RB_ITEM_*) is selected.
+// Whether the object's item `effect` (RB_ITEM_*) is selected.
 bool itemSelected(Selection sel, uint effect) { return (sel.word & (1u << effect)) != 0u; }
 bool measuringItems() { return (frame.rayTracing.w & RB_RT_MEASURE_ITEMS) != 0u; }
 // The reflected plus the refracted light at a pixel.

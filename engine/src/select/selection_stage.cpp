@@ -223,20 +223,19 @@ struct SelectionStage::Impl {
         return false;
     }
     if (policy == Policy::Benefit) return itemsMatchCpu(slot, candidates);
-    double prior = 0.0;
-    for (const gpu::GpuCandidate& c : candidates)
-      if (policy != Policy::Paper && c.id < buffers.objects && (selected[c.id] & RB_ITEMS_ALL) && perPixel[c.id] == 0.0f) prior += c.cost;
-    if (!priorCostMatches(slot, prior)) return false;
     size_t expected = 0;
     for (uint32_t i = 0; i < buffers.objects; ++i) expected += records[i].crCandidatePixels.z > 0.5f ? 1 : 0;
     if (expected != candidates.size()) return false;
+    double prior = 0.0;
     for (const gpu::GpuCandidate& c : candidates) {
       if (c.id >= buffers.objects || records[c.id].crCandidatePixels.z < 0.5f) return false;
       const gpu::GpuObjectRecord& r = records[c.id];
       const float work = predictedWork(policy, r.crCandidatePixels.x, std::bit_cast<uint32_t>(r.crCandidatePixels.w), perPixel[c.id], params[c.id].kqiS.y, slot.workPerRay);
       if (std::bit_cast<uint32_t>(predictedCost(float(slot.msPerUnit), work)) != std::bit_cast<uint32_t>(c.cost)) return false;
+      // `paper`'s cost is its C, never priced by the prior.
+      if (policy != Policy::Paper && (selected[c.id] & RB_ITEMS_ALL) && perPixel[c.id] == 0.0f) prior += c.cost;
     }
-    return true;
+    return priorCostMatches(slot, prior);
   }
 
   // Whether the walk's cost of the selected candidates priced by the prior (result word 9,
@@ -271,6 +270,8 @@ struct SelectionStage::Impl {
     auto itemOf = [&](uint32_t id) { return segments ? id / RB_SEGMENT_SLOTS : id; };
     const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
     double left = 0.0, prior = 0.0;
+    // The candidates taken (items, or their rate segments), in ascending order.
+    const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments);
     for (const gpu::GpuCandidate& c : candidates) {
       const uint32_t item = itemOf(c.id);
       if (item < items && !((selected[item / RB_ITEMS_PER_OBJECT] >> (item % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
@@ -321,14 +322,7 @@ struct SelectionStage::Impl {
       }
       if (std::bit_cast<uint32_t>(cost) != std::bit_cast<uint32_t>(c.cost) || std::bit_cast<uint32_t>(value) != std::bit_cast<uint32_t>(c.value))
         return false;
-      // Taken: the item is selected, with rate segments up to the one reaching its rate.
-      bool taken = (selected[i] >> e) & 1u;
-      if (taken && segments) {
-        uint32_t level = 0;
-        while (level < rateSegments(e) && rateSegment(e, level).rate != selectedRate(selected[i], e)) ++level;
-        taken = c.id % RB_SEGMENT_SLOTS <= level;
-      }
-      if (taken && learned[item].workPerPixel == 0.0f) prior += c.cost;
+      if (std::binary_search(taken.begin(), taken.end(), c.id) && learned[item].workPerPixel == 0.0f) prior += c.cost;
     }
     return priorCostMatches(slot, prior);
   }
