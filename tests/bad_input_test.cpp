@@ -43,6 +43,17 @@ TEST_F(BadInput, MissingBufferFile) {
   expectLoadError(f.write(dir, "missingbuf"), "not a valid glTF");
 }
 
+// A buffer URI naming a folder (the fuzzer's "%triangle.bin" decoded to the scene's own
+// folder): its size reads as 2^63 - 1 on ext4, which tinygltf's reader tried to allocate.
+TEST_F(BadInput, ABufferThatIsAFolderIsRefused) {
+  GltfFixture f = GltfFixture::oneTriangle();
+  std::filesystem::create_directories(dir / "folder.bin");
+  f.json["buffers"][0]["uri"] = "folder.bin";
+  expectLoadError(f.write(dir, "folderbuf"), "not a regular file");
+  f.json["buffers"][0]["uri"] = "%triangle.bin";
+  expectLoadError(f.write(dir, "percent"), "not a valid glTF");
+}
+
 TEST_F(BadInput, ShortBuffer) {
   GltfFixture f = GltfFixture::oneTriangle();
   f.bin.resize(20);  // positions need 36 bytes

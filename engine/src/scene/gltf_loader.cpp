@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string_view>
@@ -29,6 +30,22 @@ namespace {
 
 using gltf::extension;
 using gltf::finiteOr;
+
+// tinygltf's reader of external buffers and images, refusing what is not a regular file: its
+// own takes the size from seeking to the end, which for a folder reads as 2^63 - 1 on ext4
+// (a URI that decodes to the scene's folder asked for that much memory).
+bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::error_code ec;
+  const bool regular = std::filesystem::is_regular_file(path, ec);
+  const uintmax_t size = regular ? std::filesystem::file_size(path, ec) : 0;
+  std::ifstream in(path, std::ios::binary);
+  if (regular && !ec && in) {
+    out->resize(size_t(size));
+    if (in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) return true;
+  }
+  if (err) *err += (regular ? "cannot read " : "not a regular file: ") + path + "\n";
+  return false;
+}
 
 // Translations or scales beyond this are treated as a broken file, not a big world: float
 // positions there have centimetre-scale spacing and every later pass would misbehave.
@@ -221,6 +238,7 @@ Scene loadAndRepair(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw Error(file + ": file not found");
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});
   std::string err, warn;
   // Read once: tinygltf parses the bytes, and the index check reads the same JSON.
   std::ifstream in(path, std::ios::binary);
