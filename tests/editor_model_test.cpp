@@ -13,6 +13,7 @@
 #include "raybudget/error.h"
 #include "script.h"
 #include "session.h"
+#include "stage_plot.h"
 #include "support/test_host.h"
 #include "support/test_scenes.h"
 
@@ -166,6 +167,24 @@ std::vector<ObjectRow> sampleRows() {
   CostModel model;
   model.msPerWorkUnit = 0.001;
   return buildRows(scene, params, metrics, previous, model, timing, 64, 64);
+}
+
+TEST(EditorPlot, RunPeaksKeepEveryFrameOverTheBudget) {
+  std::deque<float> history;
+  for (int f = 0; f < 300; ++f) history.push_back(1.0f + 0.001f * float(f));
+  history[7] = 9.0f;    // a frame over T early on
+  history[299] = 8.0f;  // and the last one
+  const std::vector<float> peaks = runPeaks(history, 150);
+  ASSERT_EQ(peaks.size(), 150u);
+  EXPECT_EQ(peaks[3], 9.0f) << "frames 6 and 7";
+  EXPECT_EQ(peaks[149], 8.0f);
+  for (size_t p = 0; p < peaks.size(); ++p)
+    if (p != 3 && p != 149) EXPECT_FLOAT_EQ(peaks[p], 1.0f + 0.001f * float(2 * p + 1)) << "the later frame of pair " << p;
+  // Runs as even as the counts allow: 7 frames in 3 points take 2, 2 and 3.
+  EXPECT_EQ(runPeaks(std::deque<float>{5, 1, 2, 6, 3, 1, 4}, 3), (std::vector<float>{5, 6, 4}));
+  // Short histories are drawn as they are.
+  EXPECT_EQ(runPeaks(std::deque<float>{3, 1, 2}, 150), (std::vector<float>{3, 1, 2}));
+  EXPECT_TRUE(runPeaks({}, 150).empty());
 }
 
 TEST(EditorRows, QuantitiesFilterSortAndCsv) {

@@ -5,11 +5,15 @@
 
 #include <imgui.h>
 
+#include "stage_plot.h"
+
 namespace raybudget::editor {
 namespace {
 
 const Policy kPolicies[] = {Policy::None, Policy::All, Policy::Paper, Policy::Density, Policy::Nearest, Policy::Random, Policy::Benefit,
                             Policy::Classified};
+// The stage-time plot's values at most (stage_plot.h): about one per two of its pixels.
+constexpr size_t kPlotPoints = 150;
 const Overlay kOverlays[] = {Overlay::None, Overlay::Items, Overlay::Cost, Overlay::Benefit, Overlay::Ids, Overlay::Traced};
 
 std::string itemsText(uint32_t bits) {
@@ -62,8 +66,7 @@ void Panels::budgetPanel(const Session& session, UiRequests& r) {
       if (ImGui::Selectable(tracerName(t), t == s.rayTracing.tracer)) r.tracer = t;
     ImGui::EndCombo();
   }
-  const std::deque<float>& history = session.stageMsHistory();
-  std::vector<float> values(history.begin(), history.end());
+  const std::vector<float> values = runPeaks(session.stageMsHistory(), kPlotPoints);
   float top = s.budgetMs * 1.5f;
   for (float v : values) top = std::max(top, v);
   const std::string caption = "stage ms (T " + std::to_string(int(s.budgetMs + 0.5f)) + ")";
