@@ -29,12 +29,16 @@ void validateCamera(const Camera& camera, const std::string& where);
 // and distance: a deterministic orbit for benchmarks and tests.
 Camera orbitCamera(const Camera& start, uint32_t frame, uint32_t frameCount);
 
-// How a fly-through passes its target: at `overHeight` above it (0: a third of the start's
-// height), looking ahead along the path, or with `lookAtTarget` at the target throughout.
+// How a fly-through passes its target: at `overHeight` above it (0: defaultFlythroughHeight),
+// looking ahead along the path, or with `lookAtTarget` at the target throughout.
 struct FlythroughShape {
   float overHeight = 0.0f;
   bool lookAtTarget = false;
 };
+
+// The height above the start's target at which a fly-through from `start` passes it by
+// default: a third of the start's own.
+float defaultFlythroughHeight(const Camera& start);
 
 // Camera `frame` of `frameCount` on a fly-through: from `start` over its target and out to
 // the far side, looking ahead: the objects' pixels, distances and visibility change fast.

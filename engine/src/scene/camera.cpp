@@ -45,6 +45,8 @@ Camera orbitCamera(const Camera& start, uint32_t frame, uint32_t frameCount) {
   return c;
 }
 
+float defaultFlythroughHeight(const Camera& start) { return (start.position.y - start.target.y) / 3.0f; }
+
 Camera flythroughCamera(const Camera& start, uint32_t frame, uint32_t frameCount, FlythroughShape shape) {
   Camera c = start;
   const float t = frameCount > 1 ? float(frame) / float(frameCount - 1) : 0.0f;
@@ -52,7 +54,7 @@ Camera flythroughCamera(const Camera& start, uint32_t frame, uint32_t frameCount
   // From the start, over the target at a third of the start's height (or the shape's), out
   // to the far side at 0.6 of the distance, swaying sideways; looking a little ahead of the
   // target's height (or at the target).
-  const float overHeight = shape.overHeight > 0.0f ? shape.overHeight : offset.y / 3.0f;
+  const float overHeight = shape.overHeight > 0.0f ? shape.overHeight : defaultFlythroughHeight(start);
   const glm::vec3 far = start.target + glm::vec3(-0.6f * offset.x, std::max(0.6f * offset.y, overHeight), -0.6f * offset.z);
   const glm::vec3 over = start.target + glm::vec3(0.0f, overHeight, 0.0f);
   const glm::vec3 along = t < 0.5f ? glm::mix(start.position, over, 2.0f * t) : glm::mix(over, far, 2.0f * t - 1.0f);

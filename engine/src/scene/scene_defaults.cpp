@@ -72,8 +72,7 @@ bool coveredBy(const Scene& scene, const Object& object, const glm::vec3& p) {
 }  // namespace
 
 FlythroughShape flythroughShape(const Scene& scene, const Camera& start) {
-  const glm::vec3 offset = start.position - start.target;
-  const glm::vec3 middle = start.target + glm::vec3(0.0f, offset.y / 3.0f, 0.0f);
+  const glm::vec3 middle = start.target + glm::vec3(0.0f, defaultFlythroughHeight(start), 0.0f);
   float top = -std::numeric_limits<float>::infinity();
   for (const Object& o : scene.objects)
     if (glm::all(glm::greaterThanEqual(middle, o.boundsMin)) && glm::all(glm::lessThanEqual(middle, o.boundsMax)) && coveredBy(scene, o, middle))
