@@ -115,6 +115,14 @@ TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100}, 3.0f).workPerPixel, 150.0f);
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100}, 0.0f).workPerPixel, 1.0f) << "not timed: traversal work";
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 0, 0, 100}, 3.0f).workPerPixel, 1.0f) << "no ticks of its own";
+  // Timed at a reduced rate, its traced pixels' ticks are divided by what such a pixel costs
+  // over one of full rate: the item learns full rate's cost per pixel, which RB_COST_* prices.
+  const float sixteenth = select::learnItem(0.05f, fresh, {100, 5000, 0, 100, false, RB_RATE_SIXTEENTH}, 3.0f).workPerPixel;
+  EXPECT_FLOAT_EQ(sixteenth, 150.0f / float(RB_TRACED_PIXEL_COST_SIXTEENTH));
+  EXPECT_LT(sixteenth, select::learnItem(0.05f, fresh, {100, 5000, 0, 100, false, RB_RATE_QUARTER}, 3.0f).workPerPixel);
+  EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100, false, RB_RATE_QUARTER}, 0.0f).workPerPixel, 1.0f)
+      << "traversal work per ray does not depend on the rate";
+  EXPECT_EQ(select::tracedPixelCost(RB_RATE_FULL), 1.0f);
 }
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {

@@ -94,6 +94,13 @@ float rateShare(uint rate) {
   return rate == RB_RATE_HALF ? RB_COST_HALF : (rate == RB_RATE_QUARTER ? RB_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_COST_SIXTEENTH : 1.0));
 }
 
+// The clock time of a pixel a rate traces over full rate's per pixel (shared/selection.h;
+// cost_model.cpp's tracedPixelCost).
+float tracedPixelCost(uint rate) {
+  return rate == RB_RATE_HALF ? RB_TRACED_PIXEL_COST_HALF
+                              : (rate == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0));
+}
+
 // RB_RATE_AUTO's segments of an item of `effect` (shared/selection.h): how many, and segment
 // k's share of the item's full-rate cost and value and the rate it reaches
 // (cost_model.cpp's rateSegment is the CPU reference).

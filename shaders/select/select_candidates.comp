@@ -74,7 +74,10 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     // or its traversal work where nothing was timed.
     bool timed = exchange > 0.0 && c.ticks > 0u;
     if (timed || c.work > 0u) {
-      float observed = timed ? exactQuotient(float(c.ticks), float(c.pixels)) * exchange : exactQuotient(float(c.work), float(c.pixels));
+      // Timed at a reduced rate (selectedLast: 1 + its rate), per pixel at full rate.
+      uint rate = c.selectedLast == 0u ? RB_RATE_FULL : c.selectedLast - 1u;
+      float observed = timed ? exactQuotient(exactQuotient(float(c.ticks), float(c.pixels)) * exchange, tracedPixelCost(rate))
+                             : exactQuotient(float(c.work), float(c.pixels));
       c.workPerPixel = c.selectedLast == 0u ? probedWorkPerPixel(c.workPerPixel, priorPerPixel, observed, c.pixels)
                                             : averagedWith(c.workPerPixel, observed);
     }

@@ -120,6 +120,16 @@ struct GpuObjectCost {
 // (0.66, 0.36, 0.20), the plaza (0.67, 0.41, 0.21), the WaterBottle (0.87, 0.61, 0.35),
 // MetalRoughSpheresNoTextures (0.74, 0.46, 0.25), TransmissionTest (0.59, 0.30, 0.13) and
 // Suzanne (0.70, 0.44, 0.24).
+// A pixel a reduced rate traces costs more clock time than one of full rate (its neighbours'
+// rays, gathers and shared-memory traffic do not run beside it; 1/16's lie four pixels apart):
+// per traced pixel over full rate's per pixel, `classified` at 640x360 on lavapipe, the median
+// over the items of the court (14) and the plaza (51-53): 1.29 and 1.33 at 1/2, 1.33 and 1.33 at
+// 1/4, 2.24 and 2.24 at 1/16 (Suzanne's 1.31 and 2.10). An item learns its cost per pixel
+// at full rate from its traced pixels' ticks divided by its rate's factor, so that
+// RB_COST_* prices its rates from the same figure whatever rate measured it.
+#define RB_TRACED_PIXEL_COST_HALF 1.3
+#define RB_TRACED_PIXEL_COST_QUARTER 1.33
+#define RB_TRACED_PIXEL_COST_SIXTEENTH 2.24
 #define RB_COST_HALF 0.7
 #define RB_COST_SIXTEENTH 0.22
 #define RB_COST_SIXTEENTH_TO_QUARTER 0.21  // RB_COST_QUARTER - RB_COST_SIXTEENTH

@@ -72,6 +72,15 @@ RateSegment rateSegment(uint32_t effect, uint32_t k) {
   return {float(RB_COST_QUARTER_TO_FULL), float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS), RB_RATE_FULL};
 }
 
+float tracedPixelCost(uint32_t rate) {
+  switch (rate) {
+    case RB_RATE_HALF: return float(RB_TRACED_PIXEL_COST_HALF);
+    case RB_RATE_QUARTER: return float(RB_TRACED_PIXEL_COST_QUARTER);
+    case RB_RATE_SIXTEENTH: return float(RB_TRACED_PIXEL_COST_SIXTEENTH);
+    default: return 1.0f;
+  }
+}
+
 float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
   return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
 }
@@ -84,7 +93,8 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
   if (pixels > 0) {
     const bool timed = exchange > 0.0f && counts.ticks > 0;
     if (timed || counts.work > 0) {
-      const float observed = timed ? exactQuotient(float(counts.ticks), float(pixels)) * exchange : exactQuotient(float(counts.work), float(pixels));
+      const float observed = timed ? exactQuotient(exactQuotient(float(counts.ticks), float(pixels)) * exchange, tracedPixelCost(counts.rate))
+                                   : exactQuotient(float(counts.work), float(pixels));
       after.workPerPixel = counts.probed ? probedWorkPerPixel(before.workPerPixel, priorWorkPerPixel, observed, pixels)
                                          : averagedWith(before.workPerPixel, observed);
     }

@@ -15,6 +15,7 @@
 
 #include "raybudget/renderer.h"
 #include "select/policies.h"
+#include "shared/selection.h"
 
 namespace raybudget::select {
 
@@ -69,7 +70,11 @@ struct ItemLearned {
 struct ItemCounts {
   uint32_t work = 0, ticks = 0, error = 0, pixels = 0;
   bool probed = false;
+  uint32_t rate = RB_RATE_FULL;  // the rate it was traced at (its ticks' pixels: tracedPixelCost)
 };
+// The clock time of a pixel `rate` traces over full rate's per pixel (shared/selection.h's
+// RB_TRACED_PIXEL_COST_*; 1 at full rate).
+float tracedPixelCost(uint32_t rate);
 ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0,
                       float priorWorkPerPixel = 0.0f);
 // Work units per tick from the frame's totals over every item (0: nothing timed).

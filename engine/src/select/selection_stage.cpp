@@ -285,7 +285,8 @@ struct SelectionStage::Impl {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
       const gpu::GpuItemCost& b = before[id];
       learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0},
-                              {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0}, exchange, frame.ablation,
+                              {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0, b.selectedLast == 0 ? RB_RATE_FULL : b.selectedLast - 1},
+                              exchange, frame.ablation,
                               priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
