@@ -47,7 +47,6 @@ struct HitSurface {
   Layers layers;
 };
 
-// Interpolated attributes of triangle `primitive` of `object` at barycentrics (b1, b2).
 // N perturbed by the normal map in texture `slot` at a hit at `uv` on the triangle with edges
 // e1, e2 and vertex texture coordinates uv0..uv2 (each taken through the map's transform).
 vec3 mappedNormal(GpuMaterial m, int slot, vec3 N, float scale, vec3 e1, vec3 e2, vec2 uv0, vec2 uv1, vec2 uv2, vec2 uv) {
@@ -56,6 +55,7 @@ vec3 mappedNormal(GpuMaterial m, int slot, vec3 N, float scale, vec3 e1, vec3 e2
                        textureUv(m, slot, uv2) - t0);
 }
 
+// Interpolated attributes of triangle `primitive` of `object` at barycentrics (b1, b2).
 HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec3 rayDir) {
   GpuObject o = objects[object];
   uint base = o.ids.y + primitive * 3u;
@@ -72,7 +72,8 @@ HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec
   h.geometricNormal = h.frontFace ? ng : -ng;
   vec3 n = normalize(mat3(o.normalMatrix) * (w0 * v0.normalV.xyz + bary.x * v1.normalV.xyz + bary.y * v2.normalV.xyz));
   h.normal = dot(n, h.geometricNormal) < 0.0 ? -n : n;
-  h.uv = w0 * vec2(v0.positionU.w, v0.normalV.w) + bary.x * vec2(v1.positionU.w, v1.normalV.w) + bary.y * vec2(v2.positionU.w, v2.normalV.w);
+  vec2 uv0 = vec2(v0.positionU.w, v0.normalV.w), uv1 = vec2(v1.positionU.w, v1.normalV.w), uv2 = vec2(v2.positionU.w, v2.normalV.w);
+  h.uv = w0 * uv0 + bary.x * uv1 + bary.y * uv2;
   GpuMaterial m = materials[material];
   vec4 color = w0 * v0.color + bary.x * v1.color + bary.y * v2.color;
   h.baseColor = m.baseColorFactor * color;
@@ -87,7 +88,6 @@ HitSurface hitSurface(uint object, uint primitive, vec2 bary, uint material, vec
   // The normal maps, as the G-buffer raster applies them (gbuffer.frag): the base's, and the
   // coat's on the unperturbed normal; the frame from the triangle's edges.
   vec3 surfaceN = h.normal;
-  vec2 uv0 = vec2(v0.positionU.w, v0.normalV.w), uv1 = vec2(v1.positionU.w, v1.normalV.w), uv2 = vec2(v2.positionU.w, v2.normalV.w);
   if (m.textures.z >= 0) h.normal = mappedNormal(m, m.textures.z, surfaceN, m.normalScaleThicknessFlags.x, p1 - p0, p2 - p0, uv0, uv1, uv2, h.uv);
   h.layers = materialLayers(m, h.uv, h.normal, h.ior, true);
   h.layers.clearcoatNormal = surfaceN;

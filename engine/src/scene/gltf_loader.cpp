@@ -37,11 +37,13 @@ using gltf::finiteOr;
 bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
   std::error_code ec;
   const bool regular = std::filesystem::is_regular_file(path, ec);
-  const uintmax_t size = regular ? std::filesystem::file_size(path, ec) : 0;
-  std::ifstream in(path, std::ios::binary);
-  if (regular && !ec && in) {
-    out->resize(size_t(size));
-    if (in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) return true;
+  if (regular) {
+    const uintmax_t size = std::filesystem::file_size(path, ec);
+    std::ifstream in(path, std::ios::binary);
+    if (!ec && in) {
+      out->resize(size_t(size));
+      if (in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) return true;
+    }
   }
   if (err) *err += (regular ? "cannot read " : "not a regular file: ") + path + "\n";
   return false;
