@@ -12,6 +12,7 @@
 #include "object_rows.h"
 #include "raybudget/error.h"
 #include "script.h"
+#include "quad_pairs.h"
 #include "session.h"
 #include "stage_plot.h"
 #include "support/test_host.h"
@@ -179,12 +180,44 @@ TEST(EditorPlot, RunPeaksKeepEveryFrameOverTheBudget) {
   EXPECT_EQ(peaks[3], 9.0f) << "frames 6 and 7";
   EXPECT_EQ(peaks[149], 8.0f);
   for (size_t p = 0; p < peaks.size(); ++p)
-    if (p != 3 && p != 149) EXPECT_FLOAT_EQ(peaks[p], 1.0f + 0.001f * float(2 * p + 1)) << "the later frame of pair " << p;
+    if (p != 3 && p != 149) {
+      EXPECT_FLOAT_EQ(peaks[p], 1.0f + 0.001f * float(2 * p + 1)) << "the later frame of pair " << p;
+    }
   // Runs as even as the counts allow: 7 frames in 3 points take 2, 2 and 3.
   EXPECT_EQ(runPeaks(std::deque<float>{5, 1, 2, 6, 3, 1, 4}, 3), (std::vector<float>{5, 6, 4}));
   // Short histories are drawn as they are.
   EXPECT_EQ(runPeaks(std::deque<float>{3, 1, 2}, 150), (std::vector<float>{3, 1, 2}));
   EXPECT_TRUE(runPeaks({}, 150).empty());
+}
+
+TEST(EditorUi, QuadsArePairedInOrder) {
+  // A lone triangle (an arrow), a quad (a glyph), two lone triangles, a quad; then a quad
+  // and a triangle.
+  const std::vector<uint16_t> in{0, 1, 2, 3, 4, 5, 3, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 13, 15, 16};
+  const std::vector<uint16_t> in2{20, 21, 22, 20, 22, 23, 30, 31, 32};
+  std::vector<uint16_t> out{99, 99, 99};  // an earlier command's share: commands align on their own start
+  appendPairedQuads(in.data(), uint32_t(in.size()), out);
+  const size_t second = out.size();
+  appendPairedQuads(in2.data(), uint32_t(in2.size()), out);
+  ASSERT_EQ((second - 3) % 6, 0u);
+  ASSERT_EQ((out.size() - second) % 6, 0u);
+  // Dropping the degenerate triangles gives back each command's triangles in order.
+  std::vector<uint16_t> kept;
+  for (size_t t = 3; t < out.size(); t += 3)
+    if (!(out[t] == out[t + 1] && out[t + 1] == out[t + 2])) kept.insert(kept.end(), out.begin() + long(t), out.begin() + long(t) + 3);
+  std::vector<uint16_t> expected = in;
+  expected.insert(expected.end(), in2.begin(), in2.end());
+  EXPECT_EQ(kept, expected);
+  // Every quad starts at a multiple of 6 from its command's start.
+  for (const auto& [begin, end] : {std::pair{size_t(3), second}, std::pair{second, out.size()}})
+    for (size_t t = begin; t + 6 <= end; t += 3)
+      if (out[t] == out[t + 3] && out[t + 2] == out[t + 4] && out[t] != out[t + 1]) {
+        EXPECT_EQ((t - begin) % 6, 0u) << "quad at index " << t;
+      }
+  // Exactly the padding needed: one before the first quad, none before the second (the two
+  // triangles realign it); one at the end of the second command.
+  EXPECT_EQ(second - 3, in.size() + 3);
+  EXPECT_EQ(out.size() - second, in2.size() + 3);
 }
 
 TEST(EditorRows, QuantitiesFilterSortAndCsv) {

@@ -1,8 +1,11 @@
-// Dear ImGui on the editor's window and device (Debian's libimgui-dev 1.86: the GLFW and
-// Vulkan backends, which draw inside a render pass of ours): set up once, a new frame per
-// editor frame, its draw data recorded into the canvas's UI render pass.
+// Dear ImGui on the editor's window and device (Debian's libimgui-dev 1.86: its GLFW backend
+// for input, our UiRenderer for drawing): set up once, a new frame per editor frame, its
+// draw data recorded into the canvas's UI render pass.
 #pragma once
+#include <memory>
+
 #include "presenter.h"
+#include "ui_renderer.h"
 #include "window_device.h"
 
 namespace raybudget::editor {
@@ -26,7 +29,7 @@ class ImGuiLayer {
 
  private:
   const WindowDevice& wd_;
-  Owned<VkDescriptorPool> pool_;
+  std::unique_ptr<UiRenderer> renderer_;
 };
 
 }  // namespace raybudget::editor

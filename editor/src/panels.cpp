@@ -142,8 +142,10 @@ void Panels::objectList(const Session& session, const UiView& view, UiRequests& 
     ImGui::EndCombo();
   }
   const int columns = int(Column::Count);
-  const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
-                                ImGuiTableFlags_BordersOuter | ImGuiTableFlags_Resizable;
+  // No alternating row colours: on lavapipe each row-wide rectangle costs as much as a
+  // dozen glyphs (the list's rows are most of the UI pass's time).
+  const ImGuiTableFlags flags =
+      ImGuiTableFlags_Sortable | ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersOuter | ImGuiTableFlags_Resizable;
   if (!ImGui::BeginTable("objects", columns, flags, ImVec2(0.0f, 260.0f))) return;
   ImGui::TableSetupScrollFreeze(1, 1);
   for (int c = 0; c < columns; ++c)
