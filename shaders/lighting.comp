@@ -53,7 +53,7 @@ void main() {
   // Ray-traced visibility replaces the shadow maps where the shadow pass traced: pixels of
   // objects whose shadow item is selected. Where the probe traced, it is measured, not shown.
   bool rtEnabled = (frame.rayTracing.x & RB_RT_SHADOWS) != 0u && !behindGlassPass();
-  Selection sel = selectionOf(s.objectId);
+  Selection sel = selectionAt(s.objectId, pixel);
   bool rtShadows = rtEnabled && itemSelected(sel, RB_ITEM_SHADOWS);
   bool probed = rtEnabled && !rtShadows && itemProbed(sel, RB_ITEM_SHADOWS, pixel);
   // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.

@@ -228,7 +228,7 @@ void main() {
   Surface s;
   bvec2 pending = bvec2(false);
   uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
-  Selection sel = selectionOf(objectId);
+  Selection sel = selectionAt(objectId, pixel);
   if (objectId != RB_NO_OBJECT) {
     bvec2 traced, skipped;
     pathsHere(sel, pixel, traced, skipped);

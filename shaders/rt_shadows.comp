@@ -48,7 +48,7 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   uint objectId = texelFetch(gObjectId, pixel, 0).r;
   if (objectId == RB_NO_OBJECT) return;
-  sel = selectionOf(objectId);
+  sel = selectionAt(objectId, pixel);
   bool probe = !itemSelected(sel, RB_ITEM_SHADOWS);
   if (probe && !itemProbed(sel, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
   uint rate = probe ? RB_RATE_FULL : itemRate(sel, RB_ITEM_SHADOWS);

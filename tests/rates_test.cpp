@@ -3,7 +3,9 @@
 // neighbours in the same tile on the same object (shaders/include/tile_fill.glsl). The fill
 // never takes another object's values; a flat mirror at 1/4 stays close to its full-rate
 // image, and so do shadows; a lower rate traces fewer rays.
+#include <array>
 #include <cmath>
+#include <map>
 #include <cstdio>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -187,6 +189,71 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   for (const ObjectMetrics& m : part.metrics)
     for (int e = 0; e < 3; ++e) reduced += ((m.selectedItems >> e) & 1u) && m.itemRate[size_t(e)] != ItemRate::Full;
   EXPECT_GT(reduced, 0u) << "under a third of the budget some mirror should be traced at a reduced rate";
+}
+
+// The partial item (docs/SELECTION.md): where the walk leaves budget that pays for a share of the
+// next item's 1/16, that item is traced on the 8x8 tiles whose hash falls below the share and
+// on no other, and the GPU's choice (item and share) is the CPU reference's. The hash is
+// include/probe.glsl's tileTurn, copied here as the oracle.
+bool partialTile(uint32_t tx, uint32_t ty, double share) {
+  uint32_t h = (tx * 0x8DA6B343u) ^ (ty * 0xD8163841u);
+  h ^= h >> 16;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15;
+  return float(h >> 8) * (1.0f / 16777216.0f) < float(share);
+}
+
+TEST(Rates, ThePartialItemIsTracedOnItsShareOfTilesAlone) {
+  Scene scene = twoMirrors();
+  scene.objects.resize(2);
+  scene.lights = {defaultSun()};
+  RenderSettings s = test::settingsFor(Policy::Benefit, 256, 192);
+  s.rayTracing.rate = ItemRate::Auto;
+  s.rayTracing.shadows = false;  // the mirrors' reflections alone: two items
+  s.learnTimeScale = false;
+  Camera cam;
+  cam.position = {0.0f, 4.0f, 4.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  s.budgetMs = 1e6f;
+  s.optimalBound = true;  // the candidates' summed cost
+  // A first frame prices the items from their priors, the same in every renderer: budgets are
+  // shares of that frame's candidates (both mirrors' segments, so 1/16 of one is about 0.11).
+  const test::RenderedFrames all = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
+  const double candidates = all.timings.front().candidatesMs;
+  ASSERT_GT(candidates, 0.0);
+  uint32_t partialFrames = 0;
+  for (double fraction : {0.02, 0.04, 0.07, 0.1, 0.15, 0.25}) {
+    s.budgetMs = float(fraction * candidates);
+    Renderer renderer(scene, s, test::kCheckSelection);
+    std::vector<FrameTiming> timings = renderer.render(cam);
+    for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
+    const FrameImages img = renderer.readback(true);  // with the object IDs and the traced mask
+    test::expectValidationClean(renderer.validationMessages());
+    ASSERT_EQ(timings.size(), 1u);
+    EXPECT_TRUE(timings[0].selectionMatchesCpu.value_or(false)) << "fraction " << fraction;
+    const double share = timings[0].partialShare;
+    if (share <= 0.0) continue;
+    ++partialFrames;
+    EXPECT_GE(share, 0.125);
+    EXPECT_LT(share, 1.0);
+    // Per object: its pixels traced for reflections inside and outside the share's tiles, and
+    // its pixels outside them. The partial item's traced pixels all lie inside, though it
+    // covers tiles outside.
+    std::map<uint32_t, std::array<size_t, 3>> counts;  // traced in, traced out, covered out
+    for (uint32_t y = 0; y < s.height; ++y)
+      for (uint32_t x = 0; x < s.width; ++x) {
+        const size_t i = size_t(y) * s.width + x;
+        if (img.objectIds[i] == 0xFFFFFFFFu) continue;
+        const bool in = partialTile(x / 8, y / 8, share);
+        std::array<size_t, 3>& c = counts[img.objectIds[i]];
+        if (img.tracedMask[i] & core::kTracedReflections) ++c[in ? 0 : 1];
+        if (!in) ++c[2];
+      }
+    uint32_t confined = 0;
+    for (const auto& [id, c] : counts) confined += c[0] > 0 && c[1] == 0 && c[2] > 0;
+    EXPECT_EQ(confined, 1u) << "fraction " << fraction << ", share " << share;
+  }
+  EXPECT_GE(partialFrames, 1u) << "no budget left a share of a mirror to trace";
 }
 
 // With rates in the frame the trace passes hand a tile's pixels out in another order (1/16's

@@ -156,6 +156,40 @@ TEST(SelectionPolicies, RateSegmentsClimbEachItemsHullInOrder) {
   }
 }
 
+// The partial item (frame mode's after-step over rate segments): the first item in density
+// order whose first segment did not fit takes the share of its tiles the budget left, at
+// least an eighth; never a shadow item (its one segment is full rate), never when the best
+// single candidate replaces the greedy selection.
+TEST(SelectionPolicies, ThePartialItemTakesTheShareOfItsTilesTheBudgetLeft) {
+  select::PolicyOptions o;
+  o.rateSegments = true;
+  o.partialItem = true;
+  // IDs item * 4 + segment; item = object * 3 + effect (0 shadows, 1 reflections).
+  const uint32_t reflections0 = (0 * 3 + 1) * 4, shadows1 = (1 * 3 + 0) * 4, reflections1 = (1 * 3 + 1) * 4, reflections2 = (2 * 3 + 1) * 4;
+  const std::vector<Candidate> c = {{reflections0, 1, 10, 0}, {shadows1, 2.5f, 15, 0}, {reflections1, 4, 20, 0}, {reflections2, 0.5f, 20, 0}};
+  // Density order: reflections 2 (40), 0 (10), shadows 1 (6), reflections 1 (5). Budget 3.5:
+  // reflections 2 and 0 (2 left); shadows 1 does not fit but is no partial item; reflections 1
+  // takes 2 / 4 of its tiles.
+  const select::Selection s = select::selectObjects(Policy::Benefit, c, 3.5f, o);
+  EXPECT_EQ(s.ids, (std::vector<uint32_t>{reflections0, reflections1, reflections2}));
+  EXPECT_EQ(s.partial.id, reflections1);
+  EXPECT_EQ(s.partial.share, 0.5f);
+  EXPECT_DOUBLE_EQ(s.cost, 3.5);
+  EXPECT_DOUBLE_EQ(s.value, 40.0);
+  // Without the after-step (the GPU's select(), the benchmark's bound): the greedy alone.
+  o.partialItem = false;
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 3.5f, o).ids, (std::vector<uint32_t>{reflections0, reflections2}));
+  o.partialItem = true;
+  // Under an eighth left: 1.75 leaves 0.25 of 4.
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 1.75f, o).partial.id, UINT32_MAX);
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 1.75f, o).ids, (std::vector<uint32_t>{reflections0, reflections2}));
+  // The best single candidate beats the greedy: no partial item beside it.
+  const std::vector<Candidate> single = {{reflections0, 1, 10, 0}, {reflections1, 3, 25, 0}};
+  const select::Selection b = select::selectObjects(Policy::Benefit, single, 3.0f, o);
+  EXPECT_EQ(b.ids, (std::vector<uint32_t>{reflections1}));
+  EXPECT_EQ(b.partial.id, UINT32_MAX);
+}
+
 TEST(SelectionPolicies, RejectBadInput) {
   const std::vector<Candidate> ok = {{0, 1, 1, 0}};
   EXPECT_THROW(select::selectObjects(Policy::Paper, ok, -1.0f), Error);

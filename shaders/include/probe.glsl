@@ -27,4 +27,21 @@ bool itemProbed(Selection sel, uint effect, ivec2 pixel) {
   return (sel.word & (1u << (RB_PROBE_SHIFT + effect))) != 0u && probeTile(uvec2(pixel) / RB_TILE_SIZE);
 }
 
+// `benefit`'s partial item (shared/selection.h): an object's selection word at `tile`, the
+// partial item's bits (selected, rate) cleared where the tile is not among its traced share.
+uint selectionInTile(uint objectId, uint word, uvec2 tile) {
+  uint partial = itemCosts[itemTotalsIndex()].selectedLast;
+  if (partial == 0u || (partial - 1u) / RB_ITEMS_PER_OBJECT != objectId) return word;
+  if (float(tileTurn(tile) >> 8u) * (1.0 / 16777216.0) < itemCosts[itemTotalsIndex()].benefit) return word;
+  uint effect = (partial - 1u) % RB_ITEMS_PER_OBJECT;
+  return word & ~((1u << effect) | (3u << (RB_RATE_SHIFT + 2u * effect)));
+}
+
+// An object's selection at a pixel: what the trace and lighting passes act on.
+Selection selectionAt(uint objectId, ivec2 pixel) {
+  Selection sel = selectionOf(objectId);
+  if (objectId != RB_NO_OBJECT) sel.word = selectionInTile(objectId, sel.word, uvec2(pixel) / RB_TILE_SIZE);
+  return sel;
+}
+
 #endif

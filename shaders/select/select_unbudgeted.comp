@@ -26,5 +26,6 @@ void main() {
     uint totals = uint(itemCosts.length()) - 1u;
     itemCosts[totals].work = 0u;
     itemCosts[totals].ticks = 0u;
+    itemCosts[totals].selectedLast = 0u;  // no partial item (include/probe.glsl)
   }
 }

@@ -82,6 +82,22 @@ bool betterSingle(GpuCandidate c, uint ci, Single b) {
   return c.id < b.id || (c.id == b.id && ci < b.index);
 }
 
+// `benefit` in frame mode with rates chosen per item: the first item in the walk's order whose
+// first segment did not fit, its cost and value, and the budget the walk left (the same in
+// every lane); traced on a share of its tiles (shared/selection.h, RB_PARTIAL_MIN_SHARE).
+uint partialId = RB_NO_PARTIAL;
+float partialCost = 0.0, partialValue = 0.0, leftOver = 0.0;
+bool partialWanted() { return push.walk.y != 0u && rateSegmentsWalk(); }
+// Whether candidate `id` may become the partial one: an item's first segment below full rate
+// (a shadow item's only segment is full rate, which its pixel count would misprice).
+bool partialCandidate(uint id) {
+  if (id % RB_SEGMENT_SLOTS != 0u) return false;
+  float costShare, valueShare;
+  uint rate;
+  rateSegment(candidateItem(id) % RB_ITEMS_PER_OBJECT, 0u, costShare, valueShare, rate);
+  return rate != RB_RATE_FULL;
+}
+
 // The greedy fill-in, a subgroup's batch of the order at a time: the lanes load their
 // candidates together (the next batch's load in flight while this one decides), and the
 // decisions run in order on values shuffled from each lane, so the remaining budget is the
@@ -104,6 +120,7 @@ Picked selectGreedy(uint n, float budget) {
     // Past the end: fits nothing.
     GpuCandidate c = GpuCandidate(record.w, valid ? uintBitsToFloat(record.x) : uintBitsToFloat(0x7F800000u), uintBitsToFloat(record.y), 0.0);
     bool taken = false;
+    bool eligible = valid && partialWanted() && partialCandidate(c.id);
     if (subgroupAny(c.cost <= remaining)) {
       uint count = min(gl_SubgroupSize, n - base);
       // Unrolled to the subgroup size (a specialization constant): a GPU then issues the
@@ -120,14 +137,24 @@ Picked selectGreedy(uint n, float budget) {
           ++p.count;
           taken = taken || lane == j;
           if (segments) scratch[id / RB_SEGMENT_SLOTS] = id % RB_SEGMENT_SLOTS + 1u;
+        } else if (partialId == RB_NO_PARTIAL && subgroupShuffle(eligible, j)) {
+          partialId = id;
+          partialCost = cost;
+          partialValue = value;
         }
       }
+    } else if (partialId == RB_NO_PARTIAL && subgroupAny(eligible)) {  // nothing here fits: the first eligible one
+      uint first = subgroupBallotFindLSB(subgroupBallot(eligible));
+      partialId = subgroupShuffle(c.id, first);
+      partialCost = subgroupShuffle(c.cost, first);
+      partialValue = subgroupShuffle(c.value, first);
     }
     if (valid) mark(ci, c.id, taken);
     // Rate segments: a single option is an item's first segment (the others build on it).
     bool single = !segments || c.id % RB_SEGMENT_SLOTS == 0u;
     if (density && valid && single && c.cost <= budget && betterSingle(c, ci, best)) best = Single(1u, c.value, c.id, ci);
   }
+  leftOver = remaining;
   bool found = best.found != 0u;
   if (!subgroupAny(found)) return p;
   // The subgroup's best: highest value, then lowest ID, then lowest index.
@@ -136,6 +163,7 @@ Picked selectGreedy(uint n, float budget) {
   uint topId = subgroupMin(top ? best.id : 0xFFFFFFFFu);
   uint winner = subgroupMin(top && best.id == topId ? best.index : 0xFFFFFFFFu);
   if (topValue <= p.value) return p;
+  partialId = RB_NO_PARTIAL;  // the best single candidate instead of the greedy selection
   clearAll(n);
   if (segments) {
     clearLevels();
@@ -288,6 +316,21 @@ void main() {
   } else {
     p = selectGreedy(n, budget);
   }
+  // The partial item: its first segment on the share of its tiles the budget left pays for.
+  float share = partialId != RB_NO_PARTIAL ? exactQuotient(leftOver, partialCost) : 0.0;
+  if (share >= RB_PARTIAL_MIN_SHARE) {
+    scratch[partialId / RB_SEGMENT_SLOTS] = 1u;  // every lane writes the same level
+    p.cost += leftOver;
+    p.value += partialValue * share;
+    ++p.count;
+  } else {
+    partialId = RB_NO_PARTIAL;
+    share = 0.0;
+  }
+  if (push.walk.y != 0u && gl_SubgroupInvocationID == 0u) {  // for the tile list and the trace passes (every frame mode policy)
+    items[push.walk.z * RB_ITEMS_PER_OBJECT].selectedLast = partialId == RB_NO_PARTIAL ? 0u : partialId / RB_SEGMENT_SLOTS + 1u;
+    items[push.walk.z * RB_ITEMS_PER_OBJECT].benefit = share;
+  }
   if (rateSegmentsWalk() && push.walk.y != 0u) markLevels();
   // The predicted cost includes the probe's (the time scale learns from the trace time).
   if (policy == RB_SELECT_BENEFIT && push.walk.y != 0u) p.cost += setProbeStride(n);
@@ -295,6 +338,7 @@ void main() {
   if (gl_SubgroupInvocationID == 0u) {
     result.yzw = uvec3(floatBitsToUint(p.cost), floatBitsToUint(p.value), p.count);
     result3.y = floatBitsToUint(prior);
+    result3.z = floatBitsToUint(share);  // the partial item's share of its tiles (0: none)
     result2.w = everything || policy == RB_SELECT_NONE ? 0u : 1u;  // the selection needed an order
   }
 }

@@ -30,13 +30,13 @@ void main() {
   if (tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] == 0u) {
     for (uint s = 0u; s + 1u < RB_TILE_OBJECT_WORDS; ++s) {
       uint v = tileObjects[base + s];
-      if (v != 0u) bits |= selected[v - 1u] & items;
+      if (v != 0u) bits |= selectionInTile(v - 1u, selected[v - 1u], tile) & items;
     }
   } else {
     for (uint y = first.y; y < last.y && (bits & items) != items; ++y)
       for (uint x = first.x; x < last.x; ++x) {
         uint id = texelFetch(gObjectId, ivec2(x, y), 0).r;
-        if (id != RB_NO_OBJECT) bits |= selected[id] & items;
+        if (id != RB_NO_OBJECT) bits |= selectionInTile(id, selected[id], tile) & items;
       }
   }
   uint tileWord = tile.x | (tile.y << 16);

@@ -140,13 +140,22 @@ struct GpuObjectCost {
 // on the line from 1/4 to full within 0.01 of value (reflections 0.89 against 0.88, refractions
 // 0.95 against 0.945) and is left out of the hull.
 
+// `benefit` with rates chosen per item, frame mode: where the walk leaves budget over, the first
+// item in its order whose first segment (1/16 for reflections and refractions) did not fit is
+// traced on a share of its 8x8 tiles, the budget left over its cost, when that share is at
+// least RB_PARTIAL_MIN_SHARE: the tiles whose hash (probe.glsl's tileTurn) falls below the share,
+// the same tiles every frame. The items' totals record holds it (GpuItemCost).
+#define RB_NO_PARTIAL 0xFFFFFFFFu
+#define RB_PARTIAL_MIN_SHARE 0.125
+
 // 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
 // 1 once measured, and S as last frame's option (0: left out; 1 + its rate). One more record after the items holds the
 // frame's totals of work and ticks over every item (the ticks' exchange rate to work units),
-// and in `pixels` the frame's probe stride (0: no probe). A probed item's `pixels` start at 0
+// in `pixels` the frame's probe stride (0: no probe), in `selectedLast` the partial item + 1 (0:
+// none) and in `benefit` its share of tiles. A probed item's `pixels` start at 0
 // and count the covered pixels the probe traced.
 struct GpuItemCost {
   float workPerPixel;

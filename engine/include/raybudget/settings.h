@@ -194,6 +194,9 @@ struct FrameTiming {
   uint32_t selectionChanges = 0;  // objects selected or dropped since the previous frame
   // `benefit`: items whose option (left out, or traced at a rate) changed since the previous frame
   uint32_t itemOptionChanges = 0;
+  // `benefit` with rates chosen per item: the share of its tiles the partial item (the first
+  // left out, its cheapest rate on what the budget left) is traced on; 0: none
+  double partialShare = 0.0;
   // false when every candidate fit the budget for certain (their summed cost at most 31/32
   // of T), so the select pass skipped the sort and selected them all
   bool selectionSorted = false;

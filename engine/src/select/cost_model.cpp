@@ -6,9 +6,10 @@
 #include "shared/selection.h"
 
 namespace raybudget::select {
-namespace {
-// a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
+
 float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
+
+namespace {
 // A learned per-pixel figure after an observation: the mean of the two, or the observation
 // alone when nothing was learned yet (0).
 float averagedWith(float previous, float observed) { return previous > 0.0f ? 0.5f * (previous + observed) : observed; }

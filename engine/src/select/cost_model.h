@@ -24,6 +24,9 @@ namespace raybudget::select {
 uint32_t rateCode(ItemRate rate);
 ItemRate itemRateOfCode(uint32_t code);
 float rateShare(uint32_t code);
+// a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
+float exactQuotient(float a, float b);
+
 // RB_RATE_AUTO's segments of an item (shared/selection.h; select_common.glsl's rateSegment):
 // how many an effect's item offers, and segment k's share of the item's full-rate cost and
 // value and the rate (RB_RATE_*) taking it reaches.

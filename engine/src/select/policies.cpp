@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "raybudget/error.h"
+#include "select/cost_model.h"
 #include "select/paper_graph.h"
 #include "shared/random_rank.h"
 
@@ -30,8 +31,17 @@ std::vector<uint32_t> greedyFit(std::span<const Candidate> c, const std::vector<
 
 constexpr uint32_t kSegmentSlots = 4;  // shared/selection.h's RB_SEGMENT_SLOTS
 
-// The same over rate segments: one goes in only onto its item's previous segment.
-std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std::vector<uint32_t>& order, float budget) {
+// Whether candidate `id` (a rate segment) may become the partial item: an item's first segment
+// below full rate (select_walk.comp's partialCandidate).
+bool partialCandidate(uint32_t id) {
+  return id % kSegmentSlots == 0 && rateSegment(id / kSegmentSlots % RB_ITEMS_PER_OBJECT, 0).rate != RB_RATE_FULL;
+}
+
+// The same over rate segments: one goes in only onto its item's previous segment. `partial`
+// (when given) gets the first candidate in `order` that partialCandidate allows and that did
+// not fit, and `remaining` what the budget left.
+std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std::vector<uint32_t>& order, float budget,
+                                        uint32_t* partial = nullptr, float* remainingOut = nullptr) {
   std::unordered_map<uint32_t, uint32_t> level;  // item -> segments taken
   std::vector<uint32_t> chosen;
   float remaining = budget;
@@ -41,8 +51,11 @@ std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std:
       chosen.push_back(i);
       remaining -= c[i].cost;
       ++taken;
+    } else if (partial && *partial == UINT32_MAX && partialCandidate(c[i].id)) {
+      *partial = i;
     }
   }
+  if (remainingOut) *remainingOut = remaining;
   return chosen;
 }
 
@@ -63,7 +76,9 @@ namespace {
 // Greedy by value density with fill-in, then the better of that and the most valuable
 // single candidate that fits: the classic 1/2-approximation of the 0/1 knapsack
 // (Funkhouser and Séquin 1993 use the greedy part for level-of-detail selection).
-std::vector<uint32_t> density(std::span<const Candidate> c, float budget, bool segments) {
+// `partial` (frame mode's `benefit` with rate segments, when given): the item traced on a share
+// of its tiles with the budget the greedy left (shared/selection.h's RB_PARTIAL_MIN_SHARE).
+std::vector<uint32_t> density(std::span<const Candidate> c, float budget, bool segments, PartialItem* partial = nullptr) {
   std::vector<uint32_t> order = indices(c.size());
   // The key is a float division (zero cost: +inf, first), one total order: key descending,
   // then ID (as every policy's ties: the GPU's sort keys are one word and the ID order);
@@ -72,7 +87,9 @@ std::vector<uint32_t> density(std::span<const Candidate> c, float budget, bool s
     const float ka = densityKey(c[a]), kb = densityKey(c[b]);
     return ka != kb ? ka > kb : c[a].id < c[b].id;
   });
-  std::vector<uint32_t> greedy = segments ? greedyFitSegments(c, order, budget) : greedyFit(c, order, budget);
+  uint32_t partialIndex = UINT32_MAX;
+  float remaining = 0.0f;
+  std::vector<uint32_t> greedy = segments ? greedyFitSegments(c, order, budget, partial ? &partialIndex : nullptr, &remaining) : greedyFit(c, order, budget);
   float greedyValue = 0.0f;
   for (uint32_t i : greedy) greedyValue += c[i].value;
   // With rate segments a single option is an item's first segment.
@@ -81,6 +98,13 @@ std::vector<uint32_t> density(std::span<const Candidate> c, float budget, bool s
     if (c[i].cost <= budget && (!segments || c[i].id % kSegmentSlots == 0) && (best == UINT32_MAX || c[i].value > c[best].value || (c[i].value == c[best].value && c[i].id < c[best].id)))
       best = i;
   if (best != UINT32_MAX && c[best].value > greedyValue) return {best};
+  if (partialIndex != UINT32_MAX) {
+    const float share = exactQuotient(remaining, c[partialIndex].cost);
+    if (share >= float(RB_PARTIAL_MIN_SHARE)) {
+      *partial = {c[partialIndex].id, share, remaining, c[partialIndex].value * share};
+      greedy.push_back(partialIndex);
+    }
+  }
   return greedy;
 }
 
@@ -152,12 +176,17 @@ Policy parsePolicy(const std::string& name) {
 Selection selectObjects(Policy policy, std::span<const Candidate> c, float budget, const PolicyOptions& options) {
   validateCandidates(c, budget);
   std::vector<uint32_t> chosen;
+  PartialItem partial;
   switch (policy) {
     case Policy::None: break;
     case Policy::All: chosen = indices(c.size()); break;
     case Policy::Paper: chosen = walkPaperGraph(buildPaperGraph(c, options.graphPointers), c, budget, options.paperHops); break;
     case Policy::Density:
-    case Policy::Benefit: chosen = density(c, budget, policy == Policy::Benefit && options.rateSegments); break;
+    case Policy::Benefit: {
+      const bool segments = policy == Policy::Benefit && options.rateSegments;
+      chosen = density(c, budget, segments, segments && options.partialItem ? &partial : nullptr);
+      break;
+    }
     case Policy::Optimal: chosen = knapsack(c, budget, options.optimalSteps, true).first; break;
     case Policy::Nearest: {
       std::vector<uint32_t> order = indices(c.size());
@@ -182,10 +211,12 @@ Selection selectObjects(Policy policy, std::span<const Candidate> c, float budge
   Selection s;
   for (uint32_t i : chosen) {
     s.ids.push_back(c[i].id);
-    s.cost += c[i].cost;
-    s.value += c[i].value;
+    const bool share = partial.id == c[i].id;
+    s.cost += share ? partial.cost : c[i].cost;
+    s.value += share ? partial.value : c[i].value;
   }
   std::sort(s.ids.begin(), s.ids.end());
+  s.partial = partial;
   return s;
 }
 

@@ -33,12 +33,25 @@ struct PolicyOptions {
   // RB_SEGMENT_SLOTS), segment k taken only after k - 1 of the same item: the greedy of the
   // multiple-choice knapsack on each item's convex hull.
   bool rateSegments = false;
+  // With rateSegments, frame mode's after-step: the first item in the walk's order whose first
+  // segment (below full rate) did not fit is taken on the share of its tiles the budget left
+  // pays for (shared/selection.h's RB_PARTIAL_MIN_SHARE; select_walk.comp).
+  bool partialItem = false;
+};
+
+// The partial item: its first segment's candidate ID, the share of its tiles traced, and the
+// cost (the budget the greedy left) and value (its value times the share) it adds.
+struct PartialItem {
+  uint32_t id = UINT32_MAX;
+  float share = 0.0f;
+  float cost = 0.0f, value = 0.0f;
 };
 
 struct Selection {
-  std::vector<uint32_t> ids;  // ascending
+  std::vector<uint32_t> ids;  // ascending; the partial item's ID among them
   double cost = 0.0;
   double value = 0.0;
+  PartialItem partial;
 };
 
 // The order keys the policies share with the GPU select pass.

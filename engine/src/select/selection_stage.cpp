@@ -30,7 +30,8 @@ Policy toSelectPolicy(raybudget::Policy policy) {
 namespace {
 
 PolicyOptions policyOptions(const RenderSettings& s) {
-  return {s.graphPointers, s.seed, 1, 4096, s.policy == raybudget::Policy::Benefit && s.rayTracing.rate == ItemRate::Auto};
+  const bool segments = s.policy == raybudget::Policy::Benefit && s.rayTracing.rate == ItemRate::Auto;
+  return {s.graphPointers, s.seed, 1, 4096, segments, segments};
 }
 
 ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget) {
@@ -238,6 +239,14 @@ struct SelectionStage::Impl {
     return priorCostMatches(slot, prior);
   }
 
+  // Whether the partial item the walk kept in the items' totals record (shared/selection.h) is
+  // the CPU's: the item and its share of tiles, bit for bit.
+  bool partialMatches(const Slot& slot, const PartialItem& partial) const {
+    const gpu::GpuItemCost& totals = static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped)[buffers.objects * RB_ITEMS_PER_OBJECT];
+    const uint32_t item = partial.id == UINT32_MAX ? 0u : partial.id / RB_SEGMENT_SLOTS + 1u;
+    return totals.selectedLast == item && std::bit_cast<uint32_t>(totals.benefit) == std::bit_cast<uint32_t>(partial.share);
+  }
+
   // Whether the walk's cost of the selected candidates priced by the prior (result word 9,
   // select_walk.comp's priorPricedCost) equals the CPU's sum, summed in another order on the
   // GPU: within a relative 1e-5.
@@ -351,6 +360,7 @@ struct SelectionStage::Impl {
     t.selectedObjects = r[3];
     t.selectionChanges = r[4];
     t.itemOptionChanges = r[8];
+    t.partialShare = std::bit_cast<float>(r[10]);
     t.selectionSorted = r[7] != 0;
     if (s.optimalBound || checkCpu) {
       const std::span<const gpu::GpuCandidate> g(static_cast<const gpu::GpuCandidate*>(slot.candidates.mapped), r[0]);
@@ -365,7 +375,8 @@ struct SelectionStage::Impl {
       if (checkCpu) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
         const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO);
-        t.selectionMatchesCpu = gpuIds == selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s)).ids;
+        const Selection cpu = selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s));
+        t.selectionMatchesCpu = gpuIds == cpu.ids && (policy != Policy::Benefit || partialMatches(slot, cpu.partial));
         t.costsMatchCpu = costsMatchCpu(slot, policy, g);
       }
     }
