@@ -42,42 +42,15 @@ OverlayPass::OverlayPass(const WindowDevice& wd, const core::Context& core, VkEx
   const VkDescriptorType types[kBindings] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                              VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-  VkDescriptorSetLayoutBinding bindings[kBindings]{};
-  for (uint32_t i = 0; i < kBindings; ++i) bindings[i] = {i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  li.bindingCount = kBindings;
-  li.pBindings = bindings;
-  setLayout_ = make(device, vkCreateDescriptorSetLayout, vkDestroyDescriptorSetLayout, li, "vkCreateDescriptorSetLayout");
-  const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(OverlayPush)};
-  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pli.setLayoutCount = 1;
-  pli.pSetLayouts = setLayout_.ptr();
-  pli.pushConstantRangeCount = 1;
-  pli.pPushConstantRanges = &range;
-  pipelineLayout_ = make(device, vkCreatePipelineLayout, vkDestroyPipelineLayout, pli, "vkCreatePipelineLayout");
-  VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  mi.codeSize = sizeof(kSpirv_overlay_comp);
-  mi.pCode = kSpirv_overlay_comp;
-  Owned<VkShaderModule> module = make(device, vkCreateShaderModule, vkDestroyShaderModule, mi, "vkCreateShaderModule");
+  descriptors_ = makeDescriptorSet(device, types, VK_SHADER_STAGE_COMPUTE_BIT);
+  pipelineLayout_ = makePipelineLayout(device, descriptors_.layout, VK_SHADER_STAGE_COMPUTE_BIT, sizeof(OverlayPush));
+  const Owned<VkShaderModule> module = makeShaderModule(device, kSpirv_overlay_comp, sizeof(kSpirv_overlay_comp));
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
   ci.layout = pipelineLayout_;
   VkPipeline pipeline = VK_NULL_HANDLE;
   check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline), "vkCreateComputePipelines");
   pipeline_ = Owned<VkPipeline>(pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
-
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
-  VkDescriptorPoolCreateInfo poi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poi.maxSets = 1;
-  poi.poolSizeCount = 3;
-  poi.pPoolSizes = sizes;
-  pool_ = make(device, vkCreateDescriptorPool, vkDestroyDescriptorPool, poi, "vkCreateDescriptorPool");
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = pool_;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = setLayout_.ptr();
-  check(vkAllocateDescriptorSets(device, &ai, &set_), "vkAllocateDescriptorSets");
 
   const core::FrameOutputs out = core.outputs();
   const VkDescriptorImageInfo ldr{VK_NULL_HANDLE, out.ldrView, out.layout};
@@ -88,7 +61,7 @@ OverlayPass::OverlayPass(const WindowDevice& wd, const core::Context& core, VkEx
   VkWriteDescriptorSet writes[kBindings]{};
   for (uint32_t i = 0; i < kBindings; ++i) {
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[i].dstSet = set_;
+    writes[i].dstSet = descriptors_.set;
     writes[i].dstBinding = i;
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = types[i];
@@ -126,7 +99,7 @@ void OverlayPass::record(VkCommandBuffer cmd, glm::ivec2 pick, uint32_t highligh
   *static_cast<uint32_t*>(pick_.mapped) = kNoObject;
   const OverlayPush push{glm::ivec2(size_.width, size_.height), pick, objectCount_, highlight, showTraced ? 1u : 0u, 0};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &descriptors_.set, 0, nullptr);
   vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, (size_.width + 7) / 8, (size_.height + 7) / 8, 1);
   imageBarrier(cmd, viewport_.image, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,

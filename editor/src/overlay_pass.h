@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "raybudget/core.h"
+#include "pass_objects.h"
 #include "window_device.h"
 
 namespace raybudget::editor {
@@ -39,11 +40,9 @@ class OverlayPass {
   Owned<VkImageView> objectIdView_;
   Owned<VkSampler> sampler_;
   HostBuffer tints_, pick_;
-  Owned<VkDescriptorSetLayout> setLayout_;
+  DescriptorSet descriptors_;
   Owned<VkPipelineLayout> pipelineLayout_;
   Owned<VkPipeline> pipeline_;
-  Owned<VkDescriptorPool> pool_;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 
 }  // namespace raybudget::editor

@@ -20,16 +20,9 @@ struct UiPush {
 
 constexpr VkIndexType kIndexType = sizeof(ImDrawIdx) == 2 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32;
 
-Owned<VkShaderModule> shaderModule(VkDevice device, const uint32_t* code, size_t bytes) {
-  VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  mi.codeSize = bytes;
-  mi.pCode = code;
-  return make(device, vkCreateShaderModule, vkDestroyShaderModule, mi, "vkCreateShaderModule");
-}
-
 Owned<VkPipeline> uiPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass renderPass) {
-  const Owned<VkShaderModule> vert = shaderModule(device, kSpirv_ui_vert, sizeof(kSpirv_ui_vert));
-  const Owned<VkShaderModule> frag = shaderModule(device, kSpirv_ui_frag, sizeof(kSpirv_ui_frag));
+  const Owned<VkShaderModule> vert = makeShaderModule(device, kSpirv_ui_vert, sizeof(kSpirv_ui_vert));
+  const Owned<VkShaderModule> frag = makeShaderModule(device, kSpirv_ui_frag, sizeof(kSpirv_ui_frag));
   const VkPipelineShaderStageCreateInfo stages[] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr},
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr}};
@@ -100,36 +93,15 @@ UiRenderer::UiRenderer(const WindowDevice& wd, VkRenderPass renderPass) : wd_(wd
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sampler_ = make(device, vkCreateSampler, vkDestroySampler, si, "vkCreateSampler");
 
-  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  li.bindingCount = 1;
-  li.pBindings = &binding;
-  setLayout_ = make(device, vkCreateDescriptorSetLayout, vkDestroyDescriptorSetLayout, li, "vkCreateDescriptorSetLayout");
-  const VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(UiPush)};
-  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pli.setLayoutCount = 1;
-  pli.pSetLayouts = setLayout_.ptr();
-  pli.pushConstantRangeCount = 1;
-  pli.pPushConstantRanges = &range;
-  pipelineLayout_ = make(device, vkCreatePipelineLayout, vkDestroyPipelineLayout, pli, "vkCreatePipelineLayout");
+  const VkDescriptorType atlas = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  descriptors_ = makeDescriptorSet(device, {&atlas, 1}, VK_SHADER_STAGE_FRAGMENT_BIT);
+  pipelineLayout_ = makePipelineLayout(device, descriptors_.layout, VK_SHADER_STAGE_VERTEX_BIT, sizeof(UiPush));
   pipeline_ = uiPipeline(device, pipelineLayout_, renderPass);
-
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
-  VkDescriptorPoolCreateInfo poi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poi.maxSets = 1;
-  poi.poolSizeCount = 1;
-  poi.pPoolSizes = &size;
-  pool_ = make(device, vkCreateDescriptorPool, vkDestroyDescriptorPool, poi, "vkCreateDescriptorPool");
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = pool_;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = setLayout_.ptr();
-  check(vkAllocateDescriptorSets(device, &ai, &set_), "vkAllocateDescriptorSets");
 
   uploadFontAtlas();
   const VkDescriptorImageInfo image{sampler_, atlas_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set_;
+  write.dstSet = descriptors_.set;
   write.descriptorCount = 1;
   write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   write.pImageInfo = &image;
@@ -177,7 +149,7 @@ void UiRenderer::uploadFontAtlas() {
   submit.pCommandBuffers = &cmd;
   check(vkQueueSubmit(wd_.queue(), 1, &submit, VK_NULL_HANDLE), "vkQueueSubmit");
   check(vkQueueWaitIdle(wd_.queue()), "vkQueueWaitIdle");
-  io.Fonts->SetTexID(ImTextureID(set_));
+  io.Fonts->SetTexID(ImTextureID(descriptors_.set));
 }
 
 void UiRenderer::reserve(HostBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
@@ -239,7 +211,7 @@ void UiRenderer::record(VkCommandBuffer cmd, const ImDrawData& data) {
   push.translate[0] = -1.0f - data.DisplayPos.x * push.scale[0];
   push.translate[1] = -1.0f - data.DisplayPos.y * push.scale[1];
   vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &descriptors_.set, 0, nullptr);
   for (const Draw& d : draws) {
     vkCmdSetScissor(cmd, 0, 1, &d.scissor);
     vkCmdDrawIndexed(cmd, d.count, 1, d.firstIndex, d.vertexOffset, 0);

@@ -11,6 +11,7 @@
 
 #include <imgui.h>
 
+#include "pass_objects.h"
 #include "window_device.h"
 
 namespace raybudget::editor {
@@ -31,9 +32,7 @@ class UiRenderer {
   const WindowDevice& wd_;
   DeviceImage atlas_;
   Owned<VkSampler> sampler_;
-  Owned<VkDescriptorSetLayout> setLayout_;
-  Owned<VkDescriptorPool> pool_;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  DescriptorSet descriptors_;
   Owned<VkPipelineLayout> pipelineLayout_;
   Owned<VkPipeline> pipeline_;
   HostBuffer vertices_, indices_;
