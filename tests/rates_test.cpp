@@ -210,6 +210,7 @@ TEST(Rates, ThePartialItemIsTracedOnItsShareOfTilesAlone) {
   RenderSettings s = test::settingsFor(Policy::Benefit, 256, 192);
   s.rayTracing.rate = ItemRate::Auto;
   s.rayTracing.shadows = false;  // the mirrors' reflections alone: two items
+  s.objectMetrics = true;
   s.learnTimeScale = false;
   Camera cam;
   cam.position = {0.0f, 4.0f, 4.0f};
@@ -228,6 +229,7 @@ TEST(Rates, ThePartialItemIsTracedOnItsShareOfTilesAlone) {
     std::vector<FrameTiming> timings = renderer.render(cam);
     for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
     const FrameImages img = renderer.readback(true);  // with the object IDs and the traced mask
+    const std::vector<ObjectMetrics> metrics = renderer.objectMetrics();
     test::expectValidationClean(renderer.validationMessages());
     ASSERT_EQ(timings.size(), 1u);
     EXPECT_TRUE(timings[0].selectionMatchesCpu.value_or(false)) << "fraction " << fraction;
@@ -249,9 +251,17 @@ TEST(Rates, ThePartialItemIsTracedOnItsShareOfTilesAlone) {
         if (img.tracedMask[i] & core::kTracedReflections) ++c[in ? 0 : 1];
         if (!in) ++c[2];
       }
-    uint32_t confined = 0;
-    for (const auto& [id, c] : counts) confined += c[0] > 0 && c[1] == 0 && c[2] > 0;
+    uint32_t confined = 0, confinedId = 0;
+    for (const auto& [id, c] : counts)
+      if (c[0] > 0 && c[1] == 0 && c[2] > 0) ++confined, confinedId = id;
     EXPECT_EQ(confined, 1u) << "fraction " << fraction << ", share " << share;
+    // The object metrics name it: its reflections on that share of its tiles.
+    ASSERT_GT(metrics.size(), confinedId);
+    EXPECT_EQ(metrics[confinedId].itemTileShare[1], float(share));
+    for (size_t id = 0; id < metrics.size(); ++id)
+      if (id != confinedId) {
+        EXPECT_EQ(metrics[id].itemTileShare[1], 1.0f) << "object " << id;
+      }
   }
   EXPECT_GE(partialFrames, 1u) << "no budget left a share of a mirror to trace";
 }

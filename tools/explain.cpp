@@ -58,7 +58,7 @@ void printPassPlan(std::ostream& out, const Renderer& renderer, const std::vecto
     const uint32_t pixels[3] = {m.pixels, m.reflectionPixels, m.refractionPixels};
     for (int i = 0; i < 3; ++i) {
       need[i] += pixels[i];
-      if (m.selectedItems >> i & 1u) traced[i] += pixels[i] * rateShare(m.itemRate[size_t(i)]);
+      if (m.selectedItems >> i & 1u) traced[i] += pixels[i] * rateShare(m.itemRate[size_t(i)]) * m.itemTileShare[size_t(i)];
     }
   }
   out << "last frame, pixels per effect (those that could take rays / those traced, by ray rate):\n";
@@ -76,9 +76,10 @@ void printFrameSelection(std::ostream& out, uint64_t frame, const std::vector<Ob
     const ObjectMetrics& m = metrics[id];
     for (uint32_t i = 0; i < 3; ++i)
       if (m.selectedItems >> i & 1u)
-        out << formatted("  object %4zu %-11s rate %-7s V %.4f C %.4f R %.4f  benefit %.4g/pixel  cost %.4g/pixel\n", id, kEffects[i],
+        out << formatted("  object %4zu %-11s rate %-7s V %.4f C %.4f R %.4f  benefit %.4g/pixel  cost %.4g/pixel%s\n", id, kEffects[i],
                          itemRateName(m.itemRate[i]), double(m.V), double(m.C), double(m.R), double(m.itemBenefit[i]),
-                         double(m.itemCostPerPixel[i]));
+                         double(m.itemCostPerPixel[i]),
+                         m.itemTileShare[i] < 1.0f ? formatted("  on %.2f of its tiles", double(m.itemTileShare[i])).c_str() : "");
   }
 }
 

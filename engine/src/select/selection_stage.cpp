@@ -428,6 +428,8 @@ struct SelectionStage::Impl {
     const auto* cov = reinterpret_cast<const gpu::GpuCoverage*>(static_cast<const char*>(host.mapped) + bytes + flagBytes);
     const auto* items = reinterpret_cast<const gpu::GpuItemCost*>(static_cast<const char*>(host.mapped) + bytes + flagBytes + coverageBytes);
     std::vector<ObjectMetrics> out(count);
+    // The partial item (shared/selection.h), kept in the items' totals record.
+    const gpu::GpuItemCost& totals = items[count * RB_ITEMS_PER_OBJECT];
     for (size_t i = 0; i < count; ++i) {
       const gpu::GpuObjectRecord& g = records[i];
       out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), cov[i].sumYHi.y, cov[i].sumYHi.z, g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w,
@@ -444,6 +446,7 @@ struct SelectionStage::Impl {
         out[i].itemTicks[e] = uint64_t(item.ticks) * RB_CLOCK_UNIT;
         out[i].itemBenefit[e] = item.benefit;
         out[i].itemCostPerPixel[e] = item.workPerPixel;
+        if (totals.selectedLast == i * RB_ITEMS_PER_OBJECT + e + 1 && ((selected[i] >> e) & 1u)) out[i].itemTileShare[e] = totals.benefit;
       }
     }
     return out;
