@@ -131,6 +131,8 @@ out = editor(["court.gltf", "--script", "bad.script"], WORK, expect_rc=1, xvfb=F
 check("bad.script:2: unknown command 'teleport'" in out, "an unknown script command is reported with its file and line")
 out = editor(["no_such_scene.gltf"], WORK, expect_rc=1, xvfb=False)
 check("no_such_scene.gltf" in out, "a missing scene is reported with its path")
+out = editor(["court.gltf", "--rate", "eighth"], WORK, expect_rc=1, xvfb=False)
+check("unknown ray rate 'eighth'" in out and "auto" in out, "an unknown --rate is refused naming the choices")
 
 print(f"{len(failures)} failures")
 sys.exit(1 if failures else 0)

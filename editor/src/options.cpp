@@ -15,6 +15,9 @@ node extras.raybudget).
   --policy NAME         none, all, paper, density, nearest, random, benefit, classified (default benefit)
   --budget-ms T         the ray-tracing stage's budget (default 100)
   --tracer NAME         compute or native (default compute)
+  --rate R              full, half, quarter, sixteenth, or auto: benefit chooses a ray rate per
+                        item and spends what its knapsack leaves on a share of the next item's
+                        tiles (default full)
   --fixed-time-scale    keep the cost model's prior time scale: the selection is the same on
                         any machine (scripted tests)
   --overlay NAME        none, items, cost, benefit, ids, traced (default none)
@@ -55,7 +58,8 @@ EditorOptions parseEditorOptions(const std::vector<std::string>& args) {
       if (t == "compute") o.settings.rayTracing.tracer = Tracer::Compute;
       else if (t == "native") o.settings.rayTracing.tracer = Tracer::Native;
       else throw Error("--tracer must be compute or native, got '" + t + "'");
-    } else if (a == "--fixed-time-scale") o.settings.learnTimeScale = false;
+    } else if (a == "--rate") o.settings.rayTracing.rate = parseItemRate(value());
+    else if (a == "--fixed-time-scale") o.settings.learnTimeScale = false;
     else if (a == "--overlay") o.overlay = overlayName(parseOverlay(value()));
     else if (a == "--validation") o.settings.validation = true;
     else if (a == "--device") o.settings.device = value();

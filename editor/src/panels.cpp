@@ -120,7 +120,12 @@ void Panels::objectPanel(const Session& session, const UiView& view, UiRequests&
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(kItemNames[e]);
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted((m.selectedItems >> e) & 1u ? "yes" : "no");
+      // The partial item: traced on a share of its tiles (docs/SELECTION.md).
+      if (((m.selectedItems >> e) & 1u) && m.itemTileShare[size_t(e)] < 1.0f) {
+        ImGui::Text("%.0f%% tiles", 100.0 * double(m.itemTileShare[size_t(e)]));
+      } else {
+        ImGui::TextUnformatted((m.selectedItems >> e) & 1u ? "yes" : "no");
+      }
       ImGui::TableNextColumn();
       ImGui::Text("%.4f", m.itemBenefit[e]);
       ImGui::TableNextColumn();
