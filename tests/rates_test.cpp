@@ -155,24 +155,35 @@ TEST(Rates, ShadowsAtReducedRatesStayCloserToFullRateThanShadowMaps) {
   }
 }
 
+// The two mirrors alone (reflecting the sky) under a sun, seen from above, with `benefit`
+// choosing rates per item at a fixed time scale; unbudgeted, and with the candidates' summed
+// cost in the stats (the budgets below are shares of it).
+struct MirrorsUnderSun {
+  Scene scene;
+  RenderSettings settings;
+  Camera camera;
+};
+MirrorsUnderSun mirrorsUnderSun() {
+  MirrorsUnderSun m{twoMirrors(), test::settingsFor(Policy::Benefit, 256, 192), {}};
+  m.scene.objects.resize(2);
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  m.scene.lights = {sun};
+  m.settings.rayTracing.rate = ItemRate::Auto;
+  m.settings.learnTimeScale = false;
+  m.settings.optimalBound = true;
+  m.settings.budgetMs = 1e6f;
+  m.camera.position = {0.0f, 4.0f, 4.0f};
+  m.camera.target = {0.0f, 0.0f, 0.0f};
+  return m;
+}
+
 // Rates chosen per item on two mirrors under a sun: more rate segments than three per object
 // (shadows one, reflections three), every frame's segments, costs, values, levels and rates
 // equal to the CPU reference under a budget that binds.
 TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
-  Scene scene = twoMirrors();
-  scene.objects.resize(2);  // the mirrors alone, reflecting the sky
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
-  scene.lights.push_back(sun);
-  RenderSettings s = test::settingsFor(Policy::Benefit, 256, 192);
-  s.rayTracing.rate = ItemRate::Auto;
-  s.learnTimeScale = false;
-  s.optimalBound = true;
-  Camera cam;
-  cam.position = {0.0f, 4.0f, 4.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  s.budgetMs = 1e6f;
+  auto [scene, s, cam] = mirrorsUnderSun();
   const test::RenderedFrames all = test::renderFrames(scene, s, std::vector<Camera>(4, cam), test::kCheckSelection);
   // A first frame prices the items from priors: a third of that binds (later frames learn
   // cheaper costs).
@@ -204,19 +215,9 @@ bool partialTile(uint32_t tx, uint32_t ty, double share) {
 }
 
 TEST(Rates, ThePartialItemIsTracedOnItsShareOfTilesAlone) {
-  Scene scene = twoMirrors();
-  scene.objects.resize(2);
-  scene.lights = {defaultSun()};
-  RenderSettings s = test::settingsFor(Policy::Benefit, 256, 192);
-  s.rayTracing.rate = ItemRate::Auto;
+  auto [scene, s, cam] = mirrorsUnderSun();
   s.rayTracing.shadows = false;  // the mirrors' reflections alone: two items
   s.objectMetrics = true;
-  s.learnTimeScale = false;
-  Camera cam;
-  cam.position = {0.0f, 4.0f, 4.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  s.budgetMs = 1e6f;
-  s.optimalBound = true;  // the candidates' summed cost
   // A first frame prices the items from their priors, the same in every renderer: budgets are
   // shares of that frame's candidates (both mirrors' segments, so 1/16 of one is about 0.11).
   const test::RenderedFrames all = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
