@@ -89,16 +89,29 @@ bvec2 pendingPaths(Surface s, Selection sel, ivec2 pixel) {
 }
 
 // A traced neighbour as the fill reads it: its changes, the paths it holds (bits 0 and 1).
-void addFillSample(float w, uint paths, vec3 reflection, vec3 refraction, bvec2 pending, inout vec3 sum[2], inout vec2 weights) {
+void addFillSample(float w, uint paths, vec3 reflection, vec3 refraction, bvec2 pending, inout vec3 sum[2], inout vec3 squares[2], inout vec2 weights) {
   if (w <= 0.0) return;
   if (pending.x && (paths & 1u) != 0u) {
     sum[0] += w * reflection;
+    squares[0] += w * reflection * reflection;
     weights.x += w;
   }
   if (pending.y && (paths & 2u) != 0u) {
     sum[1] += w * refraction;
+    squares[1] += w * refraction * refraction;
     weights.y += w;
   }
+}
+
+// The weighted mean change, shrunk towards none (the fallback) by its spread: m |m|^2 / (|m|^2 +
+// variance), so neighbours that agree are filled in whole and ones that disagree (a small
+// curved mirror, whose neighbours a few pixels away reflect other directions) leave the
+// fallback nearly as it is, where their mean would add noise.
+vec3 shrunkMean(vec3 sum, vec3 squares, float weight) {
+  vec3 mean = sum / weight;
+  vec3 variance = max(squares / weight - mean * mean, vec3(0.0));
+  float signal = dot(mean, mean), spread = variance.x + variance.y + variance.z;
+  return signal > 0.0 ? mean * (signal / (signal + spread)) : vec3(0.0);
 }
 
 // The tile's 1/16 samples with their changes (include/tile_fill.glsl's SixteenthSample).
@@ -127,20 +140,20 @@ void fillPending(ivec2 pixel, Surface s, Selection sel, bvec2 pending, EffectSam
   uint rates[2] = uint[2](pending.x ? itemRate(sel, RB_ITEM_REFLECTIONS) : RB_RATE_SIXTEENTH,
                           pending.y ? itemRate(sel, RB_ITEM_REFRACTIONS) : RB_RATE_SIXTEENTH);
   uint rate = min(rates[0], rates[1]);  // the denser of the two (the codes grow as the rate falls)
-  vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0));
+  vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0)), squares[2] = vec3[2](vec3(0.0), vec3(0.0));
   vec2 weights = vec2(0.0);
   if (rate == RB_RATE_SIXTEENTH) {
     for (int k = 0; k < 4; ++k)
-      addFillSample(sixteenthWeight(c, samples[k].at, pixel), samples[k].paths, samples[k].reflection, samples[k].refraction, pending, sum, weights);
+      addFillSample(sixteenthWeight(c, samples[k].at, pixel), samples[k].paths, samples[k].reflection, samples[k].refraction, pending, sum, squares, weights);
   } else {
     for (int k = 0; k < 9; ++k) {
       uint slot;
       float w = fillWeight(c, rate, pixel, fillOffset(k), slot);
-      if (w > 0.0) addFillSample(w, fillPaths[slot], fillReflection[slot], fillRefraction[slot], pending, sum, weights);
+      if (w > 0.0) addFillSample(w, fillPaths[slot], fillReflection[slot], fillRefraction[slot], pending, sum, squares, weights);
     }
   }
-  if (weights.x >= RB_FILL_MIN_WEIGHT) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + sum[0] / weights.x, 1.0));
-  if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + sum[1] / weights.y, 1.0));
+  if (weights.x >= RB_FILL_MIN_WEIGHT) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + shrunkMean(sum[0], squares[0], weights.x), 1.0));
+  if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + shrunkMean(sum[1], squares[1], weights.y), 1.0));
 }
 
 void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel) {
