@@ -73,6 +73,13 @@ bool keyLess(uvec2 a, uvec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
 // the host having uploaded the candidates in ID order.
 uint candidateAt(uint word) { return push.walk.y != 0u ? slotOf[word] : word; }
 
+// The walk's record of candidate slot ci in a greedy policy's order (select_gather.comp):
+// cost, value, slot, ID.
+uvec4 greedyRecord(uint ci) {
+  GpuCandidate c = candidates[ci];
+  return uvec4(floatBitsToUint(c.cost), floatBitsToUint(c.value), ci, c.id);
+}
+
 // The sort key of candidate i for the policy's order (which = 0) or `paper`'s relevance
 // order (1): ascending = selection order. The policy's word, then the candidate's place in
 // ID order, so keys are unique, ties go by ID, and a key is 8 bytes (a merge sort on a CPU

@@ -65,4 +65,11 @@ void main() {
     toSpare = !toSpare;
     run *= 2u;
   }
+  // One block and a greedy policy (the host's choice, stage.y): the walk's records laid out
+  // here (select_gather.comp's work), a dispatch saved.
+  if (push.stage.y == RB_GATHER_IN_SORT) {
+    memoryBarrierBuffer();
+    barrier();
+    for (uint i = lane; i < n; i += RB_MERGE_LANES) walkOrder[i] = greedyRecord(candidateAt(order[i].y));
+  }
 }

@@ -40,6 +40,5 @@ void main() {
     walkOrder[push.sizes.y + i] = paperRecord(candidateAt(relevance[i].y), n);
     return;
   }
-  GpuCandidate c = candidates[ci];
-  walkOrder[i] = uvec4(floatBitsToUint(c.cost), floatBitsToUint(c.value), ci, c.id);
+  walkOrder[i] = greedyRecord(ci);
 }

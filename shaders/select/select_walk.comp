@@ -14,6 +14,7 @@
 // objects in the frame's selection (zeroed by select_candidates.comp), nothing else reads
 // the flags there. With `benefit` in frame mode it then sets the frame's probe stride.
 #include "include/select_common.glsl"
+#include "include/select_apply.glsl"
 
 // The device's subgroup size: the workgroup is one subgroup (were it more, each would walk
 // the same order to the same selection and write the same values).
@@ -340,5 +341,12 @@ void main() {
     result3.y = floatBitsToUint(prior);
     result3.z = floatBitsToUint(share);  // the partial item's share of its tiles (0: none)
     result2.w = everything || policy == RB_SELECT_NONE ? 0u : 1u;  // the selection needed an order
+  }
+  // Few objects: the selection applied here (include/select_apply.glsl), once every lane's
+  // marks and the probe stride are visible, instead of in a dispatch of its own.
+  if (push.walk.y != 0u && push.stage.x == RB_APPLY_IN_WALK) {
+    subgroupMemoryBarrierBuffer();
+    subgroupBarrier();
+    for (uint i = gl_SubgroupInvocationID; i < push.walk.z; i += gl_SubgroupSize) applySelection(i);
   }
 }

@@ -125,6 +125,12 @@ struct GpuSelector::Impl {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
     dispatch(cmd, candidatesFromObjects, push, vk::groupsFor(objects, RB_GROUP_SIZE));
     orderForWalk(cmd, push, policy, uint32_t(most));
+    if (objects <= RB_APPLY_IN_WALK_OBJECTS) {
+      SelectPush applying = push;
+      applying.stage.x = RB_APPLY_IN_WALK;
+      dispatch(cmd, walk, applying, 1);
+      return;
+    }
     dispatch(cmd, walk, push, 1);
     dispatch(cmd, apply, push, vk::groupsFor(objects, RB_GROUP_SIZE));
   }
@@ -145,15 +151,17 @@ struct GpuSelector::Impl {
   // What the walk reads for up to `most` candidates: the policy's order (and `paper`'s
   // relevance order), laid out as the walk's records (select_gather.comp).
   void orderForWalk(VkCommandBuffer cmd, const SelectPush& push, Policy policy, uint32_t most) {
-    sortOrder(cmd, push, 0, most);
+    // One block of a greedy policy's candidates: the block sort gathers them too.
+    const bool gatherInSort = mergeSort && policy != Policy::Paper && most <= RB_MERGE_BLOCK;
+    sortOrder(cmd, push, 0, most, gatherInSort);
     if (policy == Policy::Paper) sortOrder(cmd, push, 1, most);
-    dispatch(cmd, gather, push, vk::groupsFor(most, RB_GROUP_SIZE));
+    if (!gatherInSort) dispatch(cmd, gather, push, vk::groupsFor(most, RB_GROUP_SIZE));
   }
 
   // A sort of one order (0: the policy's, 1: `paper`'s relevance order) of up to `most`
   // candidates: the merge sort (computing its own keys), or keys then the bitonic sort.
-  void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which, uint32_t most) {
-    push.stage = glm::uvec4(0, 0, which, push.stage.w);
+  void sortOrder(VkCommandBuffer cmd, SelectPush push, uint32_t which, uint32_t most, bool gatherInSort = false) {
+    push.stage = glm::uvec4(0, gatherInSort ? RB_GATHER_IN_SORT : 0, which, push.stage.w);
     if (mergeSort) {
       // Blocks sorted by one workgroup each, then merge passes while runs are shorter than
       // `most`. The shaders count the levels the candidates need and pick the buffers (in
