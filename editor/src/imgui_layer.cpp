@@ -24,6 +24,13 @@ ImGuiLayer::ImGuiLayer(const WindowDevice& wd, const Presenter& presenter) : wd_
   style.AntiAliasedLines = false;
   style.AntiAliasedFill = false;
   style.ScrollbarRounding = 0.0f;
+  // And per blended pixel: widgets are outlined rather than filled, and table headers and
+  // scrollbars have no background (with an object picked, 2.35 to 1.84 ms at 1280x720; the
+  // filled sliders, input fields and the plot's frame alone were 0.35 ms).
+  style.Colors[ImGuiCol_FrameBg].w = 0.0f;
+  style.FrameBorderSize = 1.0f;
+  style.Colors[ImGuiCol_TableHeaderBg].w = 0.0f;
+  style.Colors[ImGuiCol_ScrollbarBg].w = 0.0f;
   ImGui_ImplGlfw_InitForVulkan(wd.window(), true);
   renderer_ = std::make_unique<UiRenderer>(wd, presenter.uiRenderPass());
 }
