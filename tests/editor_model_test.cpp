@@ -259,6 +259,27 @@ TEST(EditorRows, OverlayTints) {
   EXPECT_NE(glm::vec3(ids[0]), glm::vec3(ids[1]));
   EXPECT_THROW(parseOverlay("heat"), Error);
   EXPECT_EQ(parseOverlay("benefit"), Overlay::Benefit);
+  // A partial item (benefit's, on a share of its tiles) alone: its tint weighs by that share;
+  // beside a whole item the object is tinted in full.
+  std::vector<ObjectRow> partial = rows;
+  partial[0].metrics.itemTileShare[1] = 0.25f;
+  partial[2].metrics.itemTileShare[2] = 0.5f;
+  const auto shared = overlayTints(Overlay::Items, partial);
+  EXPECT_FLOAT_EQ(shared[0].a, 0.25f * items[0].a);
+  EXPECT_EQ(shared[2].a, items[2].a);
+}
+
+// The list's items column: upper case for an item traced whole, lower case for the partial
+// item, '-' for one left out.
+TEST(EditorRows, ItemsColumnMarksThePartialItem) {
+  ObjectMetrics m;
+  EXPECT_EQ(itemsText(m), "---");
+  m.selectedItems = 7u;
+  EXPECT_EQ(itemsText(m), "SRT");
+  m.itemTileShare[1] = 0.4f;
+  EXPECT_EQ(itemsText(m), "SrT");
+  m.selectedItems = 2u;
+  EXPECT_EQ(itemsText(m), "-r-");
 }
 
 TEST(EditorSession, EditsAreValidatedUndoneAndSavedIntoTheGltf) {

@@ -142,6 +142,16 @@ Overlay parseOverlay(const std::string& name) {
   throw Error("overlay must be none, items, cost, benefit, ids or traced, got '" + name + "'");
 }
 
+std::string itemsText(const ObjectMetrics& m) {
+  std::string s;
+  const char letters[3] = {'S', 'R', 'T'};
+  for (size_t e = 0; e < 3; ++e) {
+    const bool traced = (m.selectedItems >> e) & 1u;
+    s += !traced ? '-' : m.itemTileShare[e] < 1.0f ? char(std::tolower(letters[e])) : letters[e];
+  }
+  return s;
+}
+
 glm::vec3 effectColour(uint32_t itemBits) {
   glm::vec3 c(0.0f);
   if (itemBits & 1u) c += glm::vec3(0.25f, 0.45f, 1.0f);  // shadows: blue
@@ -157,7 +167,13 @@ std::vector<glm::vec4> overlayTints(Overlay overlay, const std::vector<ObjectRow
     case Overlay::Traced: break;  // per pixel, in the overlay shader
     case Overlay::Items:
       for (size_t i = 0; i < rows.size(); ++i)
-        if (const uint32_t bits = rows[i].metrics.selectedItems & 7u) tints[i] = glm::vec4(effectColour(bits), 0.5f);
+        if (const uint32_t bits = rows[i].metrics.selectedItems & 7u) {
+          // The largest share of tiles among its traced items (1 but for a lone partial item).
+          float share = 0.0f;
+          for (size_t e = 0; e < 3; ++e)
+            if ((bits >> e) & 1u) share = std::max(share, rows[i].metrics.itemTileShare[e]);
+          tints[i] = glm::vec4(effectColour(bits), 0.5f * share);
+        }
       break;
     case Overlay::Cost: return heatTints(rows, predictedCost);
     case Overlay::Benefit: return heatTints(rows, measuredBenefit);

@@ -45,12 +45,18 @@ std::vector<const ObjectRow*> visibleRows(const std::vector<ObjectRow>& rows, co
 // The object list as CSV (a header, then a line per object), for `dump` and the tests.
 std::string rowsCsv(const std::vector<ObjectRow>& rows);
 
+// The object list's items column: S, R, T for shadows, reflections, refractions traced on
+// the whole object, the lower-case letter for `benefit`'s partial item (traced on a share of
+// its tiles), '-' for an item not traced.
+std::string itemsText(const ObjectMetrics& m);
+
 // Traced: per pixel, the effects traced there (the core's traced mask: shadows only where
 // the classifier found the shadow map uncertain); the others tint whole objects.
 enum class Overlay { None, Items, Cost, Benefit, Ids, Traced };
 const char* overlayName(Overlay overlay);
 Overlay parseOverlay(const std::string& name);  // throws Error naming the choices
-// Per object ID the overlay's colour and blend weight: the traced items' effect colours,
+// Per object ID the overlay's colour and blend weight: the traced items' effect colours (a
+// partial item's weight scaled by its share of tiles, where it is the object's only one),
 // a heat ramp of the predicted cost or the measured benefit (each relative to the frame's
 // largest), or a colour per object ID.
 std::vector<glm::vec4> overlayTints(Overlay overlay, const std::vector<ObjectRow>& rows);

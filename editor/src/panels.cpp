@@ -16,13 +16,6 @@ const Policy kPolicies[] = {Policy::None, Policy::All, Policy::Paper, Policy::De
 constexpr size_t kPlotPoints = 150;
 const Overlay kOverlays[] = {Overlay::None, Overlay::Items, Overlay::Cost, Overlay::Benefit, Overlay::Ids, Overlay::Traced};
 
-std::string itemsText(uint32_t bits) {
-  std::string s;
-  s += (bits & 1u) ? 'S' : '-';
-  s += (bits & 2u) ? 'R' : '-';
-  s += (bits & 4u) ? 'T' : '-';
-  return s;
-}
 
 }  // namespace
 
@@ -173,7 +166,7 @@ void Panels::objectList(const Session& session, const UiView& view, UiRequests& 
     ImGui::TableNextColumn();
     ImGui::Text("%d", int(row->selectedLastFrame));
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(itemsText(m.selectedItems).c_str());
+    ImGui::TextUnformatted(itemsText(m).c_str());
     ImGui::TableNextColumn();
     ImGui::Text("%.4g", double(m.itemBenefit[0]) + m.itemBenefit[1] + m.itemBenefit[2]);
     ImGui::TableNextColumn();
