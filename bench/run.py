@@ -264,7 +264,10 @@ def summarize(points):
         row["budget_use"] = median([num(r["rt_stage_ms"]) / budget for r in binding]) if binding else math.nan
         row["objects"] = mean([num(r["selected_objects"]) for r in frames])
         row["rays"] = mean([num(r["rays"]) for r in frames])
-        ratios = [num(r["selected_value"]) / num(r["optimal_value_bound"]) for r in frames if num(r["optimal_value_bound"]) > 0]
+        # Frames with `benefit`'s partial item left out: its share is a fraction of an option,
+        # which the 0/1 bound does not offer (older runs have no such column).
+        ratios = [num(r["selected_value"]) / num(r["optimal_value_bound"]) for r in frames
+                  if num(r["optimal_value_bound"]) > 0 and not num(r.get("partial_share", "0")) > 0]
         row["value_over_bound"] = mean(ratios) if ratios else math.nan
         row["changes_per_frame"] = mean([num(r["selection_changes"]) for r in frames])
         # Items changing option (left out, or a rate) per frame: `benefit`'s flicker (older runs: none).

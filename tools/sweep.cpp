@@ -171,7 +171,7 @@ class Sweep {
          << passCell(t, Pass::Select) << ',' << t.traceMs() << ',' << t.rtStageMs() << ',' << passCell(t, Pass::ShadowMaps) << ','
          << passCell(t, Pass::EnvFallback) << ',' << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
          << t.selectedObjects << ',' << t.raysTraced << ',' << t.selectedValue << ',' << t.optimalValueBound << ',' << t.selectionChanges << ','
-         << t.itemOptionChanges << ',';
+         << t.itemOptionChanges << ',' << t.partialShare << ',';
     if (rmse >= 0.0) {
       const double mse = rmse * rmse;
       csv_ << rmse << ',' << (mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity()) << ','
@@ -310,7 +310,7 @@ int runSweep(const SweepCommand& c) {
   std::filesystem::create_directories(out / "paths");
   std::ofstream csv(out / "frames.csv");
   csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
-         "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,rmse,psnr,image\n";
+         "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,partial_share,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
   calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,ms_per_item_work_unit,stage_overhead_ms,trace_fixed_ms,ms_per_ray,budgets_ms\n";
   // The cost units the policies predict in, each calibrated with a policy that uses it.
