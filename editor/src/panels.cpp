@@ -16,7 +16,6 @@ const Policy kPolicies[] = {Policy::None, Policy::All, Policy::Paper, Policy::De
 constexpr size_t kPlotPoints = 150;
 const Overlay kOverlays[] = {Overlay::None, Overlay::Items, Overlay::Cost, Overlay::Benefit, Overlay::Ids, Overlay::Traced};
 
-
 }  // namespace
 
 UiRequests Panels::draw(const Session& session, UiView& view) {

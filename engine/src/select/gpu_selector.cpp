@@ -125,14 +125,12 @@ struct GpuSelector::Impl {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipelineLayout, 0, 1, &set.set, 0, nullptr);
     dispatch(cmd, candidatesFromObjects, push, vk::groupsFor(objects, RB_GROUP_SIZE));
     orderForWalk(cmd, push, policy, uint32_t(most));
-    if (objects <= RB_APPLY_IN_WALK_OBJECTS) {
-      SelectPush applying = push;
-      applying.stage.x = RB_APPLY_IN_WALK;
-      dispatch(cmd, walk, applying, 1);
-      return;
-    }
-    dispatch(cmd, walk, push, 1);
-    dispatch(cmd, apply, push, vk::groupsFor(objects, RB_GROUP_SIZE));
+    // Few objects: the walk applies the selection itself (select_walk.comp), a dispatch saved.
+    const bool applyInWalk = objects <= RB_APPLY_IN_WALK_OBJECTS;
+    SelectPush walking = push;
+    if (applyInWalk) walking.stage.x = RB_APPLY_IN_WALK;
+    dispatch(cmd, walk, walking, 1);
+    if (!applyInWalk) dispatch(cmd, apply, push, vk::groupsFor(objects, RB_GROUP_SIZE));
   }
 
   // Binds `pipeline` with `push`, records the dispatch, then a barrier for the next step.
