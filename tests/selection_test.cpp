@@ -165,26 +165,38 @@ TEST(SelectionPolicies, ThePartialItemTakesTheShareOfItsTilesTheBudgetLeft) {
   o.rateSegments = true;
   o.partialItem = true;
   // IDs item * 4 + segment; item = object * 3 + effect (0 shadows, 1 reflections).
-  const uint32_t reflections0 = (0 * 3 + 1) * 4, shadows1 = (1 * 3 + 0) * 4, reflections1 = (1 * 3 + 1) * 4, reflections2 = (2 * 3 + 1) * 4;
-  const std::vector<Candidate> c = {{reflections0, 1, 10, 0}, {shadows1, 2.5f, 15, 0}, {reflections1, 4, 20, 0}, {reflections2, 0.5f, 20, 0}};
-  // Density order: reflections 2 (40), 0 (10), shadows 1 (6), reflections 1 (5). Budget 3.5:
-  // reflections 2 and 0 (2 left); shadows 1 does not fit but is no partial item; reflections 1
-  // takes 2 / 4 of its tiles.
+  const uint32_t reflections0 = (0 * 3 + 1) * 4, shadows1 = (1 * 3 + 0) * 4, reflections1 = (1 * 3 + 1) * 4, reflections2 = (2 * 3 + 1) * 4,
+                 reflections3 = (3 * 3 + 1) * 4;
+  const std::vector<Candidate> c = {{reflections0, 1, 10, 0}, {shadows1, 2.5f, 15, 0}, {reflections1, 4, 20, 0}, {reflections2, 0.5f, 20, 0},
+                                    {reflections3, 0.25f, 0.5f, 0}};
+  // Density order: reflections 2 (40), 0 (10), shadows 1 (6), reflections 1 (5), 3 (2). Budget
+  // 3.5: reflections 2 and 0 (2 left); shadows 1 does not fit but is no partial item;
+  // reflections 1 takes 2 / 4 of its tiles, and the walk stops there: reflections 3, which
+  // fits, is worth less per cost than the partial item's share.
   const select::Selection s = select::selectObjects(Policy::Benefit, c, 3.5f, o);
   EXPECT_EQ(s.ids, (std::vector<uint32_t>{reflections0, reflections1, reflections2}));
   EXPECT_EQ(s.partial.id, reflections1);
   EXPECT_EQ(s.partial.share, 0.5f);
   EXPECT_DOUBLE_EQ(s.cost, 3.5);
   EXPECT_DOUBLE_EQ(s.value, 40.0);
-  // Without the after-step (the GPU's select(), the benchmark's bound): the greedy alone.
+  // Without the partial item (the GPU's select(), the benchmark's bound): the greedy alone,
+  // with its fill-in.
   o.partialItem = false;
-  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 3.5f, o).ids, (std::vector<uint32_t>{reflections0, reflections2}));
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 3.5f, o).ids, (std::vector<uint32_t>{reflections0, reflections2, reflections3}));
   o.partialItem = true;
-  // Under an eighth left: 1.75 leaves 0.25 of 4.
+  // Under an eighth left (1.75 leaves 0.25 of 4): no partial item, and the walk goes on to
+  // reflections 3, which fits.
   EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 1.75f, o).partial.id, UINT32_MAX);
-  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 1.75f, o).ids, (std::vector<uint32_t>{reflections0, reflections2}));
-  // The best single candidate beats the greedy: no partial item beside it.
-  const std::vector<Candidate> single = {{reflections0, 1, 10, 0}, {reflections1, 3, 25, 0}};
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, c, 1.75f, o).ids, (std::vector<uint32_t>{reflections0, reflections2, reflections3}));
+  // The greedy with its partial item beats the best single candidate it would have lost to.
+  const std::vector<Candidate> pair = {{reflections0, 1, 10, 0}, {reflections1, 3, 25, 0}};
+  const select::Selection g = select::selectObjects(Policy::Benefit, pair, 3.0f, o);
+  EXPECT_EQ(g.ids, (std::vector<uint32_t>{reflections0, reflections1}));
+  EXPECT_EQ(g.partial.id, reflections1);
+  EXPECT_FLOAT_EQ(g.partial.share, 2.0f / 3.0f);
+  // The best single candidate beats the greedy, whose partial share is under an eighth: no
+  // partial item beside it.
+  const std::vector<Candidate> single = {{reflections0, 2.8f, 30, 0}, {reflections1, 3, 31, 0}};
   const select::Selection b = select::selectObjects(Policy::Benefit, single, 3.0f, o);
   EXPECT_EQ(b.ids, (std::vector<uint32_t>{reflections1}));
   EXPECT_EQ(b.partial.id, UINT32_MAX);

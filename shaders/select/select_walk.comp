@@ -84,8 +84,10 @@ bool betterSingle(GpuCandidate c, uint ci, Single b) {
 }
 
 // `benefit` in frame mode with rates chosen per item: the first item in the walk's order whose
-// first segment did not fit, its cost and value, and the budget the walk left (the same in
-// every lane); traced on a share of its tiles (shared/selection.h, RB_PARTIAL_MIN_SHARE).
+// first segment did not fit, its cost and value, and the budget the walk had left then (the
+// same in every lane); traced on a share of its tiles (shared/selection.h,
+// RB_PARTIAL_MIN_SHARE). Where that share is taken the walk stops there: what follows in the
+// order is worth less per cost (the fractional knapsack's greedy; policies.cpp's reference).
 uint partialId = RB_NO_PARTIAL;
 float partialCost = 0.0, partialValue = 0.0, leftOver = 0.0;
 bool partialWanted() { return push.walk.y != 0u && rateSegmentsWalk(); }
@@ -142,6 +144,8 @@ Picked selectGreedy(uint n, float budget) {
           partialId = id;
           partialCost = cost;
           partialValue = value;
+          leftOver = remaining;
+          if (exactQuotient(remaining, cost) >= RB_PARTIAL_MIN_SHARE) remaining = 0.0;
         }
       }
     } else if (partialId == RB_NO_PARTIAL && subgroupAny(eligible)) {  // nothing here fits: the first eligible one
@@ -149,13 +153,14 @@ Picked selectGreedy(uint n, float budget) {
       partialId = subgroupShuffle(c.id, first);
       partialCost = subgroupShuffle(c.cost, first);
       partialValue = subgroupShuffle(c.value, first);
+      leftOver = remaining;
+      if (exactQuotient(remaining, partialCost) >= RB_PARTIAL_MIN_SHARE) remaining = 0.0;
     }
     if (valid) mark(ci, c.id, taken);
     // Rate segments: a single option is an item's first segment (the others build on it).
     bool single = !segments || c.id % RB_SEGMENT_SLOTS == 0u;
     if (density && valid && single && c.cost <= budget && betterSingle(c, ci, best)) best = Single(1u, c.value, c.id, ci);
   }
-  leftOver = remaining;
   bool found = best.found != 0u;
   if (!subgroupAny(found)) return p;
   // The subgroup's best: highest value, then lowest ID, then lowest index.
@@ -163,7 +168,9 @@ Picked selectGreedy(uint n, float budget) {
   bool top = found && best.value == topValue;
   uint topId = subgroupMin(top ? best.id : 0xFFFFFFFFu);
   uint winner = subgroupMin(top && best.id == topId ? best.index : 0xFFFFFFFFu);
-  if (topValue <= p.value) return p;
+  float share = partialId != RB_NO_PARTIAL ? exactQuotient(leftOver, partialCost) : 0.0;
+  precise float withPartial = p.value + (share >= RB_PARTIAL_MIN_SHARE ? partialValue * share : 0.0);
+  if (topValue <= withPartial) return p;
   partialId = RB_NO_PARTIAL;  // the best single candidate instead of the greedy selection
   clearAll(n);
   if (segments) {

@@ -39,9 +39,11 @@ bool partialCandidate(uint32_t id) {
 
 // The same over rate segments: one goes in only onto its item's previous segment. `partial`
 // (when given) gets the first candidate in `order` that partialCandidate allows and that did
-// not fit, and `remaining` what the budget left.
+// not fit, and `partialBudget` what the budget left then. Where that pays for at least
+// RB_PARTIAL_MIN_SHARE of it, the walk stops there (the fractional knapsack's greedy: what
+// follows in the order is worth less per cost than the partial item's share).
 std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std::vector<uint32_t>& order, float budget,
-                                        uint32_t* partial = nullptr, float* remainingOut = nullptr) {
+                                        uint32_t* partial = nullptr, float* partialBudget = nullptr) {
   std::unordered_map<uint32_t, uint32_t> level;  // item -> segments taken
   std::vector<uint32_t> chosen;
   float remaining = budget;
@@ -53,9 +55,10 @@ std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std:
       ++taken;
     } else if (partial && *partial == UINT32_MAX && partialCandidate(c[i].id)) {
       *partial = i;
+      *partialBudget = remaining;
+      if (exactQuotient(remaining, c[i].cost) >= float(RB_PARTIAL_MIN_SHARE)) remaining = 0.0f;
     }
   }
-  if (remainingOut) *remainingOut = remaining;
   return chosen;
 }
 
@@ -88,22 +91,24 @@ std::vector<uint32_t> density(std::span<const Candidate> c, float budget, bool s
     return ka != kb ? ka > kb : c[a].id < c[b].id;
   });
   uint32_t partialIndex = UINT32_MAX;
-  float remaining = 0.0f;
-  std::vector<uint32_t> greedy = segments ? greedyFitSegments(c, order, budget, partial ? &partialIndex : nullptr, &remaining) : greedyFit(c, order, budget);
+  float partialBudget = 0.0f;
+  std::vector<uint32_t> greedy = segments ? greedyFitSegments(c, order, budget, partial ? &partialIndex : nullptr, &partialBudget) : greedyFit(c, order, budget);
   float greedyValue = 0.0f;
   for (uint32_t i : greedy) greedyValue += c[i].value;
+  PartialItem part;
+  if (partialIndex != UINT32_MAX) {
+    const float share = exactQuotient(partialBudget, c[partialIndex].cost);
+    if (share >= float(RB_PARTIAL_MIN_SHARE)) part = {c[partialIndex].id, share, partialBudget, c[partialIndex].value * share};
+  }
   // With rate segments a single option is an item's first segment.
   uint32_t best = UINT32_MAX;
   for (uint32_t i = 0; i < c.size(); ++i)
     if (c[i].cost <= budget && (!segments || c[i].id % kSegmentSlots == 0) && (best == UINT32_MAX || c[i].value > c[best].value || (c[i].value == c[best].value && c[i].id < c[best].id)))
       best = i;
-  if (best != UINT32_MAX && c[best].value > greedyValue) return {best};
-  if (partialIndex != UINT32_MAX) {
-    const float share = exactQuotient(remaining, c[partialIndex].cost);
-    if (share >= float(RB_PARTIAL_MIN_SHARE)) {
-      *partial = {c[partialIndex].id, share, remaining, c[partialIndex].value * share};
-      greedy.push_back(partialIndex);
-    }
+  if (best != UINT32_MAX && c[best].value > greedyValue + part.value) return {best};
+  if (part.id != UINT32_MAX) {
+    *partial = part;
+    greedy.push_back(partialIndex);
   }
   return greedy;
 }
