@@ -63,7 +63,7 @@ struct GpuObjectCost {
 // step is exact and the CPU reference equals it): optimistic, so that an unmeasured or
 // long-untraced item gets traced and measured again (docs/SELECTION.md). Per effect, for a
 // perfect mirror and clear glass; an object's materials scale them (GpuObjectParams::priors).
-#define RB_PRIOR_BENEFIT_SHADOWS 0.05
+#define RB_PRIOR_BENEFIT_SHADOWS 0.005
 #define RB_PRIOR_BENEFIT_REFLECTIONS 0.15
 #define RB_PRIOR_BENEFIT_REFRACTIONS 0.15
 #define RB_BENEFIT_DRIFT 0.0625
