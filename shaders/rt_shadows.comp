@@ -104,7 +104,10 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection
 // traced this frame (0 where the classifier found the map certain), else the map's alone.
 // Filling the correction, not the visibility, keeps the map's shadow edges at the map's
 // resolution where the rays agree with it, where a filled visibility makes every edge a
-// staircase of the rate's blocks.
+// staircase of the rate's blocks. Where there is nothing to correct (most pixels: the
+// neighbours' maps were certain or right) the mask says "the map's" (negative) and the
+// lighting pass, which looks the map up for untraced items anyway, does it outside the
+// ray-tracing stage: the lookup was most of a skipped pixel's cost.
 void fillPending(ivec2 pixel, FillCentre c, Selection sel, SixteenthSample samples[4]) {
   float weights[9];
   uint slots[9];
@@ -128,8 +131,8 @@ void fillPending(ivec2 pixel, FillCentre c, Selection sel, SixteenthSample sampl
         sum += weights[k] * fillCorrection(slots[k], i);
         weight += weights[k];
       }
-      float mapped = shadowFromLight(lights[i], c.position, c.normal);
-      visible = weight >= RB_FILL_MIN_WEIGHT ? clamp(mapped + sum / weight, 0.0, 1.0) : mapped;
+      float correction = weight >= RB_FILL_MIN_WEIGHT ? sum / weight : 0.0;
+      visible = correction != 0.0 ? clamp(shadowFromLight(lights[i], c.position, c.normal) + correction, 0.0, 1.0) : -1.0;
     }
     imageStore(shadowMask, ivec3(pixel, int(i)), vec4(visible));
   }
