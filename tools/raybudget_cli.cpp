@@ -58,7 +58,11 @@ int render(const raybudget::cli::RenderCommand& c) {
   for (uint32_t f = 0; f < c.frames; ++f) {
     collect(renderer.render(cli::cameraOnPath(c.camera, start, f, c.frames, shape)));
     // Waits for the frame: explaining each frame serialises the frames in flight.
-    if (c.explain == cli::RenderCommand::Explain::Frames) cli::printFrameSelection(std::cout, f, renderer.objectMetrics());
+    if (c.explain == cli::RenderCommand::Explain::Frames) {
+      const std::vector<ObjectMetrics> metrics = renderer.objectMetrics();
+      cli::printFrameSelection(std::cout, f, metrics);
+      if (c.itemStats) writeItemStats(std::filesystem::path(c.out) / ("items-" + std::to_string(f) + ".csv"), metrics);
+    }
   }
   collect(renderer.finish());
   const FrameImages images = renderer.readback();
