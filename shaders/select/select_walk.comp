@@ -91,6 +91,20 @@ bool betterSingle(GpuCandidate c, uint ci, Single b) {
 uint partialId = RB_NO_PARTIAL;
 float partialCost = 0.0, partialValue = 0.0, leftOver = 0.0;
 bool partialWanted() { return push.walk.y != 0u && rateSegmentsWalk(); }
+// Records candidate `id`, which did not fit, as the partial item with the budget left now; where
+// that pays for RB_PARTIAL_MIN_SHARE of it, nothing more goes in.
+void recordPartial(uint id, float cost, float value, inout float remaining) {
+  partialId = id;
+  partialCost = cost;
+  partialValue = value;
+  leftOver = remaining;
+  if (exactQuotient(remaining, cost) >= RB_PARTIAL_MIN_SHARE) remaining = 0.0;
+}
+// The partial item's share of its tiles: 0 where there is none or under RB_PARTIAL_MIN_SHARE.
+float partialShare() {
+  float share = partialId != RB_NO_PARTIAL ? exactQuotient(leftOver, partialCost) : 0.0;
+  return share >= RB_PARTIAL_MIN_SHARE ? share : 0.0;
+}
 // Whether candidate `id` may become the partial one: an item's first segment below full rate
 // (a shadow item's only segment is full rate, which its pixel count would misprice).
 bool partialCandidate(uint id) {
@@ -141,20 +155,12 @@ Picked selectGreedy(uint n, float budget) {
           taken = taken || lane == j;
           if (segments) scratch[id / RB_SEGMENT_SLOTS] = id % RB_SEGMENT_SLOTS + 1u;
         } else if (partialId == RB_NO_PARTIAL && subgroupShuffle(eligible, j)) {
-          partialId = id;
-          partialCost = cost;
-          partialValue = value;
-          leftOver = remaining;
-          if (exactQuotient(remaining, cost) >= RB_PARTIAL_MIN_SHARE) remaining = 0.0;
+          recordPartial(id, cost, value, remaining);
         }
       }
     } else if (partialId == RB_NO_PARTIAL && subgroupAny(eligible)) {  // nothing here fits: the first eligible one
       uint first = subgroupBallotFindLSB(subgroupBallot(eligible));
-      partialId = subgroupShuffle(c.id, first);
-      partialCost = subgroupShuffle(c.cost, first);
-      partialValue = subgroupShuffle(c.value, first);
-      leftOver = remaining;
-      if (exactQuotient(remaining, partialCost) >= RB_PARTIAL_MIN_SHARE) remaining = 0.0;
+      recordPartial(subgroupShuffle(c.id, first), subgroupShuffle(c.cost, first), subgroupShuffle(c.value, first), remaining);
     }
     if (valid) mark(ci, c.id, taken);
     // Rate segments: a single option is an item's first segment (the others build on it).
@@ -168,8 +174,7 @@ Picked selectGreedy(uint n, float budget) {
   bool top = found && best.value == topValue;
   uint topId = subgroupMin(top ? best.id : 0xFFFFFFFFu);
   uint winner = subgroupMin(top && best.id == topId ? best.index : 0xFFFFFFFFu);
-  float share = partialId != RB_NO_PARTIAL ? exactQuotient(leftOver, partialCost) : 0.0;
-  precise float withPartial = p.value + (share >= RB_PARTIAL_MIN_SHARE ? partialValue * share : 0.0);
+  precise float withPartial = p.value + partialValue * partialShare();
   if (topValue <= withPartial) return p;
   partialId = RB_NO_PARTIAL;  // the best single candidate instead of the greedy selection
   clearAll(n);
@@ -325,15 +330,14 @@ void main() {
     p = selectGreedy(n, budget);
   }
   // The partial item: its first segment on the share of its tiles the budget left pays for.
-  float share = partialId != RB_NO_PARTIAL ? exactQuotient(leftOver, partialCost) : 0.0;
-  if (share >= RB_PARTIAL_MIN_SHARE) {
+  float share = partialShare();
+  if (share > 0.0) {
     scratch[partialId / RB_SEGMENT_SLOTS] = 1u;  // every lane writes the same level
     p.cost += leftOver;
     p.value += partialValue * share;
     ++p.count;
   } else {
     partialId = RB_NO_PARTIAL;
-    share = 0.0;
   }
   if (push.walk.y != 0u && gl_SubgroupInvocationID == 0u) {  // for the tile list and the trace passes (every frame mode policy)
     items[push.walk.z * RB_ITEMS_PER_OBJECT].selectedLast = partialId == RB_NO_PARTIAL ? 0u : partialId / RB_SEGMENT_SLOTS + 1u;
