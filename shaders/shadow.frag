@@ -2,16 +2,18 @@
 #extension GL_GOOGLE_include_directive : require
 #include "include/bindings.glsl"
 
-// Only alpha-masked materials use this stage: opaque casters render depth-only.
+// Only alpha-masked materials use this stage: opaque casters render depth-only. The alpha is
+// the G-buffer's and the tracer's: base colour factor x vertex colour x texture.
 layout(push_constant) uniform PushBlock { DrawPush push; };
 layout(location = 0) in vec2 inUv;
+layout(location = 1) in float inAlpha;
 
 #define RB_SAMPLE_MATERIAL(slot, uv) texture(textures[nonuniformEXT(slot)], uv)
 #include "include/material_layers.glsl"
 
 void main() {
   GpuMaterial m = materials[push.objectMaterial.y];
-  float alpha = m.baseColorFactor.a;
+  float alpha = m.baseColorFactor.a * inAlpha;
   alpha *= sampleMaterial(m, m.textures.x, inUv, vec4(1.0)).a;
   if (alpha < m.emissiveAlphaCutoff.w) discard;
 }
