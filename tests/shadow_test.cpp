@@ -1,6 +1,7 @@
 // Raster shadow fallbacks: for each light type, a box between the light and a ground plane
 // darkens exactly the ground point the geometry says is occluded, and leaves lit ground
-// smooth (no acne). The sky is off, so a shadowed point receives no light at all.
+// smooth (no acne); alpha-masked casters mask as the G-buffer and the rays do. The sky is
+// off, so a shadowed point receives no light at all.
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -143,6 +144,69 @@ TEST(ShadowMaps, AVertexAlphaCutOutCasterCastsNoShadow) {
   EXPECT_GT(p.shadowed, 0.98f * p.lit) << "the cut-out caster shadows the ground in the shadow map";
   // With opaque vertex colours the same caster shadows it.
   expectShadow(probe(groundAndCaster(cutOut, 1.0f), sun, {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f}));
+}
+
+// Luminance of `img` (HDR) averaged over the (2r+1)^2 pixels around the projection of `world`.
+float meanLuminance(const FrameImages& img, const glm::mat4& viewProj, const glm::vec3& world, int r) {
+  const glm::vec4 c = viewProj * glm::vec4(world, 1.0f);
+  const int cx = int((c.x / c.w * 0.5f + 0.5f) * float(img.width)), cy = int((c.y / c.w * 0.5f + 0.5f) * float(img.height));
+  double sum = 0.0;
+  for (int y = cy - r; y <= cy + r; ++y)
+    for (int x = cx - r; x <= cx + r; ++x) {
+      const size_t i = (size_t(y) * img.width + size_t(x)) * 4;
+      sum += 0.2126f * halfToFloat(img.hdrRgba16[i]) + 0.7152f * halfToFloat(img.hdrRgba16[i + 1]) + 0.0722f * halfToFloat(img.hdrRgba16[i + 2]);
+    }
+  return float(sum / double((2 * r + 1) * (2 * r + 1)));
+}
+
+// A caster masked by a fine alpha texture (one opaque column in four, finer than a shadow-map
+// texel): the shadow map's alpha test samples its finest level as the rays' does, so the
+// fallback's shadow under it is about as dark as the traced one. At the level the light's view
+// picks the columns average to alpha 0.25, under the cut-off: no shadow at all.
+TEST(ShadowMaps, AFinelyMaskedCasterShadowsAsTheRaysSeeIt) {
+  Material masked;
+  masked.metallic = 0.0f;
+  masked.alphaMode = AlphaMode::Mask;
+  masked.alphaCutoff = 0.5f;
+  masked.doubleSided = true;
+  masked.baseColorTexture = 0;
+  Scene scene = groundAndCaster(masked, 1.0f);
+  Image stripes{"stripes", 256, 4, std::vector<uint8_t>(256 * 4 * 4, 255)};
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 256; ++x) stripes.rgba[(y * 256 + x) * 4 + 3] = x % 4 == 0 ? 255 : 0;
+  scene.images.push_back(stripes);
+  scene.textures.push_back(Texture{0, -1});
+  Mesh& caster = scene.meshes.back();
+  for (Vertex& v : caster.vertices) v.uv = glm::vec2(v.position.x > 0.0f ? 1.0f : 0.0f, v.position.z > 0.0f ? 1.0f : 0.0f);
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.intensity = 3.0f;
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  scene.lights = {sun};
+  scene.usesDefaultSun = false;
+  Camera cam;
+  cam.position = {7.0f, 5.0f, 7.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  float under[2], open[2];
+  for (int traced = 0; traced < 2; ++traced) {
+    RenderSettings settings;
+    settings.width = kW;
+    settings.height = kH;
+    settings.validation = true;
+    settings.skyIntensity = 0.0f;
+    settings.policy = traced ? Policy::All : Policy::None;
+    Renderer renderer(scene, settings);
+    renderer.render(cam);
+    renderer.finish();
+    const FrameImages img = renderer.readback();
+    test::expectValidationClean(renderer.validationMessages());
+    const glm::mat4 vp = cam.projection(renderer.aspect()) * cam.view();
+    under[traced] = meanLuminance(img, vp, {0.3f, 0.0f, -0.3f}, 4);
+    open[traced] = meanLuminance(img, vp, {3.0f, 0.0f, -3.0f}, 4);
+  }
+  const float tracedShade = 1.0f - under[1] / open[1], mapShade = 1.0f - under[0] / open[0];
+  EXPECT_GT(tracedShade, 0.1f) << "the rays see no shadow under the masked caster";
+  EXPECT_NEAR(mapShade, tracedShade, 0.5f * tracedShade) << "shadow map shade " << mapShade << ", traced " << tracedShade;
 }
 
 }  // namespace
