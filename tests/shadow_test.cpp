@@ -43,7 +43,13 @@ struct ShadowProbe {
   float litRoughness;  // max |L - mean of its horizontal neighbours| / L over a 5x5 patch
 };
 
-ShadowProbe probe(Scene scene, const Light& light, const glm::vec3& occluded, const glm::vec3& open) {
+// The ground seen from above one corner, lit by `light` alone (no sky), with `policy`.
+struct GroundView {
+  FrameImages img;
+  glm::mat4 viewProj;
+};
+
+GroundView renderGround(Scene scene, const Light& light, Policy policy = Policy::None) {
   scene.lights = {light};
   scene.usesDefaultSun = false;
   RenderSettings settings;
@@ -51,6 +57,7 @@ ShadowProbe probe(Scene scene, const Light& light, const glm::vec3& occluded, co
   settings.height = kH;
   settings.validation = true;
   settings.skyIntensity = 0.0f;
+  settings.policy = policy;
   Renderer renderer(scene, settings);
   Camera cam;
   cam.position = {7.0f, 5.0f, 7.0f};
@@ -59,22 +66,37 @@ ShadowProbe probe(Scene scene, const Light& light, const glm::vec3& occluded, co
   cam.zfar = 50.0f;
   renderer.render(cam);
   renderer.finish();
-  const FrameImages img = renderer.readback();
+  GroundView v{renderer.readback(), cam.projection(renderer.aspect()) * cam.view()};
   test::expectValidationClean(renderer.validationMessages());
-  const glm::mat4 vp = cam.projection(renderer.aspect()) * cam.view();
-  auto luminanceAt = [&](const glm::vec3& world, int dx, int dy) {
-    const glm::vec4 c = vp * glm::vec4(world, 1.0f);
-    const int x = int((c.x / c.w * 0.5f + 0.5f) * kW) + dx, y = int((c.y / c.w * 0.5f + 0.5f) * kH) + dy;
-    EXPECT_TRUE(x >= 0 && y >= 0 && x < int(kW) && y < int(kH));
-    const size_t i = (size_t(y) * kW + size_t(x)) * 4;
-    return 0.2126f * halfToFloat(img.hdrRgba16[i]) + 0.7152f * halfToFloat(img.hdrRgba16[i + 1]) + 0.0722f * halfToFloat(img.hdrRgba16[i + 2]);
-  };
-  ShadowProbe r{luminanceAt(occluded, 0, 0), luminanceAt(open, 0, 0), 0.0f};
+  return v;
+}
+
+// HDR luminance at the pixel (dx, dy) away from where `world` projects.
+float luminanceAt(const GroundView& v, const glm::vec3& world, int dx, int dy) {
+  const glm::vec4 c = v.viewProj * glm::vec4(world, 1.0f);
+  const int x = int((c.x / c.w * 0.5f + 0.5f) * kW) + dx, y = int((c.y / c.w * 0.5f + 0.5f) * kH) + dy;
+  EXPECT_TRUE(x >= 0 && y >= 0 && x < int(kW) && y < int(kH));
+  const size_t i = (size_t(y) * kW + size_t(x)) * 4;
+  const std::vector<uint16_t>& hdr = v.img.hdrRgba16;
+  return 0.2126f * halfToFloat(hdr[i]) + 0.7152f * halfToFloat(hdr[i + 1]) + 0.0722f * halfToFloat(hdr[i + 2]);
+}
+
+// Averaged over the (2r+1)^2 pixels around where `world` projects.
+float meanLuminance(const GroundView& v, const glm::vec3& world, int r) {
+  double sum = 0.0;
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) sum += luminanceAt(v, world, dx, dy);
+  return float(sum / double((2 * r + 1) * (2 * r + 1)));
+}
+
+ShadowProbe probe(Scene scene, const Light& light, const glm::vec3& occluded, const glm::vec3& open) {
+  const GroundView v = renderGround(std::move(scene), light);
+  ShadowProbe r{luminanceAt(v, occluded, 0, 0), luminanceAt(v, open, 0, 0), 0.0f};
   // Acne is high-frequency: a second difference, which ignores the smooth falloff of light.
   for (int dy = -2; dy <= 2; ++dy)
     for (int dx = -2; dx <= 2; ++dx) {
-      const float l = luminanceAt(open, dx, dy);
-      const float neighbours = 0.5f * (luminanceAt(open, dx - 1, dy) + luminanceAt(open, dx + 1, dy));
+      const float l = luminanceAt(v, open, dx, dy);
+      const float neighbours = 0.5f * (luminanceAt(v, open, dx - 1, dy) + luminanceAt(v, open, dx + 1, dy));
       r.litRoughness = std::max(r.litRoughness, std::fabs(l - neighbours) / l);
     }
   return r;
@@ -86,11 +108,16 @@ void expectShadow(const ShadowProbe& p) {
   EXPECT_LT(p.litRoughness, 0.02f) << "lit ground is not smooth: acne";
 }
 
-TEST(ShadowMaps, DirectionalLightShadowsTheGroundUnderTheBox) {
+Light overheadSun() {
   Light sun;
   sun.type = LightType::Directional;
   sun.intensity = 3.0f;
   sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  return sun;
+}
+
+TEST(ShadowMaps, DirectionalLightShadowsTheGroundUnderTheBox) {
+  const Light sun = overheadSun();
   expectShadow(probe(groundAndBox("dir"), sun, {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f}));
 }
 
@@ -116,9 +143,6 @@ TEST(ShadowMaps, PointLightShadowsTheGroundUnderTheBox) {
   expectShadow(probe(groundAndBox("point2"), point, {2.0f, 0.0f, 0.0f}, {-2.0f, 0.0f, 3.0f}));
 }
 
-// An alpha-masked caster cut out by its vertex colours' alpha (COLOR_0, which the G-buffer and
-// the tracer multiply into the base colour's alpha as glTF says) casts no shadow map shadow
-// either: the raster fallback and the traced shadows agree.
 // A diffuse ground 20x20 at y = 0 and a 2x2 caster 1.5 above its centre.
 Scene groundAndCaster(const Material& material, float vertexAlpha) {
   Scene scene = test::sceneWithMesh(test::quad(10.0f));
@@ -129,34 +153,25 @@ Scene groundAndCaster(const Material& material, float vertexAlpha) {
   return scene;
 }
 
+// A diffuse, double-sided, alpha-masked material (cut-off 0.5).
+Material maskedMaterial() {
+  Material m;
+  m.metallic = 0.0f;
+  m.alphaMode = AlphaMode::Mask;
+  m.alphaCutoff = 0.5f;
+  m.doubleSided = true;
+  return m;
+}
+
+// An alpha-masked caster cut out by its vertex colours' alpha (COLOR_0, which the G-buffer and
+// the tracer multiply into the base colour's alpha as glTF says) casts no shadow map shadow
+// either: the raster fallback and the traced shadows agree.
 TEST(ShadowMaps, AVertexAlphaCutOutCasterCastsNoShadow) {
-  Material cutOut;
-  cutOut.metallic = 0.0f;
-  cutOut.alphaMode = AlphaMode::Mask;
-  cutOut.alphaCutoff = 0.5f;
-  cutOut.doubleSided = true;
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.intensity = 3.0f;
-  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
-  const ShadowProbe p = probe(groundAndCaster(cutOut, 0.0f), sun, {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f});
+  const ShadowProbe p = probe(groundAndCaster(maskedMaterial(), 0.0f), overheadSun(), {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f});
   EXPECT_GT(p.lit, 0.01f);
   EXPECT_GT(p.shadowed, 0.98f * p.lit) << "the cut-out caster shadows the ground in the shadow map";
   // With opaque vertex colours the same caster shadows it.
-  expectShadow(probe(groundAndCaster(cutOut, 1.0f), sun, {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f}));
-}
-
-// Luminance of `img` (HDR) averaged over the (2r+1)^2 pixels around the projection of `world`.
-float meanLuminance(const FrameImages& img, const glm::mat4& viewProj, const glm::vec3& world, int r) {
-  const glm::vec4 c = viewProj * glm::vec4(world, 1.0f);
-  const int cx = int((c.x / c.w * 0.5f + 0.5f) * float(img.width)), cy = int((c.y / c.w * 0.5f + 0.5f) * float(img.height));
-  double sum = 0.0;
-  for (int y = cy - r; y <= cy + r; ++y)
-    for (int x = cx - r; x <= cx + r; ++x) {
-      const size_t i = (size_t(y) * img.width + size_t(x)) * 4;
-      sum += 0.2126f * halfToFloat(img.hdrRgba16[i]) + 0.7152f * halfToFloat(img.hdrRgba16[i + 1]) + 0.0722f * halfToFloat(img.hdrRgba16[i + 2]);
-    }
-  return float(sum / double((2 * r + 1) * (2 * r + 1)));
+  expectShadow(probe(groundAndCaster(maskedMaterial(), 1.0f), overheadSun(), {0.0f, 0.0f, 0.0f}, {3.0f, 0.0f, -3.0f}));
 }
 
 // A caster masked by a fine alpha texture (one opaque column in four, finer than a shadow-map
@@ -164,11 +179,7 @@ float meanLuminance(const FrameImages& img, const glm::mat4& viewProj, const glm
 // fallback's shadow under it is about as dark as the traced one. At the level the light's view
 // picks the columns average to alpha 0.25, under the cut-off: no shadow at all.
 TEST(ShadowMaps, AFinelyMaskedCasterShadowsAsTheRaysSeeIt) {
-  Material masked;
-  masked.metallic = 0.0f;
-  masked.alphaMode = AlphaMode::Mask;
-  masked.alphaCutoff = 0.5f;
-  masked.doubleSided = true;
+  Material masked = maskedMaterial();
   masked.baseColorTexture = 0;
   Scene scene = groundAndCaster(masked, 1.0f);
   Image stripes{"stripes", 256, 4, std::vector<uint8_t>(256 * 4 * 4, 255)};
@@ -178,33 +189,12 @@ TEST(ShadowMaps, AFinelyMaskedCasterShadowsAsTheRaysSeeIt) {
   scene.textures.push_back(Texture{0, -1});
   Mesh& caster = scene.meshes.back();
   for (Vertex& v : caster.vertices) v.uv = glm::vec2(v.position.x > 0.0f ? 1.0f : 0.0f, v.position.z > 0.0f ? 1.0f : 0.0f);
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.intensity = 3.0f;
-  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
-  scene.lights = {sun};
-  scene.usesDefaultSun = false;
-  Camera cam;
-  cam.position = {7.0f, 5.0f, 7.0f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  float under[2], open[2];
+  float shade[2];  // raster, traced: 1 - luminance under the caster / on open ground
   for (int traced = 0; traced < 2; ++traced) {
-    RenderSettings settings;
-    settings.width = kW;
-    settings.height = kH;
-    settings.validation = true;
-    settings.skyIntensity = 0.0f;
-    settings.policy = traced ? Policy::All : Policy::None;
-    Renderer renderer(scene, settings);
-    renderer.render(cam);
-    renderer.finish();
-    const FrameImages img = renderer.readback();
-    test::expectValidationClean(renderer.validationMessages());
-    const glm::mat4 vp = cam.projection(renderer.aspect()) * cam.view();
-    under[traced] = meanLuminance(img, vp, {0.3f, 0.0f, -0.3f}, 4);
-    open[traced] = meanLuminance(img, vp, {3.0f, 0.0f, -3.0f}, 4);
+    const GroundView v = renderGround(scene, overheadSun(), traced ? Policy::All : Policy::None);
+    shade[traced] = 1.0f - meanLuminance(v, {0.3f, 0.0f, -0.3f}, 4) / meanLuminance(v, {3.0f, 0.0f, -3.0f}, 4);
   }
-  const float tracedShade = 1.0f - under[1] / open[1], mapShade = 1.0f - under[0] / open[0];
+  const float mapShade = shade[0], tracedShade = shade[1];
   EXPECT_GT(tracedShade, 0.1f) << "the rays see no shadow under the masked caster";
   EXPECT_NEAR(mapShade, tracedShade, 0.5f * tracedShade) << "shadow map shade " << mapShade << ", traced " << tracedShade;
 }
