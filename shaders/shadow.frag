@@ -8,10 +8,9 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 layout(location = 0) in vec2 inUv;
 layout(location = 1) in float inAlpha;
 
-// The finest level, as the tracer's alpha test samples it (include/material_layers.glsl): at the
-// coarser level the light's view would pick, thin masked features average below the cut-off
-// and the map misses blockers the rays hit.
-#define RB_SAMPLE_MATERIAL(slot, uv) textureLod(textures[nonuniformEXT(slot)], uv, 0.0)
+// The mask is sampled at its finest level, material_layers.glsl's default, as the tracer's alpha
+// test samples it: at the coarser level the light's view would pick, thin masked features
+// average below the cut-off and the map misses blockers the rays hit.
 #include "include/material_layers.glsl"
 
 void main() {
