@@ -73,12 +73,16 @@ shared vec3 fillReflection[RB_FILL_SLOTS];
 shared vec3 fillRefraction[RB_FILL_SLOTS];
 shared uint fillPaths[RB_FILL_SLOTS];
 
+// The paths this pipeline holds (RB_PATHS_CONSTANT_ID): a scene without glass compiles no
+// refraction, one without smooth surfaces no reflection.
+layout(constant_id = RB_PATHS_CONSTANT_ID) const uint rbPaths = RB_RT_REFLECTIONS | RB_RT_REFRACTIONS;
+
 // Whether the frame traces the surface's reflection (transmission) path where its item is
-// traced: the effect is on, and the surface is smooth enough (transmissive).
+// traced: the pipeline holds it, the effect is on, and the surface is smooth enough (transmissive).
 bvec2 surfacePaths(Surface s) {
   uint effects = frame.rayTracing.x;
-  return bvec2((effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness(),
-               (effects & RB_RT_REFRACTIONS) != 0u && s.transmission * (1.0 - s.metallic) > 0.0);
+  return bvec2((rbPaths & RB_RT_REFLECTIONS) != 0u && (effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness(),
+               (rbPaths & RB_RT_REFRACTIONS) != 0u && (effects & RB_RT_REFRACTIONS) != 0u && s.transmission * (1.0 - s.metallic) > 0.0);
 }
 
 // The pixel's paths their selected items skip this frame at a reduced rate.

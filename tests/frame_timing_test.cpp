@@ -73,6 +73,12 @@ bool built(const Renderer& r, const std::string& pipeline) {
   return std::find(p.begin(), p.end(), pipeline) != p.end();
 }
 
+// Any pipeline of the effects pass, whichever paths it holds.
+bool builtEffects(const Renderer& r) {
+  const std::vector<std::string> p = r.builtPipelines();
+  return std::any_of(p.begin(), p.end(), [](const std::string& name) { return name.starts_with("trace_effects"); });
+}
+
 // Two frames of `scene` under `policy`; the renderer stays for its pipelines.
 std::vector<FrameTiming> twoFrames(Renderer& r, const Scene& scene) { return test::renderStill(r, defaultCamera(scene, r.aspect()), 2); }
 
@@ -94,7 +100,7 @@ TEST(PassPlan, ARoughOpaqueSceneRunsNoEffectsPass) {
     EXPECT_TRUE(t.passMs[size_t(Pass::TraceShadows)].has_value());
   }
   EXPECT_TRUE(built(r, "trace_shadows"));
-  EXPECT_FALSE(built(r, "trace_effects"));
+  EXPECT_FALSE(builtEffects(r));
   test::expectValidationClean(r.validationMessages());
 }
 
@@ -126,15 +132,53 @@ TEST(PassPlan, PolicyNoneTracesNothingAndBuildsNoTracePipeline) {
   EXPECT_TRUE(frames[0].passMs[size_t(Pass::ShadowMaps)].has_value());
   expectLeftOut(frames[1], Pass::ShadowMaps, PassSkip::ShadowMapsCurrent);
   expectLeftOut(frames[1], Pass::Environment, PassSkip::EnvironmentReady);
-  EXPECT_FALSE(built(r, "trace_shadows") || built(r, "trace_effects"));
+  EXPECT_FALSE(built(r, "trace_shadows") || builtEffects(r));
   // Switching the effects off leaves their pass out for that reason.
   RenderSettings off = test::settingsFor(Policy::All, 96, 64);
   off.rayTracing.reflections = off.rayTracing.refractions = false;
   Renderer noEffects(scene, off);
   for (const FrameTiming& t : twoFrames(noEffects, scene)) expectLeftOut(t, Pass::TraceEffects, PassSkip::EffectsOff);
-  EXPECT_FALSE(built(noEffects, "trace_effects"));
+  EXPECT_FALSE(builtEffects(noEffects));
   test::expectValidationClean(r.validationMessages());
   test::expectValidationClean(noEffects.validationMessages());
+}
+
+// The triangles with one material for all: `m`.
+Scene twoTrianglesOf(const Material& m) {
+  Scene scene = twoTriangles();
+  scene.materials = {m};
+  for (Mesh& mesh : scene.meshes)
+    for (Primitive& p : mesh.primitives) p.material = 0;
+  return scene;
+}
+
+// The effects pass's pipelines hold only the paths the scene can show and the settings switch
+// on; the others' code is compiled out (RB_PATHS_CONSTANT_ID).
+TEST(PassPlan, TheEffectsPipelineHoldsOnlyThePathsTheSceneShows) {
+  Material mirror;
+  mirror.metallic = 1.0f;
+  mirror.roughness = 0.05f;
+  Material glass;
+  glass.metallic = 0.0f;
+  glass.roughness = 0.6f;  // too rough to trace its reflection
+  glass.transmission = 1.0f;
+  struct Case {
+    Scene scene;
+    bool refractionsOn;
+    std::string pipeline;
+  };
+  const Scene court = loadScene(test::defaultScenePath());
+  for (const Case& c : {Case{twoTrianglesOf(mirror), true, "trace_effects(reflections)"}, Case{twoTrianglesOf(glass), true, "trace_effects(refractions)"},
+                        Case{court, true, "trace_effects(reflections,refractions)"}, Case{court, false, "trace_effects(reflections)"}}) {
+    RenderSettings s = test::settingsFor(Policy::All, 96, 64);
+    s.rayTracing.refractions = c.refractionsOn;
+    Renderer r(c.scene, s);
+    for (const FrameTiming& t : twoFrames(r, c.scene)) EXPECT_TRUE(t.passMs[size_t(Pass::TraceEffects)].has_value()) << c.pipeline;
+    const std::vector<std::string> p = r.builtPipelines();
+    EXPECT_EQ(std::count_if(p.begin(), p.end(), [](const std::string& name) { return name.starts_with("trace_effects"); }), 1) << c.pipeline;
+    EXPECT_TRUE(built(r, c.pipeline)) << c.pipeline;
+    test::expectValidationClean(r.validationMessages());
+  }
 }
 
 }  // namespace

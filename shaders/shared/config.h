@@ -42,6 +42,10 @@
 #define RB_RT_RATES 8u  // some items may be traced at a reduced rate (include/tile_pixel.glsl)
 // The trace passes' specialization constant: they fill what reduced rates left (include/tile_fill.glsl).
 #define RB_FILL_CONSTANT_ID 0
+// The effects pass's specialization constant: the paths (RB_RT_REFLECTIONS, RB_RT_REFRACTIONS) its
+// pipeline holds, those the scene can show and the settings switch on; the others' code is
+// compiled out (rt_effects.comp).
+#define RB_PATHS_CONSTANT_ID 1
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 

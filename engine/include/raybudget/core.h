@@ -185,7 +185,10 @@ class Context {
   std::vector<ObjectMetrics> objectMetrics() const;
   AccelStats accelStats() const;
   SceneEffects sceneEffects() const;  // what the scene can show at all
-  // The passes whose pipelines exist so far (built when a frame first needs them).
+  // The passes whose pipelines exist so far (built when a frame first needs them); the effects
+  // pass's name says which paths its pipelines hold: trace_effects(reflections),
+  // trace_effects(refractions) or trace_effects(reflections,refractions), "+fill" where it fills
+  // reduced ray rates.
   std::vector<std::string> builtPipelines() const;
 
  private:

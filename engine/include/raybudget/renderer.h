@@ -112,8 +112,9 @@ class Renderer {
   AccelStats accelStats() const;
   // The effects the scene can show at all (RayTracingSettings::maxRoughness applied).
   SceneEffects sceneEffects() const;
-  // The passes whose pipelines exist so far ("trace_effects+fill": the filling variant of
-  // reduced ray rates): pipelines are built when a frame first needs them.
+  // The passes whose pipelines exist so far (core::Context::builtPipelines: the effects pass by
+  // the paths it holds, "+fill" its filling variant of reduced ray rates): pipelines are built
+  // when a frame first needs them.
   std::vector<std::string> builtPipelines() const;
   std::string deviceName() const;
   DeviceMemoryUsage deviceMemoryUsage() const;

@@ -113,7 +113,7 @@ struct Context::Impl {
         compose(ctx, layouts, kSpirv_compose_comp),
         behindGlassCopy(ctx, layouts, kSpirv_behind_glass_comp),
         traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows), passes::TileList::Shadows),
-        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects), passes::TileList::Effects) {
+        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects), passes::TileList::Effects, tracedPaths()) {
     if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows, targets);
     for (Slot& slot : slots) {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
@@ -179,13 +179,18 @@ struct Context::Impl {
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 
+  // RB_RT_REFLECTIONS / RB_RT_REFRACTIONS: the paths switched on that the scene can show, all
+  // the effects pass's pipelines hold.
+  uint32_t tracedPaths() const {
+    const RayTracingSettings& rt = settings.rayTracing;
+    return (rt.reflections && effects.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions && effects.refractions ? RB_RT_REFRACTIONS : 0u);
+  }
+
   // RB_RT_* bits of the effects traced this frame: those switched on that the scene can show;
   // with policy none, nothing.
   uint32_t tracedEffects() const {
     if (settings.policy == Policy::None || stageSkipped) return 0u;
-    const RayTracingSettings& rt = settings.rayTracing;
-    return (rt.shadows && effects.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections && effects.reflections ? RB_RT_REFLECTIONS : 0u) |
-           (rt.refractions && effects.refractions ? RB_RT_REFRACTIONS : 0u);
+    return (settings.rayTracing.shadows && effects.shadows ? RB_RT_SHADOWS : 0u) | tracedPaths();
   }
 
   // Why a trace pass for `bits` (RB_RT_*) is left out of the frame (PassSkip::None: it runs).
@@ -582,8 +587,12 @@ std::vector<std::string> Context::builtPipelines() const {
   if (r.screenReflections.built()) out.push_back("ssr");
   if (r.traceShadows.builtPlain()) out.push_back("trace_shadows");
   if (r.traceShadows.builtFilling()) out.push_back("trace_shadows+fill");
-  if (r.traceEffects.builtPlain()) out.push_back("trace_effects");
-  if (r.traceEffects.builtFilling()) out.push_back("trace_effects+fill");
+  // The effects pass's pipelines by the paths they hold: trace_effects(reflections), ...
+  const uint32_t paths = r.traceEffects.paths();
+  const std::string effects = std::string("trace_effects(") + (paths & RB_RT_REFLECTIONS ? "reflections" : "") +
+                              (paths == (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS) ? "," : "") + (paths & RB_RT_REFRACTIONS ? "refractions" : "") + ")";
+  if (r.traceEffects.builtPlain()) out.push_back(effects);
+  if (r.traceEffects.builtFilling()) out.push_back(effects + "+fill");
   return out;
 }
 
