@@ -3,6 +3,8 @@
 // without the caller waiting on each.
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "support/gltf_fixture.h"
 #include "support/render_helpers.h"
 #include "support/test_scenes.h"
@@ -179,6 +181,38 @@ TEST(PassPlan, TheEffectsPipelineHoldsOnlyThePathsTheSceneShows) {
     EXPECT_TRUE(built(r, c.pipeline)) << c.pipeline;
     test::expectValidationClean(r.validationMessages());
   }
+}
+
+// A fallback the scene or its settings cannot use keeps no full-size image: the device memory a
+// renderer holds drops by at least that image's size when it is switched off or has nothing to
+// show (screen-space transmission's half-resolution copy, screen-space reflections' image and
+// depth pyramid, the shadow maps).
+TEST(PassPlan, AFallbackTheSceneCannotUseHoldsNoFullSizeImage) {
+  constexpr int64_t kW = 640, kH = 360;
+  auto heldBytes = [&](const Scene& scene, const std::function<void(RenderSettings&)>& change) {
+    RenderSettings s = test::settingsFor(Policy::None, uint32_t(kW), uint32_t(kH));
+    change(s);
+    return int64_t(Renderer(scene, s).allocatedBytes());
+  };
+  auto same = [](RenderSettings&) {};
+  Material mirror;
+  mirror.roughness = 0.05f;
+  Material glass;
+  glass.metallic = 0.0f;
+  glass.roughness = 0.6f;
+  glass.transmission = 1.0f;
+  const Scene mirrors = twoTrianglesOf(mirror), glassy = twoTrianglesOf(glass);
+  const int64_t glassOn = heldBytes(glassy, same), glassOff = heldBytes(glassy, [](RenderSettings& s) { s.screenSpaceTransmission = false; });
+  EXPECT_GE(glassOn - glassOff, kW / 2 * kH / 2 * 8) << "the behind-glass copy (RGBA16F, half size)";
+  const int64_t ssrOn = heldBytes(mirrors, same), ssrOff = heldBytes(mirrors, [](RenderSettings& s) { s.screenSpaceReflections = false; });
+  EXPECT_GE(ssrOn - ssrOff, kW * kH * (8 + 4)) << "the reflections' image (RGBA16F) and depth pyramid (R32F)";
+  const int64_t rough = heldBytes(twoTriangles(), same);
+  EXPECT_GE(ssrOn - rough, kW * kH * (8 + 4)) << "a scene with nothing smooth has no reflection images";
+  EXPECT_GE(glassOn - rough, kW / 2 * kH / 2 * 8) << "a scene without glass has no behind-glass copy";
+  Scene unlit = twoTriangles();
+  unlit.lights.clear();
+  const int64_t mapBytes = int64_t(RenderSettings{}.shadowMapSize) * RenderSettings{}.shadowMapSize * 4;
+  EXPECT_GE(rough - heldBytes(unlit, same), mapBytes - 4096) << "the sun's shadow map (a 1x1 stands in)";
 }
 
 }  // namespace

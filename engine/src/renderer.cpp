@@ -240,6 +240,8 @@ std::string Renderer::deviceName() const { return impl_->device->properties().de
 
 DeviceMemoryUsage Renderer::deviceMemoryUsage() const { return vk::memoryUsage(impl_->device->physicalDevice()); }
 
+uint64_t Renderer::allocatedBytes() const { return impl_->device->allocatedBytes() + impl_->core.allocatedBytes(); }
+
 void Renderer::setBudget(float budgetMs) {
   impl_->core.setBudget(budgetMs);
   impl_->settings.budgetMs = budgetMs;

@@ -185,6 +185,9 @@ class Context {
   std::vector<ObjectMetrics> objectMetrics() const;
   AccelStats accelStats() const;
   SceneEffects sceneEffects() const;  // what the scene can show at all
+  // The device memory the core holds now, in bytes: its buffers and images (a fallback the scene
+  // or the settings cannot use keeps its images at 1x1).
+  uint64_t allocatedBytes() const;
   // The passes whose pipelines exist so far (built when a frame first needs them); the effects
   // pass's name says which paths its pipelines hold: trace_effects(reflections),
   // trace_effects(refractions) or trace_effects(reflections,refractions), "+fill" where it fills

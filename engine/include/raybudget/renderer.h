@@ -118,6 +118,9 @@ class Renderer {
   std::vector<std::string> builtPipelines() const;
   std::string deviceName() const;
   DeviceMemoryUsage deviceMemoryUsage() const;
+  // The device memory the renderer and its core hold now, in bytes (their own buffers and
+  // images, whatever the driver reports).
+  uint64_t allocatedBytes() const;
   std::vector<std::string> validationMessages() const;
   float aspect() const;
 

@@ -59,6 +59,7 @@ struct Context::Impl {
   RenderSettings settings;
   bool stageSkipped = false;  // the frame being recorded leaves the ray-tracing stage out (SelectionStage::skipsStage)
   SceneEffects effects;  // what the scene can show at all: no pass, no pipeline for the rest
+  bool ssrUseful;        // a material is smooth enough for screen-space reflections
   glm::vec3 sunDirection;
   vk::Context ctx;  // the host's device, borrowed
   passes::SceneGpu scene;
@@ -73,7 +74,6 @@ struct Context::Impl {
   passes::EnvironmentPass environment;
   passes::ReflectionProbePass probes;
   passes::ScreenReflectionPass screenReflections;
-  bool ssrUseful;      // a material is smooth enough for screen-space reflections
   float ssrReach;      // their rays' length: the diagonal of the scene's bounds
   std::optional<glm::mat4> previousViewProj;  // the last recorded frame's (none before the first)
   passes::ScreenPass lighting;
@@ -93,11 +93,14 @@ struct Context::Impl {
   Impl(const HostDevice& host, const Scene& s, const RenderSettings& rs, const testing::Checks& checks)
       : settings(rs),
         effects(raybudget::sceneEffects(s, rs.rayTracing.maxRoughness)),
+        ssrUseful(raybudget::sceneEffects(s, RB_SSR_MAX_ROUGHNESS).reflections),
         sunDirection(sunOf(s)),
         ctx(host),
         scene(passes::uploadScene(ctx, s, rs)),
         targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount,
-                                           uint32_t(raybudget::reflectionProbesOf(s).size()))),
+                                           uint32_t(raybudget::reflectionProbesOf(s).size()),
+                                           {.behindGlass = effects.refractions && rs.screenSpaceTransmission,
+                                            .screenReflections = rs.screenSpaceReflections && ssrUseful})),
         samplers(passes::createSamplers(ctx)),
         layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
         timestamps(ctx, kFramesInFlight, kPassCount),
@@ -106,7 +109,6 @@ struct Context::Impl {
         environment(ctx, layouts),
         probes(ctx, layouts, raybudget::reflectionProbesOf(s), scene.tracer->shader(passes::TraceShader::ReflectionProbe)),
         screenReflections(ctx, layouts),
-        ssrUseful(raybudget::sceneEffects(s, RB_SSR_MAX_ROUGHNESS).reflections),
         ssrReach(std::max(glm::length(s.boundsMax - s.boundsMin), 1e-3f)),
         lighting(ctx, layouts, kSpirv_lighting_comp),
         envFallback(ctx, layouts, kSpirv_env_fallback_comp),
@@ -578,6 +580,8 @@ std::vector<ObjectMetrics> Context::objectMetrics() const {
 AccelStats Context::accelStats() const { return impl_->scene.tracer->stats(); }
 
 SceneEffects Context::sceneEffects() const { return impl_->effects; }
+
+uint64_t Context::allocatedBytes() const { return impl_->ctx.allocatedBytes(); }
 
 std::vector<std::string> Context::builtPipelines() const {
   const Impl& r = *impl_;

@@ -29,7 +29,8 @@ vk::Image image2d(const vk::Context& ctx, VkFormat format, uint32_t w, uint32_t 
 }  // namespace
 
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount, uint32_t probeCount) {
+                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount, uint32_t probeCount,
+                                const TargetNeeds& needs) {
   FrameTargets t;
   t.width = width;
   t.height = height;
@@ -59,16 +60,17 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.reflection = image2d(ctx, kHdrFormat, width, height, storage);
   t.refraction = image2d(ctx, kHdrFormat, width, height, storage);
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage | VK_IMAGE_USAGE_SAMPLED_BIT);  // sampled: the next frame's reflections
-  t.ssr = image2d(ctx, kHdrFormat, width, height, storage);
-  const uint32_t levels = std::min<uint32_t>(uint32_t(std::floor(std::log2(double(std::max(width, height))))) + 1, RB_HIZ_LEVELS);
-  t.depthPyramid = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 1, false, levels);
+  const uint32_t ssrW = needs.screenReflections ? width : 1, ssrH = needs.screenReflections ? height : 1;
+  t.ssr = image2d(ctx, kHdrFormat, ssrW, ssrH, storage);
+  const uint32_t levels = std::min<uint32_t>(uint32_t(std::floor(std::log2(double(std::max(ssrW, ssrH))))) + 1, RB_HIZ_LEVELS);
+  t.depthPyramid = image2d(ctx, VK_FORMAT_R32_SFLOAT, ssrW, ssrH, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 1, false, levels);
   for (uint32_t l = 0; l < levels; ++l) t.depthPyramidLevels.push_back(vk::createView(ctx, t.depthPyramid, VK_IMAGE_VIEW_TYPE_2D, l, 1, 0, 1));
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
   t.tracedMask = image2d(ctx, VK_FORMAT_R32_UINT, width, height, storage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   // Half the frame's resolution: glass shows it refracted and blurred.
-  const uint32_t behindW = (width + 1) / 2, behindH = (height + 1) / 2;
+  const uint32_t behindW = needs.behindGlass ? (width + 1) / 2 : 1, behindH = needs.behindGlass ? (height + 1) / 2 : 1;
   const uint32_t behindMips = uint32_t(std::floor(std::log2(double(std::max(behindW, behindH))))) + 1;
   t.behindGlass = image2d(ctx, kHdrFormat, behindW, behindH, storage | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, false,
                           behindMips);
@@ -79,7 +81,8 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.shadowMapSize = shadowMapSize;
   t.cubeSize = std::max(shadowMapSize / 2, 16u);
   const uint32_t mapLayers = std::max(shadows.mapLayers, 1u);
-  t.shadowMaps = image2d(ctx, kDepthFormat, t.shadowMapSize, t.shadowMapSize, depthUsage, mapLayers);
+  const uint32_t mapSize = shadows.mapLayers > 0 ? t.shadowMapSize : 1;
+  t.shadowMaps = image2d(ctx, kDepthFormat, mapSize, mapSize, depthUsage, mapLayers);
   if (mapLayers == 1) {
     // A one-layer image's default view is 2D; the shader samples a 2D array.
     t.shadowMaps.view = vk::createView(ctx, t.shadowMaps, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, 1);
@@ -89,7 +92,8 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   const uint32_t cubes = std::max(shadows.pointCubes, 1u);
   // Sampled as a 2D array (face = layer) with the faces addressed in the shader: a cube
   // sized from its screen coverage uses only a corner of each face.
-  t.pointShadows = image2d(ctx, kDepthFormat, t.cubeSize, t.cubeSize, depthUsage, 6 * cubes);
+  const uint32_t faceSize = shadows.pointCubes > 0 ? t.cubeSize : 1;
+  t.pointShadows = image2d(ctx, kDepthFormat, faceSize, faceSize, depthUsage, 6 * cubes);
   for (uint32_t f = 0; f < 6 * shadows.pointCubes; ++f)
     t.pointShadowFaces.push_back(vk::createView(ctx, t.pointShadows, VK_IMAGE_VIEW_TYPE_2D, 0, 1, f, 1));
 

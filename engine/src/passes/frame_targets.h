@@ -70,9 +70,18 @@ struct FrameTargets {
   }
 };
 
+// The fallbacks' images a scene and its settings can use; the others are made 1x1, bound but
+// never read (their passes never run).
+struct TargetNeeds {
+  bool behindGlass = true;            // screen-space transmission: glass in the scene, the fallback on
+  bool screenReflections = true;      // a surface smooth enough for screen-space reflections, the fallback on
+};
+
 // `environmentMap`: an equirectangular OpenEXR path, or empty for the procedural sky.
-// `probeCount`: reflection probes (at least one cube array layer set is made).
+// `probeCount`: reflection probes (at least one cube array layer set is made). Shadow maps are
+// made at `shadowMapSize` for the lights that have them (1x1 where none does).
 FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t height, const ShadowViews& shadows,
-                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount, uint32_t probeCount);
+                                uint32_t shadowMapSize, const std::string& environmentMap, uint32_t lightCount, uint32_t probeCount,
+                                const TargetNeeds& needs);
 
 }  // namespace raybudget::passes

@@ -2,7 +2,9 @@
 // messenger that records every warning and error) or a host's, borrowed; and one-shot
 // command submission for uploads.
 #pragma once
+#include <atomic>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -54,6 +56,12 @@ class Context {
   // Index of a memory type with `flags` among `typeBits`; throws when there is none.
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
 
+  // Device memory allocated through this context and not yet freed (vk/resources.h's
+  // buffers and images), in bytes; `counter` is what each allocation adds to and subtracts
+  // from (shared, so memory freed after the context still counts down safely).
+  uint64_t allocatedBytes() const { return *allocated_; }
+  std::shared_ptr<std::atomic<uint64_t>> allocationCounter() const { return allocated_; }
+
   // Records `record` into a fresh command buffer, submits it and waits (uploads, set-up).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
@@ -81,6 +89,7 @@ class Context {
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   Owned<VkCommandPool> uploadPool_;
+  std::shared_ptr<std::atomic<uint64_t>> allocated_ = std::make_shared<std::atomic<uint64_t>>(0);
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;
 };

@@ -18,7 +18,12 @@ Owned<VkDeviceMemory> allocate(const Context& ctx, const VkMemoryRequirements& r
   VkDeviceMemory mem = VK_NULL_HANDLE;
   VK_CHECK(vkAllocateMemory(ctx.device(), &ai, nullptr, &mem));
   const VkDevice device = ctx.device();
-  return Owned<VkDeviceMemory>(mem, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+  std::shared_ptr<std::atomic<uint64_t>> counter = ctx.allocationCounter();
+  *counter += req.size;
+  return Owned<VkDeviceMemory>(mem, [device, counter, size = req.size](VkDeviceMemory m) {
+    vkFreeMemory(device, m, nullptr);
+    *counter -= size;
+  });
 }
 
 }  // namespace
