@@ -76,13 +76,14 @@ struct FrameUniforms {
   uvec4 sizeLightsFrame;    // x width, y height, z light count, w frame index
   vec4 sunDirection;        // xyz direction towards the sun (procedural sky), w sky intensity
   vec4 exposure;            // x exposure (linear scale before tonemapping), y shadow-map uncertainty reach (texels), z 1 when the behind-glass image holds this frame's opaque frame, w 1 when the G-buffer holds material layers (gLayers)
-  uvec4 rayTracing;         // x effects traced (RB_RT_* bits, 0: all raster), y bounce depth, z roughness cut-off (float bits), w RB_RT_CLASSIFY_SHADOWS | RB_RT_MEASURE_ITEMS | RB_RT_SHORTEN_SHADOW_RAYS | RB_RT_RATES
+  uvec4 rayTracing;         // x effects traced (RB_RT_* bits, 0: all raster), y bounce depth, z roughness cut-off (float bits), w RB_RT_CLASSIFY_SHADOWS | RB_RT_MEASURE_ITEMS | RB_RT_SHORTEN_SHADOW_RAYS | RB_RT_RATES | RB_RT_TEMPORAL_FILL
   uvec4 probes;             // x reflection probes in use (0: the sky alone)
   vec4 probeCenter[RB_MAX_PROBES];  // xyz where each probe was captured from
   vec4 probeBoxMin[RB_MAX_PROBES];  // xyz its box: the surfaces it shows, and the points it serves
   vec4 probeBoxMax[RB_MAX_PROBES];
   mat4 previousViewProj;    // the previous frame's, for reprojecting its image
   vec4 ssr;                 // x 1 when ssrImage holds this frame's screen-space reflections, y roughness cut-off, z the diagonal of the scene's bounds (their rays' length)
+  vec4 previousCamera;      // xyz the previous frame's camera position, w 1 when there was one
 };
 
 // Push constants for the raster passes and the compute passes, 80 bytes (the guaranteed

@@ -66,6 +66,11 @@ struct RayTracingSettings {
   // `benefit`, `all` and `classified`: the rate every selected item is traced at (Auto:
   // `benefit` chooses one per item).
   ItemRate rate = ItemRate::Full;
+  // With reduced rates: a reflection or refraction pixel not traced this frame takes its value
+  // from the frames where it was last traced (reprojected, while the surface, its distance and
+  // the view direction there still match and it is younger than the rate's period), before the
+  // spatial fill from traced neighbours.
+  bool temporalFill = false;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };

@@ -76,6 +76,7 @@ struct Context::Impl {
   passes::ScreenReflectionPass screenReflections;
   float ssrReach;      // their rays' length: the diagonal of the scene's bounds
   std::optional<glm::mat4> previousViewProj;  // the last recorded frame's (none before the first)
+  glm::vec3 previousCamera{0.0f};             // its camera position
   passes::ScreenPass lighting;
   passes::ScreenPass envFallback;
   passes::ScreenPass compose;
@@ -100,7 +101,8 @@ struct Context::Impl {
         targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount,
                                            uint32_t(raybudget::reflectionProbesOf(s).size()),
                                            {.behindGlass = effects.refractions && rs.screenSpaceTransmission,
-                                            .screenReflections = rs.screenSpaceReflections && ssrUseful})),
+                                            .screenReflections = rs.screenSpaceReflections && ssrUseful,
+                                            .fillHistory = rs.rayTracing.temporalFill && (effects.reflections || effects.refractions)})),
         samplers(passes::createSamplers(ctx)),
         layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
         timestamps(ctx, kFramesInFlight, kPassCount),
@@ -126,7 +128,8 @@ struct Context::Impl {
     }
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      for (const vk::Image* img : {&targets.direct, &targets.reflection, &targets.refraction, &targets.hdr, &targets.ldr, &targets.shadowMask, &targets.tracedMask})
+      for (const vk::Image* img : {&targets.direct, &targets.reflection, &targets.refraction, &targets.hdr, &targets.ldr, &targets.shadowMask,
+                                   &targets.tracedMask, &targets.fillHistory})
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       passes::ShadowMapPass::initialize(cmd, targets);
@@ -174,9 +177,11 @@ struct Context::Impl {
     u.exposure = glm::vec4(settings.exposure, settings.rayTracing.shadowUncertaintyTexels, slot.behindGlass == PassSkip::None ? 1.0f : 0.0f,
                            slot.gbuffer.layers ? 1.0f : 0.0f);
     u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
-                              itemFlags() | (reducedRates() ? RB_RT_RATES : 0u));
+                              itemFlags() | (reducedRates() ? RB_RT_RATES : 0u) |
+                                  (reducedRates() && settings.rayTracing.temporalFill ? RB_RT_TEMPORAL_FILL : 0u));
     probes.writeUniforms(u, settings.reflectionProbes);
     u.previousViewProj = previousViewProj.value_or(u.viewProj);
+    u.previousCamera = glm::vec4(previousCamera, previousViewProj ? 1.0f : 0.0f);
     u.ssr = glm::vec4(slot.ssr == PassSkip::None ? 1.0f : 0.0f, RB_SSR_MAX_ROUGHNESS, ssrReach, 0.0f);
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
@@ -448,6 +453,7 @@ struct Context::Impl {
     writeUniforms(slot, camera);
     recordCommands(slot, cmd, viewProj, host != nullptr);
     previousViewProj = viewProj;
+    previousCamera = camera.position;
     slot.recorded = true;
     slot.frame = frameIndex++;
   }

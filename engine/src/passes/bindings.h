@@ -60,7 +60,8 @@ enum Binding : uint32_t {
   kTextureTransforms = 51,
   kGLayers = 52,
   kRefractionImage = 53,
-  kBindingCount = 54,
+  kFillHistory = 54,
+  kBindingCount = 55,
 };
 
 }  // namespace raybudget::passes

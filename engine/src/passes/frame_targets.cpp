@@ -69,6 +69,9 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
   t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
   t.tracedMask = image2d(ctx, VK_FORMAT_R32_UINT, width, height, storage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  // Colour and geometry, per frame parity (include/fill_history.glsl).
+  t.fillHistory = image2d(ctx, VK_FORMAT_R32G32B32A32_UINT, needs.fillHistory ? width : 1, needs.fillHistory ? height : 1,
+                          VK_IMAGE_USAGE_STORAGE_BIT, RB_FILL_HISTORY_LAYERS);
   // Half the frame's resolution: glass shows it refracted and blurred.
   const uint32_t behindW = needs.behindGlass ? (width + 1) / 2 : 1, behindH = needs.behindGlass ? (height + 1) / 2 : 1;
   const uint32_t behindMips = uint32_t(std::floor(std::log2(double(std::max(behindW, behindH))))) + 1;

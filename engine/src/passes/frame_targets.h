@@ -31,6 +31,7 @@ struct FrameTargets {
   vk::Image noLayers;  // 1x1, bound where a host's G-buffer has no layers
   // Compute outputs, kept in GENERAL layout.
   vk::Image direct, reflection, refraction, hdr, ldr;
+  vk::Image fillHistory;  // the effects pass's temporal fill: RB_FILL_HISTORY_LAYERS layers (1x1 when it is off)
   // Raster fallbacks.
   vk::Image shadowMaps;                            // 2D array, one layer per directional/spot light
   std::vector<vk::Owned<VkImageView>> shadowMapLayers;
@@ -75,6 +76,7 @@ struct FrameTargets {
 struct TargetNeeds {
   bool behindGlass = true;            // screen-space transmission: glass in the scene, the fallback on
   bool screenReflections = true;      // a surface smooth enough for screen-space reflections, the fallback on
+  bool fillHistory = false;           // the effects pass's temporal fill (RayTracingSettings::temporalFill)
 };
 
 // `environmentMap`: an equirectangular OpenEXR path, or empty for the procedural sky.

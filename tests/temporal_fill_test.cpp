@@ -1,0 +1,116 @@
+// The effects pass's temporal fill (RayTracingSettings::temporalFill,
+// shaders/include/fill_history.glsl): a pixel a reduced rate skips keeps what it was when last
+// traced while its object, its distance and the view direction still match. Under a still
+// camera a quarter rate then shows the full-rate image once every pixel of each quad has been
+// traced; where the view turns or another object takes the pixel, nothing is carried and the
+// frame is the spatial fill's alone.
+#include <algorithm>
+#include <cstdlib>
+#include <functional>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "support/procedural.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+RenderSettings effectsOnly(ItemRate rate, bool temporal, uint32_t w, uint32_t h) {
+  RenderSettings s = test::settingsFor(Policy::All, w, h);
+  s.rayTracing.rate = rate;
+  s.rayTracing.shadows = false;  // the shadow pass fills spatially alone
+  s.rayTracing.temporalFill = temporal;
+  s.screenSpaceReflections = false;  // it reads the previous frame's image, which differs with and without
+  return s;
+}
+
+// The largest difference of any channel between two frames' display images.
+int largestDifference(const FrameImages& a, const FrameImages& b) {
+  int most = 0;
+  for (size_t i = 0; i < a.ldrRgba8.size(); ++i) most = std::max(most, std::abs(int(a.ldrRgba8[i]) - int(b.ldrRgba8[i])));
+  return most;
+}
+
+// Renders `cameras` in turn; `between(renderer, frame)` runs before each frame.
+FrameImages lastFrame(const Scene& scene, const RenderSettings& s, const std::vector<Camera>& cameras,
+                      const std::function<void(Renderer&, size_t)>& between = {}) {
+  Renderer r(scene, s);
+  for (size_t f = 0; f < cameras.size(); ++f) {
+    if (between) between(r, f);
+    r.render(cameras[f]);
+  }
+  r.finish();
+  const FrameImages images = r.readback();
+  test::expectValidationClean(r.validationMessages());
+  return images;
+}
+
+// The court's mirrors, chrome and glass at a quarter rate under a still camera: after the four
+// frames that trace each pixel of a quad once, the frame equals full rate's but for the half
+// floats the history keeps (one step of 255); without the history it does not.
+TEST(TemporalFill, AStillCameraAtAQuarterRateShowsTheFullRateImage) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const Camera cam = defaultCamera(scene, 192.0f / 112.0f);
+  const std::vector<Camera> frames(6, cam);
+  const FrameImages full = lastFrame(scene, effectsOnly(ItemRate::Full, false, 192, 112), frames);
+  const FrameImages temporal = lastFrame(scene, effectsOnly(ItemRate::Quarter, true, 192, 112), frames);
+  const FrameImages spatial = lastFrame(scene, effectsOnly(ItemRate::Quarter, false, 192, 112), frames);
+  EXPECT_LE(largestDifference(full, temporal), 1);
+  EXPECT_GT(largestDifference(full, spatial), 16) << "the spatial fill alone differs where reflections hold detail";
+}
+
+// A camera that turns 20 degrees about the target between two frames: the view direction at
+// every point turned past the history's limit, so the frame equals the one without history.
+TEST(TemporalFill, NothingIsCarriedWhereTheViewTurned) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  Camera start = defaultCamera(scene, 192.0f / 112.0f);
+  start.target = glm::vec3(0.0f, 1.0f, 0.0f);  // the court's centre: the camera circles it
+  Camera turned = start;
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(20.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  turned.position = start.target + glm::vec3(turn * glm::vec4(start.position - start.target, 0.0f));
+  std::vector<Camera> frames(5, start);
+  frames.push_back(turned);
+  const FrameImages temporal = lastFrame(scene, effectsOnly(ItemRate::Quarter, true, 192, 112), frames);
+  const FrameImages spatial = lastFrame(scene, effectsOnly(ItemRate::Quarter, false, 192, 112), frames);
+  EXPECT_EQ(largestDifference(temporal, spatial), 0);
+}
+
+// Two coplanar mirrors, one reflecting red and one green, trade places under a still camera:
+// every pixel's surface lies where it did, at the same distance, on another object, so no
+// history may be taken and the frame equals the one without history.
+TEST(TemporalFill, HistoryNeverCrossesObjects) {
+  Scene scene;
+  for (float x : {-1.0f, 1.0f}) test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.0f, 0.0f)), test::mirror());
+  for (int side : {-1, 1}) {
+    Material emitter;
+    emitter.baseColorFactor = glm::vec4(0, 0, 0, 1);
+    emitter.emissive = side < 0 ? glm::vec3(3.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 3.0f, 0.0f);
+    emitter.doubleSided = true;
+    test::addObject(scene, test::quad(10.0f), glm::translate(glm::mat4(1.0f), glm::vec3(10.0f * float(side), 6.0f, -5.0f)), emitter);
+  }
+  Camera cam;
+  cam.position = {0.0f, 4.0f, 4.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  const std::vector<Camera> frames(6, cam);
+  auto swapAtFrame5 = [](Renderer& r, size_t f) {
+    if (f != 5) return;
+    r.setObjectTransform(0, glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)));
+    r.setObjectTransform(1, glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.0f, 0.0f)));
+  };
+  auto settings = [](bool temporal) {
+    RenderSettings s = effectsOnly(ItemRate::Quarter, temporal, 128, 96);
+    s.skyIntensity = 0.0f;
+    return s;
+  };
+  const FrameImages temporal = lastFrame(scene, settings(true), frames, swapAtFrame5);
+  const FrameImages spatial = lastFrame(scene, settings(false), frames, swapAtFrame5);
+  EXPECT_EQ(largestDifference(temporal, spatial), 0);
+  // And without the swap the history is taken: the frames differ.
+  EXPECT_GT(largestDifference(lastFrame(scene, settings(true), frames), lastFrame(scene, settings(false), frames)), 0);
+}
+
+}  // namespace
+}  // namespace raybudget
