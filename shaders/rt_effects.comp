@@ -161,10 +161,10 @@ void fillPending(ivec2 pixel, Surface s, Selection sel, bvec2 pending, EffectSam
   if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + shrunkMean(sum[1], squares[1], weights.y), 1.0));
 }
 
-// `shown`: the paths traced and shown here, with their terms in `term`.
-void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 shown, out vec3 term[2]) {
+// `shown`: the paths traced and shown here, with what they changed against the fallback in `change`.
+void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 shown, out vec3 change[2]) {
   shown = bvec2(false);
-  term = vec3[2](vec3(0.0), vec3(0.0));
+  change = vec3[2](vec3(0.0), vec3(0.0));
   if (!lit) return;
   // Per path: whether its item is probed here rather than selected.
   bool probed[2] = bool[2](!itemSelected(sel, RB_ITEM_REFLECTIONS) && itemProbed(sel, RB_ITEM_REFLECTIONS, pixel),
@@ -202,7 +202,7 @@ void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 sho
   if (reflects && !probed[0]) imageStore(reflectionImage, pixel, vec4(color[0], 1.0));
   if (refracts && !probed[1]) imageStore(refractionImage, pixel, vec4(color[1], 1.0));
   shown = bvec2(reflects && !probed[0], refracts && !probed[1]);
-  term = color;
+  change = vec3[2](color[0] - fallback[0], color[1] - fallback[1]);
   markTraced(pixel, (reflects && !probed[0] ? RB_RT_REFLECTIONS : 0u) | (refracts && !probed[1] ? RB_RT_REFRACTIONS : 0u));
   // For the tile's fill: the paths traced here at a reduced rate.
   bool shared0 = reflects && !probed[0] && rates[0] != RB_RATE_FULL, shared1 = refracts && !probed[1] && rates[1] != RB_RATE_FULL;
@@ -250,7 +250,7 @@ void main() {
   // where a reduced rate skipped it, what its fill needs: readFillSurface).
   Surface s;
   bvec2 pending = bvec2(false), shown = bvec2(false);
-  vec3 term[2] = vec3[2](vec3(0.0), vec3(0.0));
+  vec3 change[2] = vec3[2](vec3(0.0), vec3(0.0));
   uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
   Selection sel = selectionAt(objectId, pixel);
   if (objectId != RB_NO_OBJECT) {
@@ -258,7 +258,7 @@ void main() {
     pathsHere(sel, pixel, traced, skipped);
     if (any(traced)) {
       bool lit = readSurface(pixel, s) && !s.unlit;
-      traceEffects(pixel, lit, s, sel, shown, term);
+      traceEffects(pixel, lit, s, sel, shown, change);
       if (lit) pending = pendingPaths(s, sel, pixel);
     } else if (fills && any(skipped) && readFillSurface(pixel, objectId, s)) {
       pending = pendingPaths(s, sel, pixel);
@@ -267,19 +267,21 @@ void main() {
   if (!fills) return;
   barrier();
   EffectSample samples[4] = EffectSample[4](effectSample(0), effectSample(1), effectSample(2), effectSample(3));
-  uvec2 age = uvec2(shown.x ? 0u : RB_HISTORY_NONE, shown.y ? 0u : RB_HISTORY_NONE);
+  uvec2 age = uvec2(shown.x ? 0u : RB_HISTORY_NONE, shown.y ? 0u : RB_HISTORY_NONE), turn = uvec2(0u);
   if (temporalFill() && any(pending)) {
-    // The pending paths still valid where the previous frame saw the point take that value;
-    // the others fill from traced neighbours.
+    // The pending paths still valid where the previous frame saw the point add what tracing
+    // changed against the fallback there to this frame's fallback (which follows the view, as
+    // the spatial fill does); the others fill from traced neighbours.
     History h = previousHistory(s.position, s.objectId);
-    bvec2 carried = bvec2(pending.x && historyFits(h.age.x, itemRate(sel, RB_ITEM_REFLECTIONS)),
-                          pending.y && historyFits(h.age.y, itemRate(sel, RB_ITEM_REFRACTIONS)));
-    if (carried.x) imageStore(reflectionImage, pixel, vec4(h.term[0], 1.0));
-    if (carried.y) imageStore(refractionImage, pixel, vec4(h.term[1], 1.0));
-    term = vec3[2](carried.x ? h.term[0] : term[0], carried.y ? h.term[1] : term[1]);
+    bvec2 carried = bvec2(pending.x && historyFits(h.age.x, h.turn.x, itemRate(sel, RB_ITEM_REFLECTIONS)),
+                          pending.y && historyFits(h.age.y, h.turn.y, itemRate(sel, RB_ITEM_REFRACTIONS)));
+    if (carried.x) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + h.change[0], 1.0));
+    if (carried.y) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + h.change[1], 1.0));
+    change = vec3[2](carried.x ? h.change[0] : change[0], carried.y ? h.change[1] : change[1]);
     age = uvec2(carried.x ? h.age.x + 1u : age.x, carried.y ? h.age.y + 1u : age.y);
+    turn = uvec2(carried.x ? h.turn.x : 0u, carried.y ? h.turn.y : 0u);
     pending = bvec2(pending.x && !carried.x, pending.y && !carried.y);
   }
   if (any(pending)) fillPending(pixel, s, sel, pending, samples);
-  if (temporalFill() && any(notEqual(age, uvec2(RB_HISTORY_NONE)))) writeHistory(pixel, term, age, s.objectId, s.position);
+  if (temporalFill() && any(notEqual(age, uvec2(RB_HISTORY_NONE)))) writeHistory(pixel, change, age, turn, s.objectId, s.position);
 }
