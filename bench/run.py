@@ -57,8 +57,8 @@ def parse_args(argv):
     p.add_argument("--no-reflection-probes", action="store_true", help="passed to the sweep: reflections fall back to the sky alone")
     p.add_argument("--no-screen-space-reflections", action="store_true", help="passed to the sweep: no screen-space reflections")
     p.add_argument("--prior-time-scale", action="store_true", help="passed to the sweep: never learn the time scale")
-    p.add_argument("--temporal-fill", action="store_true", help="passed to the sweep: reduced rates keep each pixel's last traced "
-                   "value while it is valid")
+    p.add_argument("--no-temporal-fill", action="store_true", help="passed to the sweep: reduced rates fill from traced "
+                   "neighbours alone")
     p.add_argument("--budget-list", help="passed to the sweep: explicit budgets in ms")
     p.add_argument("--publish", help="also copy summary.csv, headline.md, headline.json, plots/ and strips/ into this folder")
     p.add_argument("--compare", help="a finished run's folder: its headline figures beside this run's and the per-case differences (compare.md)")
@@ -128,8 +128,8 @@ def run_sweep(a, scene, out, progress):
         cmd.append("--validation")
     if a.prior_time_scale:
         cmd.append("--prior-time-scale")
-    if a.temporal_fill:
-        cmd.append("--temporal-fill")
+    if a.no_temporal_fill:
+        cmd.append("--no-temporal-fill")
     if a.no_screen_space_transmission:
         cmd.append("--no-screen-space-transmission")
     if a.no_reflection_probes:

@@ -36,9 +36,12 @@ Scene twoMirrors() {
   return scene;
 }
 
+// The spatial fill alone: the temporal fill (tests/temporal_fill_test.cpp) would show the still
+// camera's earlier traced pixels.
 RenderSettings reflectionsOnly(ItemRate rate, uint32_t w, uint32_t h) {
   RenderSettings s = test::settingsFor(Policy::All, w, h);
   s.rayTracing.rate = rate;
+  s.rayTracing.temporalFill = false;
   s.rayTracing.shadows = false;
   s.rayTracing.refractions = false;
   s.skyIntensity = 0.0f;
@@ -75,9 +78,9 @@ TEST(Rates, TheFillNeverReadsAcrossObjectIds) {
 
 // On the default scene's mirror panel (which reflects small, detailed objects), 1/4 rate keeps
 // over half of what tracing adds over the environment fallback and 1/2 about two thirds (mean
-// display difference from full rate, as the benefit measures it; measured 0.029 and 0.017
-// against the fallback's 0.070 at 320x192), and each halving of the rate traces about half
-// the rays. 1/16 keeps little of this mirror's detail at this size (0.060: its samples lie
+// display difference from full rate, as the benefit measures it; measured 0.039 and 0.023
+// against the fallback's 0.088 at 320x192, the spatial fill alone), and each halving of the rate traces about half
+// the rays. 1/16 keeps little of this mirror's detail at this size (0.070: its samples lie
 // four pixels apart), less than of the smoother reflections the selection's keep shares were
 // measured on (shared/selection.h).
 TEST(Rates, AFlatMirrorAtAQuarterStaysCloseToFullRate) {
@@ -89,6 +92,7 @@ TEST(Rates, AFlatMirrorAtAQuarterStaysCloseToFullRate) {
   auto render = [&](Policy policy, ItemRate rate) {
     RenderSettings s = test::settingsFor(policy, 320, 192);
     s.rayTracing.rate = rate;
+    s.rayTracing.temporalFill = false;  // the spatial fill alone
     return test::renderFrames(scene, s, frames);
   };
   const test::RenderedFrames full = render(Policy::All, ItemRate::Full), half = render(Policy::All, ItemRate::Half),

@@ -68,10 +68,11 @@ render options:
                         frame, and fill the others from traced neighbours on the same object
                         (default full); auto: benefit chooses a rate per item (1/16, 1/4 or
                         full for reflections and refractions, full for shadows)
-  --temporal-fill       with reduced rates: a reflection or refraction pixel not traced this
-                        frame keeps what it was when last traced (reprojected, while its
+  --no-temporal-fill    with reduced rates, fill the reflection and refraction pixels not traced
+                        this frame from traced neighbours alone (default: first from what
+                        tracing changed there when last traced, reprojected, while its
                         object, distance and view direction still match, until the rate
-                        traces it again) before filling from traced neighbours
+                        traces it again)
   --explain[=frames]    print the pass plan: per pass the frames it ran in and its median
                         time, the frames it was left out of and why; the effects the scene can
                         show, the pipelines built, the pixels per effect that could take rays
@@ -248,7 +249,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     } else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--full-shadow-rays") c.settings.rayTracing.shortenShadowRays = false;
     else if (a == "--rate") c.settings.rayTracing.rate = parseItemRate(value());
-    else if (a == "--temporal-fill") c.settings.rayTracing.temporalFill = true;
+    else if (a == "--no-temporal-fill") c.settings.rayTracing.temporalFill = false;
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
     else if (a == "--budget-confidence") c.settings.budgetConfidence = parseWithin(a, value(), 0.5f, 0.99f);
     else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);

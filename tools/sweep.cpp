@@ -39,8 +39,8 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
                         reflections fall back to the sky alone (the fallbacks' ablation)
   --no-screen-space-reflections
                         no screen-space reflections (the fallbacks' ablation)
-  --temporal-fill       reduced rates keep each pixel's last traced value while it is valid
-                        (RayTracingSettings::temporalFill)
+  --no-temporal-fill    reduced rates fill from traced neighbours alone
+                        (RayTracingSettings::temporalFill off)
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -277,8 +277,8 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       c.classified = false;
     } else if (a == "--no-screen-space-transmission") {
       c.screenSpaceTransmission = false;
-    } else if (a == "--temporal-fill") {
-      c.temporalFill = true;
+    } else if (a == "--no-temporal-fill") {
+      c.temporalFill = false;
     } else if (a == "--no-reflection-probes") {
       c.reflectionProbes = false;
     } else if (a == "--no-screen-space-reflections") {
@@ -307,6 +307,7 @@ int runSweep(const SweepCommand& c) {
   s.reflectionProbes = c.reflectionProbes;
   s.screenSpaceReflections = c.screenSpaceReflections;
   s.rayTracing.temporalFill = c.temporalFill;
+  s.rayTracing.rate = ItemRate::Quarter;  // makes the temporal fill's history; each configuration sets its own rate
   s.optimalBound = true;
   s.learnTimeScale = !c.priorTimeScale;
   s.policy = Policy::All;

@@ -43,7 +43,7 @@ struct SweepCommand {
   std::vector<SweepPolicy> policies{{Policy::Paper}, {Policy::Density}, {Policy::Nearest}, {Policy::Random}, {Policy::Benefit}};
   bool classified = true;  // run `classified` beside all and none
   bool screenSpaceTransmission = true;  // RenderSettings::screenSpaceTransmission
-  bool temporalFill = false;            // RayTracingSettings::temporalFill
+  bool temporalFill = true;             // RayTracingSettings::temporalFill
   bool reflectionProbes = true;         // RenderSettings::reflectionProbes
   bool screenSpaceReflections = true;   // RenderSettings::screenSpaceReflections
   std::vector<std::string> paths{"orbit", "flythrough"};

@@ -66,11 +66,13 @@ struct RayTracingSettings {
   // `benefit`, `all` and `classified`: the rate every selected item is traced at (Auto:
   // `benefit` chooses one per item).
   ItemRate rate = ItemRate::Full;
-  // With reduced rates: a reflection or refraction pixel not traced this frame takes its value
-  // from the frames where it was last traced (reprojected, while the surface, its distance and
-  // the view direction there still match and it is younger than the rate's period), before the
-  // spatial fill from traced neighbours.
-  bool temporalFill = false;
+  // With reduced rates: a reflection or refraction pixel not traced this frame adds to its
+  // fallback what tracing changed there when it was last traced (reprojected, while the
+  // object, its distance and, within a pixel's angle, the view direction there still match, and
+  // younger than the rate's period), before the spatial fill from traced neighbours. Its
+  // history (64 bytes a pixel) is made when the renderer is made with a reduced `rate`
+  // (restartSelection to one later fills spatially alone).
+  bool temporalFill = true;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };

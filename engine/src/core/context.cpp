@@ -102,7 +102,8 @@ struct Context::Impl {
                                            uint32_t(raybudget::reflectionProbesOf(s).size()),
                                            {.behindGlass = effects.refractions && rs.screenSpaceTransmission,
                                             .screenReflections = rs.screenSpaceReflections && ssrUseful,
-                                            .fillHistory = rs.rayTracing.temporalFill && (effects.reflections || effects.refractions)})),
+                                            .fillHistory = rs.rayTracing.temporalFill && rs.rayTracing.rate != ItemRate::Full &&
+                                                           (effects.reflections || effects.refractions)})),
         samplers(passes::createSamplers(ctx)),
         layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
         timestamps(ctx, kFramesInFlight, kPassCount),
@@ -178,7 +179,7 @@ struct Context::Impl {
                            slot.gbuffer.layers ? 1.0f : 0.0f);
     u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
                               itemFlags() | (reducedRates() ? RB_RT_RATES : 0u) |
-                                  (reducedRates() && settings.rayTracing.temporalFill ? RB_RT_TEMPORAL_FILL : 0u));
+                                  (reducedRates() && targets.fillHistory.desc.width > 1 ? RB_RT_TEMPORAL_FILL : 0u));
     probes.writeUniforms(u, settings.reflectionProbes);
     u.previousViewProj = previousViewProj.value_or(u.viewProj);
     u.previousCamera = glm::vec4(previousCamera, previousViewProj ? 1.0f : 0.0f);
