@@ -18,24 +18,6 @@
 namespace raybudget {
 namespace {
 
-// Two coplanar floor mirrors touching at x = 0, seen from above: the left one reflects a red
-// emitter, the right one a green one (reflections keep the view ray's x sign). Coplanar with
-// one normal, so depth and normal weights cannot tell their pixels apart: only the object ID.
-Scene twoMirrors() {
-  Scene scene;
-  const Material mirror = test::mirror();
-  test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.0f, 0.0f)), mirror);
-  test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)), mirror);
-  for (int side : {-1, 1}) {
-    Material emitter;
-    emitter.baseColorFactor = glm::vec4(0, 0, 0, 1);
-    emitter.emissive = side < 0 ? glm::vec3(3.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 3.0f, 0.0f);
-    emitter.doubleSided = true;
-    test::addObject(scene, test::quad(10.0f), glm::translate(glm::mat4(1.0f), glm::vec3(10.0f * float(side), 6.0f, -5.0f)), emitter);
-  }
-  return scene;
-}
-
 // The spatial fill alone: the temporal fill (tests/temporal_fill_test.cpp) would show the still
 // camera's earlier traced pixels.
 RenderSettings reflectionsOnly(ItemRate rate, uint32_t w, uint32_t h) {
@@ -49,7 +31,7 @@ RenderSettings reflectionsOnly(ItemRate rate, uint32_t w, uint32_t h) {
 }
 
 TEST(Rates, TheFillNeverReadsAcrossObjectIds) {
-  const Scene scene = twoMirrors();
+  const Scene scene = test::twoMirrors();
   Camera cam;
   cam.position = {0.0f, 4.0f, 4.0f};
   cam.target = {0.0f, 0.0f, 0.0f};
@@ -168,7 +150,7 @@ struct MirrorsUnderSun {
   Camera camera;
 };
 MirrorsUnderSun mirrorsUnderSun() {
-  MirrorsUnderSun m{twoMirrors(), test::settingsFor(Policy::Benefit, 256, 192), {}};
+  MirrorsUnderSun m{test::twoMirrors(), test::settingsFor(Policy::Benefit, 256, 192), {}};
   m.scene.objects.resize(2);
   Light sun;
   sun.type = LightType::Directional;

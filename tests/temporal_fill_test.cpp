@@ -82,15 +82,7 @@ TEST(TemporalFill, NothingIsCarriedWhereTheViewTurned) {
 // every pixel's surface lies where it did, at the same distance, on another object, so no
 // history may be taken and the frame equals the one without history.
 TEST(TemporalFill, HistoryNeverCrossesObjects) {
-  Scene scene;
-  for (float x : {-1.0f, 1.0f}) test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.0f, 0.0f)), test::mirror());
-  for (int side : {-1, 1}) {
-    Material emitter;
-    emitter.baseColorFactor = glm::vec4(0, 0, 0, 1);
-    emitter.emissive = side < 0 ? glm::vec3(3.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 3.0f, 0.0f);
-    emitter.doubleSided = true;
-    test::addObject(scene, test::quad(10.0f), glm::translate(glm::mat4(1.0f), glm::vec3(10.0f * float(side), 6.0f, -5.0f)), emitter);
-  }
+  const Scene scene = test::twoMirrors();
   Camera cam;
   cam.position = {0.0f, 4.0f, 4.0f};
   cam.target = {0.0f, 0.0f, 0.0f};

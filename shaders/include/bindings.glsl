@@ -36,8 +36,9 @@ layout(set = 0, binding = 17, rgba16f) uniform image2D directImage;
 // The reflected and the refracted light, apart so that a host can compose them apart.
 layout(set = 0, binding = 18, rgba16f) uniform image2D reflectionImage;
 layout(set = 0, binding = 53, rgba16f) uniform image2D refractionImage;
-// The effects pass's temporal fill (include/fill_history.glsl): per pixel what its reflection and
-// refraction were when last traced, two layers per frame parity.
+// The effects pass's temporal fill (include/fill_history.glsl): per pixel what tracing changed
+// against the fallback where its reflection and refraction were last traced, two layers per
+// frame parity.
 layout(set = 0, binding = 54, rgba32ui) uniform uimage2DArray fillHistory;
 layout(set = 0, binding = 19, rgba16f) uniform writeonly image2D hdrImage;
 layout(set = 0, binding = 20, rgba8) uniform writeonly image2D ldrImage;

@@ -2,8 +2,8 @@
 // pixel that a reduced rate skips this frame adds to its fallback what tracing changed against
 // the fallback in the frame where it was last traced, reprojected, before the spatial fill from
 // the tile's traced neighbours (include/tile_fill.glsl) gets the rest. Carrying the change
-// rather than the traced value lets the fallback follow the view, as the spatial fill does. What the previous frame left at the
-// point is valid only where all of these hold:
+// rather than the traced value lets the fallback follow the view, as the spatial fill does.
+// What the previous frame left at the point is valid only where all of these hold:
 //   - it was written by the previous frame, on the same object;
 //   - its distance from the previous camera matches the point's within RB_HISTORY_DISTANCE
 //     (the surface there is the same, not one in front of it or behind it);
@@ -17,8 +17,8 @@
 //     value is carried only until the rate traces the pixel again.
 // fillHistory holds two layers per frame parity: 2p the changes as half floats, their ages in
 // frames since traced and how far the view turned since (in 255ths of the limit), 2p + 1 the
-// object, the distance and the frame that wrote it. A frame
-// reads its predecessor's parity and writes its own, so the pass never reads what it writes.
+// object, the distance and the frame that wrote it. A frame reads its predecessor's parity and
+// writes its own, so the pass never reads what it writes.
 // The includer includes bindings.glsl and rates.glsl.
 #ifndef RB_FILL_HISTORY_GLSL
 #define RB_FILL_HISTORY_GLSL
@@ -67,7 +67,7 @@ History previousHistory(vec3 p, uint objectId) {
   return h;
 }
 
-// Whether a term `age` frames old, with the view turned by `turn` since, may stand for a pixel
+// Whether a change `age` frames old, with the view turned by `turn` since, may stand for a pixel
 // its item's `rate` skips this frame.
 bool historyFits(uint age, uint turn, uint rate) { return age != RB_HISTORY_NONE && age + 1u < ratePeriod(rate) && turn <= 255u; }
 

@@ -6,6 +6,8 @@
 #include <map>
 #include <tuple>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace raybudget::test {
 namespace {
 
@@ -190,6 +192,15 @@ Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform) {
   s.lights.push_back(defaultSun());
   s.usesDefaultSun = true;
   return s;
+}
+
+Scene twoMirrors() {
+  Scene scene;
+  for (float x : {-1.0f, 1.0f}) addObject(scene, quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.0f, 0.0f)), mirror());
+  for (int side : {-1, 1})
+    addObject(scene, quad(10.0f), glm::translate(glm::mat4(1.0f), glm::vec3(10.0f * float(side), 6.0f, -5.0f)),
+              emitter(side < 0 ? glm::vec3(3.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 3.0f, 0.0f)));
+  return scene;
 }
 
 }  // namespace raybudget::test

@@ -16,14 +16,20 @@ Mesh smallAndLargeTriangles(int perAxis, int large);
 // A scene holding `mesh` once, placed by `transform`, with a diffuse grey material.
 Scene sceneWithMesh(Mesh mesh, const glm::mat4& transform = glm::mat4(1.0f));
 
-// Clear glass with a volume (thickness 1, IOR 1.5) that halves red over one unit of path.
 // A white metal of `roughness` (0: a mirror).
 Material mirror(float roughness = 0.0f);
 // A double-sided black emitter of `radiance`: what mirrors and glass show in tests.
 Material emitter(const glm::vec3& radiance);
+// Clear glass with a volume (thickness 1, IOR 1.5) that halves red over one unit of path.
 Material tintedGlass();
 
 // Adds `mesh` with its own `material` as a new object and grows the scene bounds.
 void addObject(Scene& scene, Mesh mesh, const glm::mat4& transform, const Material& material);
+
+// Two coplanar floor mirrors (objects 0 and 1) touching at x = 0, 2 units wide, and two
+// emitters high up: seen from above, the left mirror reflects the red one, the right mirror
+// the green one (reflections keep the view ray's x sign). Coplanar with one normal, so depth
+// and normal cannot tell their pixels apart: only the object ID.
+Scene twoMirrors();
 
 }  // namespace raybudget::test
