@@ -209,6 +209,9 @@ TEST(PassPlan, AFallbackTheSceneCannotUseHoldsNoFullSizeImage) {
   const int64_t rough = heldBytes(twoTriangles(), same);
   EXPECT_GE(ssrOn - rough, kW * kH * (8 + 4)) << "a scene with nothing smooth has no reflection images";
   EXPECT_GE(glassOn - rough, kW / 2 * kH / 2 * 8) << "a scene without glass has no behind-glass copy";
+  Material unlitGlass = glass;
+  unlitGlass.unlit = true;  // traces nothing, but is drawn over the opaque frame behind it like any glass
+  EXPECT_GE(heldBytes(twoTrianglesOf(unlitGlass), same) - rough, kW / 2 * kH / 2 * 8) << "unlit glass keeps the behind-glass copy";
   Scene unlit = twoTriangles();
   unlit.lights.clear();
   const int64_t mapBytes = int64_t(RenderSettings{}.shadowMapSize) * RenderSettings{}.shadowMapSize * 4;

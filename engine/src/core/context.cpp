@@ -100,7 +100,7 @@ struct Context::Impl {
         scene(passes::uploadScene(ctx, s, rs)),
         targets(passes::createFrameTargets(ctx, rs.width, rs.height, scene.shadows, rs.shadowMapSize, rs.environmentMap, scene.lightCount,
                                            uint32_t(raybudget::reflectionProbesOf(s).size()),
-                                           {.behindGlass = effects.refractions && rs.screenSpaceTransmission,
+                                           {.behindGlass = rs.screenSpaceTransmission && passes::GBufferPass::anyTransmissive(scene),
                                             .screenReflections = rs.screenSpaceReflections && ssrUseful,
                                             .fillHistory = rs.rayTracing.temporalFill && rs.rayTracing.rate != ItemRate::Full &&
                                                            (effects.reflections || effects.refractions)})),
@@ -179,7 +179,7 @@ struct Context::Impl {
                            slot.gbuffer.layers ? 1.0f : 0.0f);
     u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
                               itemFlags() | (reducedRates() ? RB_RT_RATES : 0u) |
-                                  (reducedRates() && targets.fillHistory.desc.width > 1 ? RB_RT_TEMPORAL_FILL : 0u));
+                                  (reducedRates() && targets.needs.fillHistory ? RB_RT_TEMPORAL_FILL : 0u));
     probes.writeUniforms(u, settings.reflectionProbes);
     u.previousViewProj = previousViewProj.value_or(u.viewProj);
     u.previousCamera = glm::vec4(previousCamera, previousViewProj ? 1.0f : 0.0f);

@@ -34,6 +34,7 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   FrameTargets t;
   t.width = width;
   t.height = height;
+  t.needs = needs;
   const VkImageUsageFlags attach = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   t.depth = image2d(ctx, kDepthFormat, width, height,

@@ -22,6 +22,14 @@ inline constexpr VkFormat kLayersFormat = VK_FORMAT_R32G32B32A32_UINT;
 inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
+// The fallbacks' images a scene and its settings can use; the others are made 1x1, bound but
+// never read (their passes never run).
+struct TargetNeeds {
+  bool behindGlass = true;            // screen-space transmission: glass in the scene, the fallback on
+  bool screenReflections = true;      // a surface smooth enough for screen-space reflections, the fallback on
+  bool fillHistory = false;           // the effects pass's temporal fill (RayTracingSettings::temporalFill)
+};
+
 struct FrameTargets {
   uint32_t width = 0, height = 0;
   // 8x8 tiles covering the frame (the tile list, the per-tile passes).
@@ -32,6 +40,7 @@ struct FrameTargets {
   // Compute outputs, kept in GENERAL layout.
   vk::Image direct, reflection, refraction, hdr, ldr;
   vk::Image fillHistory;  // the effects pass's temporal fill: RB_FILL_HISTORY_LAYERS layers (1x1 when it is off)
+  TargetNeeds needs;      // what the images were made for (the others are 1x1)
   // Raster fallbacks.
   vk::Image shadowMaps;                            // 2D array, one layer per directional/spot light
   std::vector<vk::Owned<VkImageView>> shadowMapLayers;
@@ -69,14 +78,6 @@ struct FrameTargets {
   std::vector<const vk::Image*> gbufferColors() const {
     return {&normal, &baseMetal, &roughTransIor, &emissive, &objectId, &materialId, &position, &layers};
   }
-};
-
-// The fallbacks' images a scene and its settings can use; the others are made 1x1, bound but
-// never read (their passes never run).
-struct TargetNeeds {
-  bool behindGlass = true;            // screen-space transmission: glass in the scene, the fallback on
-  bool screenReflections = true;      // a surface smooth enough for screen-space reflections, the fallback on
-  bool fillHistory = false;           // the effects pass's temporal fill (RayTracingSettings::temporalFill)
 };
 
 // `environmentMap`: an equirectangular OpenEXR path, or empty for the procedural sky.

@@ -1,5 +1,7 @@
 #include "passes/gbuffer.h"
 
+#include <algorithm>
+
 #include "gbuffer_frag.h"
 #include "gbuffer_vert.h"
 #include "shared/config.h"
@@ -15,6 +17,10 @@ GBufferPass::GBufferPass(const vk::Context& ctx, PassLayouts& layouts) : layout_
   d.colorFormats = {kNormalFormat, kBaseMetalFormat, kRoughTransIorFormat, kEmissiveFormat, kIdFormat, kIdFormat, kPositionFormat, kLayersFormat};
   d.depthFormat = kDepthFormat;
   pipeline_ = vk::createGraphicsPipeline(ctx, layout_.pipelineLayout, d);
+}
+
+bool GBufferPass::anyTransmissive(const SceneGpu& scene) {
+  return std::any_of(scene.draws.begin(), scene.draws.end(), [](const Draw& d) { return d.transmissive; });
 }
 
 std::optional<glm::uvec4> GBufferPass::transmissiveRect(const SceneGpu& scene, const glm::mat4& viewProj, uint32_t width, uint32_t height) {

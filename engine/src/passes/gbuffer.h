@@ -22,6 +22,8 @@ class GBufferPass {
   // them: their bounding spheres' screen rectangle grown by half its size on each side (the
   // refracted ray's offset, the blur), on even pixels; nothing when none is in view.
   static std::optional<glm::uvec4> transmissiveRect(const SceneGpu& scene, const glm::mat4& viewProj, uint32_t width, uint32_t height);
+  // Whether any draw is transmissive: the frames may then show the opaque frame behind glass.
+  static bool anyTransmissive(const SceneGpu& scene);
 
  private:
   const PassLayout& layout_;
