@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "include/bindings.glsl"
 #include "include/gbuffer.glsl"
+#include "include/reproject.glsl"
 
 // Screen-space reflections, the reflection fallback's first choice (include/env_fallback.glsl):
 // each smooth surface's mirror ray is marched through the min-depth pyramid (Hi-Z: Uludag
@@ -55,13 +56,6 @@ float marchHiZ(vec3 origin, vec3 dir, float tStart, int levels) {
 // How far behind the frame's surface at distance `surfaceW` a ray may pass and still count as
 // meeting it: relative to the distance and the scene's size.
 float hitShell(float surfaceW) { return 0.02 * surfaceW + 0.002 * frame.ssr.z; }
-
-// Where the previous frame shows world point `p` (false: off its screen).
-bool previousUv(vec3 p, out vec2 uv) {
-  vec4 before = frame.previousViewProj * vec4(p, 1.0);
-  uv = before.xy / before.w * 0.5 + 0.5;
-  return before.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)));
-}
 
 // The reflection seen on smooth surface `s`: rgb radiance, a confidence; `hitDistance` how far
 // along the mirror ray the surface it met lies (-1: none).

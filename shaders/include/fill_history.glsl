@@ -22,6 +22,7 @@
 // The includer includes bindings.glsl and rates.glsl.
 #ifndef RB_FILL_HISTORY_GLSL
 #define RB_FILL_HISTORY_GLSL
+#include "include/reproject.glsl"
 
 #define RB_HISTORY_NONE 255u        // the age of a path with nothing to carry
 #define RB_HISTORY_DISTANCE 0.01    // relative
@@ -43,11 +44,11 @@ uint ratePeriod(uint rate) {
 History previousHistory(vec3 p, uint objectId) {
   History h = History(vec3[2](vec3(0.0), vec3(0.0)), uvec2(RB_HISTORY_NONE), uvec2(0u));
   if (frame.previousCamera.w == 0.0) return h;
-  vec4 before = frame.previousViewProj * vec4(p, 1.0);
-  if (before.w <= 0.0) return h;
+  vec2 uv;
+  if (!previousUv(p, uv)) return h;
   ivec2 size = ivec2(frame.sizeLightsFrame.xy);
-  ivec2 at = ivec2(floor((before.xy / before.w * 0.5 + 0.5) * vec2(size)));
-  if (any(lessThan(at, ivec2(0))) || any(greaterThanEqual(at, size))) return h;
+  ivec2 at = ivec2(floor(uv * vec2(size)));
+  if (any(greaterThanEqual(at, size))) return h;  // (uv just below 1 may round up)
   uint layer = ((frame.sizeLightsFrame.w - 1u) & 1u) * 2u;
   uvec4 where = imageLoad(fillHistory, ivec3(at, layer + 1u));
   vec3 toPrevious = frame.previousCamera.xyz - p, toCamera = frame.cameraPositionNear.xyz - p;
