@@ -245,6 +245,7 @@ void pathsHere(Selection sel, ivec2 pixel, out bvec2 traced, out bvec2 skipped) 
 void main() {
   ivec2 pixel = tilePixel(RB_EFFECT_TILES);
   bool fills = fillsInPass();
+  uint begun = clockNow();
   if (fills) clearFillSlot(pixel);
   // A pixel whose items trace nothing here reads no more of the G-buffer than its object (and,
   // where a reduced rate skipped it, what its fill needs: readFillSurface).
@@ -253,10 +254,12 @@ void main() {
   vec3 change[2] = vec3[2](vec3(0.0), vec3(0.0));
   uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
   Selection sel = selectionAt(objectId, pixel);
+  bool tracedAny = false;
   if (objectId != RB_NO_OBJECT) {
     bvec2 traced, skipped;
     pathsHere(sel, pixel, traced, skipped);
-    if (any(traced)) {
+    tracedAny = any(traced);
+    if (tracedAny) {
       bool lit = readSurface(pixel, s) && !s.unlit;
       traceEffects(pixel, lit, s, sel, shown, change);
       if (lit) pending = pendingPaths(s, sel, pixel);
@@ -265,7 +268,13 @@ void main() {
     }
   }
   if (!fills) return;
+  // A pixel whose items' reduced rates skipped it is timed for their cost per skipped pixel
+  // (GpuItemCost::fillPerPixel): its surface read before the barrier, where no lane of its
+  // subgroup traced (a tracing lane's span is the subgroup's), and its fill after it.
+  bvec2 skippedPaths = pending;
+  uint before = subgroupAny(tracedAny) ? 0u : clockNow() - begun;
   barrier();
+  uint resumed = clockNow();
   EffectSample samples[4] = EffectSample[4](effectSample(0), effectSample(1), effectSample(2), effectSample(3));
   uvec2 age = uvec2(shown.x ? 0u : RB_HISTORY_NONE, shown.y ? 0u : RB_HISTORY_NONE), turn = uvec2(0u);
   if (temporalFill() && any(pending)) {
@@ -284,4 +293,12 @@ void main() {
   }
   if (any(pending)) fillPending(pixel, s, sel, pending, samples);
   if (temporalFill() && any(notEqual(age, uvec2(RB_HISTORY_NONE)))) writeHistory(pixel, change, age, turn, s.objectId, s.position);
+  if (measuringItems()) {
+    // Shared among the subgroup's skipped pixels, each one's split over the paths it skipped.
+    bool skipped = any(skippedPaths);
+    uint share = clockShare(0u, before + (clockNow() - resumed), subgroupAdd(skipped ? 1u : 0u));
+    uvec2 paths = uvec2(skippedPaths);
+    uint each = share / max(paths.x + paths.y, 1u);
+    addItemCounts(skipped ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(0u, paths * each), uvec3(0u, paths));
+  }
 }

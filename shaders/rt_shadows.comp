@@ -42,23 +42,24 @@ float fillCorrection(uint slot, uint light) {
 // as much per pixel as a quarter rate's rays, so a skipped pixel that ran them made a rate
 // save little. `skipped` returns that pixel's fill centre (object RB_NO_OBJECT: nothing to fill)
 // and `sel` its object's selection.
-void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection sel) {
+// Returns whether it traced (or went to: an unlit surface traces nothing).
+bool traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection sel) {
   sel = Selection(0u);
   skipped.objectId = RB_NO_OBJECT;
-  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
+  if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return false;
   uint objectId = texelFetch(gObjectId, pixel, 0).r;
-  if (objectId == RB_NO_OBJECT) return;
+  if (objectId == RB_NO_OBJECT) return false;
   sel = selectionAt(objectId, pixel);
   bool probe = !itemSelected(sel, RB_ITEM_SHADOWS);
-  if (probe && !itemProbed(sel, RB_ITEM_SHADOWS, pixel)) return;  // the lighting pass reads no mask there
+  if (probe && !itemProbed(sel, RB_ITEM_SHADOWS, pixel)) return false;  // the lighting pass reads no mask there
   uint rate = probe ? RB_RATE_FULL : itemRate(sel, RB_ITEM_SHADOWS);
   bool share = fills && rate != RB_RATE_FULL;
   Surface s;
   if (!rateTraces(rate, pixel)) {
     if (readFillSurface(pixel, objectId, s)) skipped = fillCentre(objectId, s.position, s.normal);
-    return;
+    return false;
   }
-  if (!readSurface(pixel, s) || s.unlit) return;
+  if (!readSurface(pixel, s) || s.unlit) return true;
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
@@ -97,6 +98,7 @@ void traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection
   // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
   bool counted = probe || rate != RB_RATE_FULL;
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
+  return true;
 }
 
 // Fills a skipped pixel's lights: per light facing it, the shadow map's visibility there
@@ -141,12 +143,22 @@ void fillPending(ivec2 pixel, FillCentre c, Selection sel, SixteenthSample sampl
 void main() {
   ivec2 pixel = tilePixel(RB_SHADOW_TILES);
   bool fills = fillsInPass();
+  uint begun = clockNow();
   if (fills) clearFillSlot(pixel);
   FillCentre skipped;
   Selection sel;
-  traceShadows(pixel, fills, skipped, sel);
+  bool traced = traceShadows(pixel, fills, skipped, sel);
   if (!fills) return;
+  // A pixel its item's reduced rate skipped is timed as in rt_effects.comp: its surface read
+  // where no lane of its subgroup traced, and its fill.
+  uint before = subgroupAny(traced) ? 0u : clockNow() - begun;
   barrier();
+  uint resumed = clockNow();
   SixteenthSample samples[4] = SixteenthSample[4](sixteenthSample(0), sixteenthSample(1), sixteenthSample(2), sixteenthSample(3));
-  if (skipped.objectId != RB_NO_OBJECT) fillPending(pixel, skipped, sel, samples);
+  bool pending = skipped.objectId != RB_NO_OBJECT;
+  if (pending) fillPending(pixel, skipped, sel, samples);
+  if (measuringItems()) {
+    uint share = clockShare(0u, before + (clockNow() - resumed), subgroupAdd(pending ? 1u : 0u));
+    addItemCounts(skipped.objectId, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(pending ? share : 0u, 0u, 0u), uvec3(pending ? 1u : 0u, 0u, 0u));
+  }
 }

@@ -116,13 +116,57 @@ TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100}, 0.0f).workPerPixel, 1.0f) << "not timed: traversal work";
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 0, 0, 100}, 3.0f).workPerPixel, 1.0f) << "no ticks of its own";
   // Timed at a reduced rate, its traced pixels' ticks are divided by what such a pixel costs
-  // over one of full rate: the item learns full rate's cost per pixel, which RB_COST_* prices.
+  // over one of full rate: the item learns full rate's cost per pixel, which rateShare prices.
   const float sixteenth = select::learnItem(0.05f, fresh, {100, 5000, 0, 100, false, RB_RATE_SIXTEENTH}, 3.0f).workPerPixel;
   EXPECT_FLOAT_EQ(sixteenth, 150.0f / float(RB_TRACED_PIXEL_COST_SIXTEENTH));
   EXPECT_LT(sixteenth, select::learnItem(0.05f, fresh, {100, 5000, 0, 100, false, RB_RATE_QUARTER}, 3.0f).workPerPixel);
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100, false, RB_RATE_QUARTER}, 0.0f).workPerPixel, 1.0f)
       << "traversal work per ray does not depend on the rate";
   EXPECT_EQ(select::tracedPixelCost(RB_RATE_FULL), 1.0f);
+}
+
+// A pixel a reduced rate skipped is timed too: its ticks over the skipped pixels at the frame's
+// exchange rate are the item's fill per pixel (averaged as its cost per pixel is), and the rates'
+// shares of the full-rate cost grow with the fill over the traced pixel's cost.
+TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
+  const select::ItemLearned fresh;
+  // 20 ticks per skipped pixel at 3 work units a tick: 60; then 30 observed: the mean, 45.
+  const select::ItemLearned once = select::learnItem(0.05f, fresh, {100, 5000, 0, 100, false, RB_RATE_QUARTER, 6000, 300}, 3.0f);
+  EXPECT_EQ(once.fillPerPixel, 60.0f);
+  EXPECT_EQ(select::learnItem(0.05f, once, {100, 5000, 0, 100, false, RB_RATE_QUARTER, 3000, 300}, 3.0f).fillPerPixel, 45.0f);
+  EXPECT_EQ(select::learnItem(0.05f, once, {100, 5000, 0, 100, false, RB_RATE_QUARTER, 3000, 300}, 0.0f).fillPerPixel, 60.0f)
+      << "not timed: kept";
+  EXPECT_EQ(select::learnItem(0.05f, once, {}, 3.0f).fillPerPixel, 60.0f) << "not traced: kept";
+  // Shares: the traced pixels' part plus the skipped ones' at the fill share, capped, the prior
+  // before anything was learned.
+  EXPECT_EQ(select::fillShare(0.0f, 100.0f), float(RB_FILL_SHARE_PRIOR));
+  EXPECT_EQ(select::fillShare(20.0f, 0.0f), float(RB_FILL_SHARE_PRIOR));
+  EXPECT_EQ(select::fillShare(20.0f, 100.0f), 0.2f);
+  EXPECT_EQ(select::fillShare(500.0f, 100.0f), float(RB_FILL_SHARE_MAX));
+  EXPECT_EQ(select::rateShare(RB_RATE_FULL, 0.5f), 1.0f);
+  EXPECT_EQ(select::rateShare(RB_RATE_QUARTER, 0.0f), float(RB_TRACED_SHARE_QUARTER));
+  EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_SIXTEENTH, 0.2f), 0.0625f * 2.24f + 0.9375f * 0.2f);
+  EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_HALF, 0.2f), 0.5f * 1.3f + 0.5f * 0.2f);
+  for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR), 0.3f, float(RB_FILL_SHARE_MAX)}) {
+    for (uint32_t effect : {RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS}) {
+      float cost = 0.0f, value = 0.0f;
+      for (uint32_t k = 0; k < select::rateSegments(effect); ++k) {
+        const select::RateSegment s = select::rateSegment(effect, k, fill);
+        EXPECT_GT(s.costShare, 0.0f) << "fill " << fill << " segment " << k;
+        cost += s.costShare;
+        value += s.valueShare;
+      }
+      EXPECT_NEAR(cost, 1.0f, 1e-6f) << "the segments add up to full rate";
+      EXPECT_NEAR(value, 1.0f, 1e-6f);
+    }
+    EXPECT_LT(select::rateShare(RB_RATE_SIXTEENTH, fill), select::rateShare(RB_RATE_QUARTER, fill));
+  }
+  // At the prior the segments' value per cost falls (a concave hull).
+  for (uint32_t effect : {RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS})
+    for (uint32_t k = 1; k < 3; ++k) {
+      const select::RateSegment a = select::rateSegment(effect, k - 1), b = select::rateSegment(effect, k);
+      EXPECT_GT(a.valueShare / a.costShare, b.valueShare / b.costShare) << "effect " << effect << " segment " << k;
+    }
 }
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {

@@ -167,7 +167,9 @@ MirrorsUnderSun mirrorsUnderSun() {
 
 // Rates chosen per item on two mirrors under a sun: more rate segments than three per object
 // (shadows one, reflections three), every frame's segments, costs, values, levels and rates
-// equal to the CPU reference under a budget that binds.
+// equal to the CPU reference under a budget that binds; frames after one at a reduced rate
+// price the item's segments from the cost its skipped pixels took (learned on the GPU, the CPU
+// reference the same bit for bit), which is below what its traced pixels cost.
 TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   auto [scene, s, cam] = mirrorsUnderSun();
   const test::RenderedFrames all = test::renderFrames(scene, s, std::vector<Camera>(4, cam), test::kCheckSelection);
@@ -176,7 +178,8 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   ASSERT_GT(all.timings.front().candidatesMs, 0.0);
   s.budgetMs = float(all.timings.front().candidatesMs / 3.0);
   const test::RenderedFrames part = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
-  for (const test::RenderedFrames* r : {&all, &part})
+  const test::RenderedFrames later = test::renderFrames(scene, s, std::vector<Camera>(3, cam), test::kCheckSelection);
+  for (const test::RenderedFrames* r : {&all, &part, &later})
     for (const FrameTiming& t : r->timings) {
       EXPECT_TRUE(t.selectionMatchesCpu.value_or(false)) << "frame " << t.frame;
       EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
@@ -186,6 +189,14 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   for (const ObjectMetrics& m : part.metrics)
     for (int e = 0; e < 3; ++e) reduced += ((m.selectedItems >> e) & 1u) && m.itemRate[size_t(e)] != ItemRate::Full;
   EXPECT_GT(reduced, 0u) << "under a third of the budget some mirror should be traced at a reduced rate";
+  uint32_t learnedFill = 0;
+  for (const ObjectMetrics& m : later.metrics) {
+    const float fill = m.itemFillPerPixel[1];  // reflections
+    if (fill <= 0.0f) continue;
+    ++learnedFill;
+    EXPECT_LT(fill, m.itemCostPerPixel[1]) << "a filled pixel costs less than a traced one";
+  }
+  EXPECT_GT(learnedFill, 0u) << "a mirror traced at a reduced rate learns what its skipped pixels cost";
 }
 
 // The partial item (docs/SELECTION.md): where the walk leaves budget that pays for a share of the

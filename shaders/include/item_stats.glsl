@@ -5,12 +5,14 @@
 #define RB_ITEM_STATS_GLSL
 
 // Adds this invocation's work, ticks, error and counted pixels (1 where the probe or a reduced
-// ray rate traced the item here; a full rate's pixels are set at selection) per effect (x shadows, y reflections, z refractions) to its object's items: lanes
+// ray rate traced the item here; a full rate's pixels are set at selection), and the ticks and
+// count of the pixels its reduced rate skipped, per effect (x shadows, y reflections, z
+// refractions) to its object's items: lanes
 // of the subgroup on the same object are summed first, then one atomic per item with something
 // to add. The error is summed in float over
 // the lanes and added in 1/RB_ERROR_UNITS units, rounded. The frame's totals of work and
-// ticks take one atomic each per subgroup.
-void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted) {
+// ticks (of traced pixels: their exchange rate) take one atomic each per subgroup.
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted, uvec3 skippedTicks, uvec3 skipped) {
   bool pending = objectId != RB_NO_OBJECT;
   uint allWork = subgroupAdd(pending ? work.x + work.y + work.z : 0u);
   uint allTicks = subgroupAdd(pending ? ticks.x + ticks.y + ticks.z : 0u);
@@ -25,6 +27,8 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 cou
     uvec3 t = subgroupAdd(mine ? ticks : uvec3(0u));
     vec3 e = subgroupAdd(mine ? error : vec3(0.0));
     uvec3 p = subgroupAdd(mine ? counted : uvec3(0u));
+    uvec3 st = subgroupAdd(mine ? skippedTicks : uvec3(0u));
+    uvec3 sp = subgroupAdd(mine ? skipped : uvec3(0u));
     if (mine && subgroupElect()) {
       for (uint k = 0u; k < RB_ITEMS_PER_OBJECT; ++k) {
         uint item = current * RB_ITEMS_PER_OBJECT + k;
@@ -33,10 +37,16 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 cou
         uint units = uint(e[k] * RB_ERROR_UNITS + 0.5);
         if (units != 0u) atomicAdd(itemCosts[item].error, units);
         if (p[k] != 0u) atomicAdd(itemCosts[item].pixels, p[k]);
+        if (st[k] != 0u) atomicAdd(itemCosts[item].skippedTicks, st[k]);
+        if (sp[k] != 0u) atomicAdd(itemCosts[item].skippedPixels, sp[k]);
       }
     }
     pending = pending && !mine;
   }
+}
+
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted) {
+  addItemCounts(objectId, work, ticks, error, counted, uvec3(0u), uvec3(0u));
 }
 
 // The subgroup clock (VK_KHR_shader_clock): the subgroup's lanes run together, so a span

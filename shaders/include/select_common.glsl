@@ -96,9 +96,20 @@ float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 // shadows every pixel of the object (the shadow pass classifies per light), reflections and
 // refractions the classifier's counts; none for an effect the frame does not trace or a
 // scene without lights. cost_model.cpp's itemPixels is the CPU reference.
-// The share of an item's full-rate cost a ray rate costs (shared/selection.h; cost_model.cpp's rateShare).
-float rateShare(uint rate) {
-  return rate == RB_RATE_HALF ? RB_COST_HALF : (rate == RB_RATE_QUARTER ? RB_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_COST_SIXTEENTH : 1.0));
+// The share of an item's full-rate cost a ray rate costs, a pixel it skips costing `fill` of a
+// traced pixel's full-rate cost (shared/selection.h; cost_model.cpp's rateShare). Precise: a
+// fused multiply-add would round otherwise than the CPU.
+float rateShare(uint rate, float fill) {
+  if (rate != RB_RATE_HALF && rate != RB_RATE_QUARTER && rate != RB_RATE_SIXTEENTH) return 1.0;
+  precise float skipped = (rate == RB_RATE_HALF ? 0.5 : (rate == RB_RATE_QUARTER ? 0.75 : 0.9375)) * fill;
+  precise float share = (rate == RB_RATE_HALF ? RB_TRACED_SHARE_HALF : (rate == RB_RATE_QUARTER ? RB_TRACED_SHARE_QUARTER : RB_TRACED_SHARE_SIXTEENTH)) + skipped;
+  return share;
+}
+
+// An item's fill share: its learned cost per skipped pixel over its cost per pixel at full rate,
+// at most RB_FILL_SHARE_MAX; the prior before either was learned (cost_model.cpp's fillShare).
+float fillShare(float fillPerPixel, float workPerPixel) {
+  return fillPerPixel > 0.0 && workPerPixel > 0.0 ? min(exactQuotient(fillPerPixel, workPerPixel), RB_FILL_SHARE_MAX) : RB_FILL_SHARE_PRIOR;
 }
 
 // The clock time of a pixel a rate traces over full rate's per pixel (shared/selection.h;
@@ -108,31 +119,25 @@ float tracedPixelCost(uint rate) {
                               : (rate == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0));
 }
 
-// RB_RATE_AUTO's segments of an item of `effect` (shared/selection.h): how many, and segment
-// k's share of the item's full-rate cost and value and the rate it reaches
-// (cost_model.cpp's rateSegment is the CPU reference).
+// RB_RATE_AUTO's segments of an item of `effect` (shared/selection.h): how many, the rate
+// segment k reaches, its share of the item's full-rate value, and of its full-rate cost at fill
+// share `fill` (cost_model.cpp's rateSegment is the CPU reference).
 uint rateSegments(uint effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
-void rateSegment(uint effect, uint k, out float costShare, out float valueShare, out uint rate) {
-  if (effect == RB_ITEM_SHADOWS) {
-    costShare = 1.0;
-    valueShare = 1.0;
-    rate = RB_RATE_FULL;
-    return;
-  }
+uint segmentRate(uint effect, uint k) {
+  if (effect == RB_ITEM_SHADOWS) return RB_RATE_FULL;
+  return k == 0u ? RB_RATE_SIXTEENTH : (k == 1u ? RB_RATE_QUARTER : RB_RATE_FULL);
+}
+float segmentValueShare(uint effect, uint k) {
+  if (effect == RB_ITEM_SHADOWS) return 1.0;
   bool reflections = effect == RB_ITEM_REFLECTIONS;
-  if (k == 0u) {
-    costShare = RB_COST_SIXTEENTH;
-    valueShare = reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS;
-    rate = RB_RATE_SIXTEENTH;
-  } else if (k == 1u) {
-    costShare = RB_COST_SIXTEENTH_TO_QUARTER;
-    valueShare = reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS;
-    rate = RB_RATE_QUARTER;
-  } else {
-    costShare = RB_COST_QUARTER_TO_FULL;
-    valueShare = reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS;
-    rate = RB_RATE_FULL;
-  }
+  if (k == 0u) return reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS;
+  if (k == 1u) return reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS;
+  return reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS;
+}
+float segmentCostShare(uint effect, uint k, float fill) {
+  if (effect == RB_ITEM_SHADOWS) return 1.0;
+  float sixteenth = rateShare(RB_RATE_SIXTEENTH, fill), quarter = rateShare(RB_RATE_QUARTER, fill);
+  return k == 0u ? sixteenth : (k == 1u ? quarter - sixteenth : 1.0 - quarter);
 }
 
 // Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.

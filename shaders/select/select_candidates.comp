@@ -59,10 +59,11 @@ float ticksToWork() {
 }
 
 // Item `effect` of object i: learns from last frame's counters, restarts them, and returns
-// its candidate's cost and value (false: not a candidate).
-bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value) {
+// its candidate's cost and value and its fill share (false: not a candidate).
+bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value, out float fill) {
   uint id = i * RB_ITEMS_PER_OBJECT + effect;
   GpuItemCost c = items[id];
+  fill = RB_FILL_SHARE_PRIOR;
   bool learnBenefit = (push.items.w & RB_BENEFIT_PRIOR_ONLY) == 0u;
   // Rays per pixel before anything was measured: a shadow ray per light; a reflection or
   // refraction path and the shadow rays of its hit (a refraction enters and leaves).
@@ -87,19 +88,23 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
       c.measured = 1u;
     }
   }
+  // Its cost per pixel its reduced rate skipped (the fill), at the same exchange rate.
+  if (c.skippedPixels > 0u && exchange > 0.0 && c.skippedTicks > 0u)
+    c.fillPerPixel = averagedWith(c.fillPerPixel, exactQuotient(float(c.skippedTicks), float(c.skippedPixels)) * exchange);
   if (c.pixels == 0u || !learnBenefit) {
     // Untraced: drift towards the prior (by a power-of-two share: an exact product, so a
     // fused multiply-add rounds alike), or the prior itself before any measurement.
     float prior = params[i].priors[effect];
     c.benefit = c.measured != 0u ? c.benefit + (prior - c.benefit) * RB_BENEFIT_DRIFT : prior;
   }
-  items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u);
+  items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u, c.fillPerPixel, 0u, 0u);
   uint pixels = itemPixels(i, effect);
   if (r.crCandidatePixels.z < 0.5 || pixels == 0u) return false;
   float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : priorPerPixel;
-  // At a fixed reduced rate a share of the pixels is traced (a power of two: exact); with
-  // rates chosen per item (share 1) the full rate's, which the segments share out.
-  cost = push.budget.y * (float(pixels) * perPixel * rateShare(push.walk.w));
+  // At a fixed reduced rate its share of the full rate's cost; with rates chosen per item (share
+  // 1) the full rate's, which the segments share out.
+  fill = fillShare(c.fillPerPixel, c.workPerPixel);
+  cost = push.budget.y * (float(pixels) * perPixel * rateShare(push.walk.w, fill));
   // R' = (S·I + E)·K with the hysteresis relative to E (docs/SELECTION.md): E·(1 + S·I)·K,
   // E = A·P·b.
   float A = exactQuotient(float(pixels), float(push.items.z));
@@ -125,20 +130,17 @@ void main() {
   if (push.sizes.z == RB_SELECT_BENEFIT) {
     float exchange = ticksToWork();
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
-      float cost = 0.0, value = 0.0;
-      bool add = itemCandidate(i, effect, r, exchange, cost, value);
+      float cost = 0.0, value = 0.0, fill = 0.0;
+      bool add = itemCandidate(i, effect, r, exchange, cost, value, fill);
       uint item = i * RB_ITEMS_PER_OBJECT + effect;
       if (!rateSegmentsWalk()) {
         append(add, item, cost, value, r.apdv.z);
         continue;
       }
       // Rates chosen per item: a candidate per segment of the item's hull (shared/selection.h).
-      for (uint k = 0u; k < 3u; ++k) {
-        float costShare, valueShare;
-        uint rate;
-        rateSegment(effect, k, costShare, valueShare, rate);
-        append(add && k < rateSegments(effect), item * RB_SEGMENT_SLOTS + k, cost * costShare, value * valueShare, r.apdv.z);
-      }
+      for (uint k = 0u; k < 3u; ++k)
+        append(add && k < rateSegments(effect), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(effect, k, fill),
+               value * segmentValueShare(effect, k), r.apdv.z);
     }
     return;
   }

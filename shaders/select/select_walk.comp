@@ -62,9 +62,7 @@ void markLevels() {
   for (uint item = gl_SubgroupInvocationID; item < segmentGroups(); item += gl_SubgroupSize) {
     uint effect = item % RB_ITEMS_PER_OBJECT, level = scratch[item];
     if (level == 0u) continue;
-    float costShare, valueShare;
-    uint rate;
-    rateSegment(effect, level - 1u, costShare, valueShare, rate);
+    uint rate = segmentRate(effect, level - 1u);
     atomicOr(selected[item / RB_ITEMS_PER_OBJECT], (1u << effect) | (rate << (RB_RATE_SHIFT + 2u * effect)));
   }
 }
@@ -108,11 +106,7 @@ float partialShare() {
 // Whether candidate `id` may become the partial one: an item's first segment below full rate
 // (a shadow item's only segment is full rate, which its pixel count would misprice).
 bool partialCandidate(uint id) {
-  if (id % RB_SEGMENT_SLOTS != 0u) return false;
-  float costShare, valueShare;
-  uint rate;
-  rateSegment(candidateItem(id) % RB_ITEMS_PER_OBJECT, 0u, costShare, valueShare, rate);
-  return rate != RB_RATE_FULL;
+  return id % RB_SEGMENT_SLOTS == 0u && segmentRate(candidateItem(id) % RB_ITEMS_PER_OBJECT, 0u) != RB_RATE_FULL;
 }
 
 // The greedy fill-in, a subgroup's batch of the order at a time: the lanes load their

@@ -113,32 +113,48 @@ struct GpuObjectCost {
 #define RB_KEEP_QUARTER_GAIN_REFRACTIONS 0.12  // difference in double, C++ in float, and
 #define RB_KEEP_FULL_GAIN_REFLECTIONS 0.22     // the two must round alike
 #define RB_KEEP_FULL_GAIN_REFRACTIONS 0.1
-// The share of an item's full-rate cost a rate costs: not the share of its rays, as every
-// pixel of the item still reads its surface and the skipped ones are filled (include/
-// tile_fill.glsl): measured on `all` at 640x360 on lavapipe, the effects pass alone at 1/2,
-// 1/4 and 1/16 over full on orbits (12 frames, the mean of two runs), the median of the court
-// (0.66, 0.36, 0.20), the plaza (0.67, 0.41, 0.21), the WaterBottle (0.87, 0.61, 0.35),
-// MetalRoughSpheresNoTextures (0.74, 0.46, 0.25), TransmissionTest (0.59, 0.30, 0.13) and
-// Suzanne (0.70, 0.44, 0.24).
+// The share of an item's full-rate cost a rate costs is not the share of its rays: every pixel
+// of the item still reads its surface, and the skipped ones are filled (include/tile_fill.glsl)
+// and, with the temporal fill, reproject and write their history. Measured on `all` at 640x360
+// on lavapipe, the effects pass at 1/2, 1/4 and 1/16 over full on 12-frame orbits with the
+// temporal fill (the mean of two runs), the shares run from TransmissionTest's 0.63, 0.34, 0.15
+// to the WaterBottle's 1.10, 0.77, 0.50 (the court 0.69, 0.41, 0.21; Suzanne 0.85, 0.57, 0.34),
+// a spread no constant prices. So each item learns it: a pixel its rate traces costs
+// RB_TRACED_PIXEL_COST_* times its full-rate cost per pixel (its clock ticks over its traced
+// pixels, below), and a pixel its rate skips costs fill = GpuItemCost::fillPerPixel, learned from
+// the skipped pixels' ticks. As a share of full rate, with f = fill / workPerPixel (clamped to
+// [0, RB_FILL_SHARE_MAX]; RB_FILL_SHARE_PRIOR before a skipped pixel was timed):
+//   share(1/2) = 0.5 * 1.3 + 0.5 f,  share(1/4) = 0.25 * 1.33 + 0.75 f,  share(1/16) = 0.0625 * 2.24 + 0.9375 f
+// (RB_TRACED_SHARE_* are the first terms; cost_model.cpp's rateShare is the CPU reference). On
+// `classified` the items' ticks at 1/4 and 1/16 over full follow the pass's time (the WaterBottle
+// 0.69 and 0.45 against 0.84 and 0.55 ms, TransmissionTest 0.33, 0.14 against 0.34, 0.16).
 // A pixel a reduced rate traces costs more clock time than one of full rate (its neighbours'
 // rays, gathers and shared-memory traffic do not run beside it; 1/16's lie four pixels apart):
 // per traced pixel over full rate's per pixel, `classified` at 640x360 on lavapipe, the median
 // over the items of the court (14) and the plaza (51-53): 1.29 and 1.33 at 1/2, 1.33 and 1.33 at
 // 1/4, 2.24 and 2.24 at 1/16 (Suzanne's 1.31 and 2.10). An item learns its cost per pixel
 // at full rate from its traced pixels' ticks divided by its rate's factor, so that
-// RB_COST_* prices its rates from the same figure whatever rate measured it.
+// its rates are priced from the same figure whatever rate measured it.
 #define RB_TRACED_PIXEL_COST_HALF 1.3
 #define RB_TRACED_PIXEL_COST_QUARTER 1.33
 #define RB_TRACED_PIXEL_COST_SIXTEENTH 2.24
-#define RB_COST_HALF 0.7
-#define RB_COST_SIXTEENTH 0.22
-#define RB_COST_SIXTEENTH_TO_QUARTER 0.21  // RB_COST_QUARTER - RB_COST_SIXTEENTH
-#define RB_COST_QUARTER 0.43
-#define RB_COST_QUARTER_TO_FULL 0.57  // 1 - RB_COST_QUARTER
-// Each hull is 1/16, 1/4, full: three segments, skip -> 1/16, 1/16 -> 1/4, 1/4 -> full, at
-// value per cost 2.7, 0.86 and 0.39 for reflections, 3.5, 0.57 and 0.18 for refractions. 1/2 lies
-// on the line from 1/4 to full within 0.01 of value (reflections 0.89 against 0.88, refractions
-// 0.95 against 0.945) and is left out of the hull.
+#define RB_TRACED_SHARE_HALF 0.65        // 0.5 * RB_TRACED_PIXEL_COST_HALF (literals, as RB_KEEP_*)
+#define RB_TRACED_SHARE_QUARTER 0.3325   // 0.25 * RB_TRACED_PIXEL_COST_QUARTER
+#define RB_TRACED_SHARE_SIXTEENTH 0.14   // 0.0625 * RB_TRACED_PIXEL_COST_SIXTEENTH
+// The prior fill share: the skipped pixels' ticks of the court, Suzanne, the WaterBottle and
+// TransmissionTest at 1/4 and 1/16 gave 0.0-0.48, the court 0.01-0.03, Suzanne 0.16-0.17.
+#define RB_FILL_SHARE_PRIOR 0.125
+// Up to this share 1/4 stays dearer than 1/16 and cheaper than full (the segments below stay
+// positive); a fill dearer than that is priced at it.
+#define RB_FILL_SHARE_MAX 0.85
+// Each item offers 1/16, 1/4, full: three segments, skip -> 1/16, 1/16 -> 1/4, 1/4 -> full,
+// costing share(1/16), share(1/4) - share(1/16) and 1 - share(1/4) of its full-rate cost. At the
+// prior fill share their value per cost is 2.3, 1.07 and 0.38 for reflections, 3.0, 0.71 and 0.17
+// for refractions, a concave hull; from a fill share of 0.32 (reflections) or 0.52 (refractions)
+// the middle segment is worth more per cost than the first, and the walk, which takes a segment
+// only after the one before it, then stops such an item at 1/16 where 1/4 would be worth its cost
+// (docs/SELECTION.md). 1/2 lies near the line from 1/4 to full (at the constant shares measured
+// before: within 0.01 of value) and is left out.
 
 // `benefit` with rates chosen per item, frame mode: where the walk leaves budget over, the first
 // item in its order whose first segment (1/16 for reflections and refractions) did not fit is
@@ -148,11 +164,12 @@ struct GpuObjectCost {
 #define RB_NO_PARTIAL 0xFFFFFFFFu
 #define RB_PARTIAL_MIN_SHARE 0.125
 
-// 32 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
+// 44 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
-// 1 once measured, and S as last frame's option (0: left out; 1 + its rate). One more record after the items holds the
+// 1 once measured, S as last frame's option (0: left out; 1 + its rate), and its learned cost
+// per pixel its rate skips with this frame's ticks and count of such pixels. One more record after the items holds the
 // frame's totals of work and ticks over every item (the ticks' exchange rate to work units),
 // in `pixels` the frame's probe stride (0: no probe), in `selectedLast` the partial item + 1 (0:
 // none) and in `benefit` its share of tiles. A probed item's `pixels` start at 0
@@ -166,6 +183,9 @@ struct GpuItemCost {
   uint measured;
   uint selectedLast;
   uint ticks;
+  float fillPerPixel;  // learned work units per pixel its reduced rate skips (0: not learned)
+  uint skippedTicks;   // this frame's ticks (RB_CLOCK_UNIT) of the pixels its rate skipped
+  uint skippedPixels;  // and how many
 };
 // Clock ticks per unit of GpuItemCost::ticks: a 32-bit sum then holds 2^36 ticks a frame.
 #define RB_CLOCK_UNIT 16u

@@ -270,6 +270,7 @@ struct ObjectMetrics {
   std::array<uint64_t, 3> itemTicks{};  // subgroup clock ticks the trace passes spent on the item
   std::array<float, 3> itemBenefit{};
   std::array<float, 3> itemCostPerPixel{};  // `benefit`: the learned cost per traced pixel, work units (0: not learned)
+  std::array<float, 3> itemFillPerPixel{};  // `benefit`: the learned cost per pixel a reduced rate skipped (0: not learned)
   // The share of its 8x8 tiles a selected item is traced on: 1, or below for `benefit`'s
   // partial item (with rates chosen per item: the budget the knapsack left, docs/SELECTION.md)
   std::array<float, 3> itemTileShare{1.0f, 1.0f, 1.0f};

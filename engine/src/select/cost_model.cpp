@@ -52,25 +52,30 @@ ItemRate itemRateOfCode(uint32_t code) {
   }
 }
 
-float rateShare(uint32_t code) {
-  switch (code) {
-    case RB_RATE_HALF: return float(RB_COST_HALF);
-    case RB_RATE_QUARTER: return float(RB_COST_QUARTER);
-    case RB_RATE_SIXTEENTH: return float(RB_COST_SIXTEENTH);
-    default: return 1.0f;
-  }
+float rateShare(uint32_t code, float fill) {
+  if (code != RB_RATE_HALF && code != RB_RATE_QUARTER && code != RB_RATE_SIXTEENTH) return 1.0f;
+  // Two roundings, as the GPU's precise product and sum (no fused multiply-add: -ffp-contract=off).
+  const float skipped = (code == RB_RATE_HALF ? 0.5f : code == RB_RATE_QUARTER ? 0.75f : 0.9375f) * fill;
+  const float traced = float(code == RB_RATE_HALF ? RB_TRACED_SHARE_HALF : code == RB_RATE_QUARTER ? RB_TRACED_SHARE_QUARTER : RB_TRACED_SHARE_SIXTEENTH);
+  return traced + skipped;
+}
+
+float fillShare(float fillPerPixel, float workPerPixel) {
+  return fillPerPixel > 0.0f && workPerPixel > 0.0f ? std::min(exactQuotient(fillPerPixel, workPerPixel), float(RB_FILL_SHARE_MAX))
+                                                    : float(RB_FILL_SHARE_PRIOR);
 }
 
 uint32_t rateSegments(uint32_t effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
 
-RateSegment rateSegment(uint32_t effect, uint32_t k) {
+RateSegment rateSegment(uint32_t effect, uint32_t k, float fill) {
   if (effect == RB_ITEM_SHADOWS) return {1.0f, 1.0f, RB_RATE_FULL};
   const bool reflections = effect == RB_ITEM_REFLECTIONS;
+  const float sixteenth = rateShare(RB_RATE_SIXTEENTH, fill), quarter = rateShare(RB_RATE_QUARTER, fill);
   if (k == 0)
-    return {float(RB_COST_SIXTEENTH), float(reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS), RB_RATE_SIXTEENTH};
+    return {sixteenth, float(reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS), RB_RATE_SIXTEENTH};
   if (k == 1)
-    return {float(RB_COST_SIXTEENTH_TO_QUARTER), float(reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS), RB_RATE_QUARTER};
-  return {float(RB_COST_QUARTER_TO_FULL), float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS), RB_RATE_FULL};
+    return {quarter - sixteenth, float(reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS), RB_RATE_QUARTER};
+  return {1.0f - quarter, float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS), RB_RATE_FULL};
 }
 
 float tracedPixelCost(uint32_t rate) {
@@ -105,6 +110,8 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
       after.measured = true;
     }
   }
+  if (counts.skippedPixels > 0 && exchange > 0.0f && counts.skippedTicks > 0)
+    after.fillPerPixel = averagedWith(before.fillPerPixel, exactQuotient(float(counts.skippedTicks), float(counts.skippedPixels)) * exchange);
   if (pixels == 0 || !learnBenefit) {
     // The drift's product is exact (a power-of-two share), so a fused multiply-add rounds alike.
     after.benefit = before.measured ? before.benefit + (prior - before.benefit) * float(RB_BENEFIT_DRIFT) : prior;

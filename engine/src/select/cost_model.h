@@ -20,22 +20,27 @@
 namespace raybudget::select {
 
 // A ray rate's code in the frame's selection (RB_RATE_*), and the share of an item's full-rate
-// cost it costs (RB_COST_*: a single rounded multiply, alike on the GPU).
+// cost it costs where a pixel it skips costs `fill` of a traced pixel's full-rate cost
+// (shared/selection.h; select_common.glsl's, rounded alike).
 uint32_t rateCode(ItemRate rate);
 ItemRate itemRateOfCode(uint32_t code);
-float rateShare(uint32_t code);
+float rateShare(uint32_t code, float fill);
+// An item's fill share: its learned cost per skipped pixel over its full-rate cost per pixel,
+// at most RB_FILL_SHARE_MAX; RB_FILL_SHARE_PRIOR before either was learned.
+float fillShare(float fillPerPixel, float workPerPixel);
 // a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
 float exactQuotient(float a, float b);
 
-// RB_RATE_AUTO's segments of an item (shared/selection.h; select_common.glsl's rateSegment):
-// how many an effect's item offers, and segment k's share of the item's full-rate cost and
-// value and the rate (RB_RATE_*) taking it reaches.
+// RB_RATE_AUTO's segments of an item (shared/selection.h; select_common.glsl's segmentRate,
+// segmentCostShare, segmentValueShare): how many an effect's item offers, and segment k's share
+// of the item's full-rate cost (at fill share `fill`) and value and the rate (RB_RATE_*) taking
+// it reaches.
 struct RateSegment {
   float costShare = 1.0f, valueShare = 1.0f;
   uint32_t rate = 0;
 };
 uint32_t rateSegments(uint32_t effect);
-RateSegment rateSegment(uint32_t effect, uint32_t k);
+RateSegment rateSegment(uint32_t effect, uint32_t k, float fill = float(RB_FILL_SHARE_PRIOR));
 
 // An object's work per traced pixel after a frame that counted `work` over `pixels`: the
 // mean of what it knew and the observation (the observation alone when it knew nothing,
@@ -60,6 +65,7 @@ struct ItemLearned {
   float workPerPixel = 0.0f;
   float benefit = 0.0f;
   bool measured = false;
+  float fillPerPixel = 0.0f;  // per pixel its reduced rate skipped (0: not learned)
 };
 // What an item knows after a frame that counted `work` and `error` (in 1/RB_ERROR_UNITS) over
 // the `pixels` it was traced on (0: not traced; its benefit drifts to `prior`, the item's
@@ -69,11 +75,13 @@ struct ItemLearned {
 // (exchange 0 or no ticks). `ablation`: RB_BENEFIT_* bits (RB_BENEFIT_PRIOR_ONLY: b stays the prior).
 // `probed`: the item was left out, so its counts are the probe's few tiles, which move the
 // work per pixel (or, before that was learned, `priorWorkPerPixel`) by a share growing with
-// the pixels probed (RB_PROBE_TRUSTED_PIXELS), not to their mean.
+// the pixels probed (RB_PROBE_TRUSTED_PIXELS), not to their mean. Its cost per pixel a reduced
+// rate skipped (fillPerPixel) is learned from those pixels' ticks at the same exchange rate.
 struct ItemCounts {
   uint32_t work = 0, ticks = 0, error = 0, pixels = 0;
   bool probed = false;
   uint32_t rate = RB_RATE_FULL;  // the rate it was traced at (its ticks' pixels: tracedPixelCost)
+  uint32_t skippedTicks = 0, skippedPixels = 0;  // of the pixels that rate skipped (their fill)
 };
 // The clock time of a pixel `rate` traces over full rate's per pixel (shared/selection.h's
 // RB_TRACED_PIXEL_COST_*; 1 at full rate).

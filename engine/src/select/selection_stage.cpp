@@ -293,8 +293,9 @@ struct SelectionStage::Impl {
     for (uint32_t id = 0; id < items; ++id) {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
       const gpu::GpuItemCost& b = before[id];
-      learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0},
-                              {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0, b.selectedLast == 0 ? RB_RATE_FULL : b.selectedLast - 1},
+      learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0, b.fillPerPixel},
+                              {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0, b.selectedLast == 0 ? RB_RATE_FULL : b.selectedLast - 1,
+                               b.skippedTicks, b.skippedPixels},
                               exchange, frame.ablation,
                               priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
       const gpu::GpuItemCost& a = after[id];
@@ -303,7 +304,8 @@ struct SelectionStage::Impl {
       const uint32_t rate = selectedRate(selected[i], e);
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
-          a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u + rate : 0u) ||
+          std::bit_cast<uint32_t>(a.fillPerPixel) != std::bit_cast<uint32_t>(learned[id].fillPerPixel) || a.skippedTicks != 0 ||
+          a.skippedPixels != 0 || a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u + rate : 0u) ||
           a.pixels != (on && rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
         return false;
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
@@ -319,14 +321,15 @@ struct SelectionStage::Impl {
       if (item >= items) return false;
       const uint32_t i = item / RB_ITEMS_PER_OBJECT, e = item % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
       if (records[i].crCandidatePixels.z < 0.5f || pixels == 0) return false;
-      const float work = predictedItemWork(e, pixels, learned[item].workPerPixel, frame.lights, slot.workPerRay) * rateShare(frame.rate);
+      const float fill = fillShare(learned[item].fillPerPixel, learned[item].workPerPixel);
+      const float work = predictedItemWork(e, pixels, learned[item].workPerPixel, frame.lights, slot.workPerRay) * rateShare(frame.rate, fill);
       const glm::vec4 kqiS = params[i].kqiS;
       float cost = predictedCost(float(slot.msPerUnit), work);
       float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
       if (segments) {
         const uint32_t k = c.id % RB_SEGMENT_SLOTS;
         if (k >= rateSegments(e)) return false;
-        const RateSegment s = rateSegment(e, k);
+        const RateSegment s = rateSegment(e, k, fill);
         cost *= s.costShare;
         value *= s.valueShare;
       }
@@ -446,6 +449,7 @@ struct SelectionStage::Impl {
         out[i].itemTicks[e] = uint64_t(item.ticks) * RB_CLOCK_UNIT;
         out[i].itemBenefit[e] = item.benefit;
         out[i].itemCostPerPixel[e] = item.workPerPixel;
+        out[i].itemFillPerPixel[e] = item.fillPerPixel;
         if (totals.selectedLast == i * RB_ITEMS_PER_OBJECT + e + 1 && ((selected[i] >> e) & 1u)) out[i].itemTileShare[e] = totals.benefit;
       }
     }
