@@ -147,26 +147,38 @@ TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
   EXPECT_EQ(select::rateShare(RB_RATE_QUARTER, 0.0f), float(RB_TRACED_SHARE_QUARTER));
   EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_SIXTEENTH, 0.2f), 0.0625f * 2.24f + 0.9375f * 0.2f);
   EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_HALF, 0.2f), 0.5f * 1.3f + 0.5f * 0.2f);
-  for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR), 0.3f, float(RB_FILL_SHARE_MAX)}) {
+  // Every fill share up to the cap gives a concave hull: the segments add up to full rate, each
+  // worth less per cost than the one before; where 1/16 falls below the line from skipping to 1/4
+  // the item offers 1/4 and full alone.
+  for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR), 0.3f, 0.4f, 0.55f, float(RB_FILL_SHARE_MAX)}) {
     for (uint32_t effect : {RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS}) {
-      float cost = 0.0f, value = 0.0f;
-      for (uint32_t k = 0; k < select::rateSegments(effect); ++k) {
+      float cost = 0.0f, value = 0.0f, density = INFINITY;
+      const uint32_t n = select::rateSegments(effect, fill);
+      for (uint32_t k = 0; k < n; ++k) {
         const select::RateSegment s = select::rateSegment(effect, k, fill);
         EXPECT_GT(s.costShare, 0.0f) << "fill " << fill << " segment " << k;
+        EXPECT_LT(s.valueShare / s.costShare, density) << "fill " << fill << " effect " << effect << " segment " << k;
+        density = s.valueShare / s.costShare;
         cost += s.costShare;
         value += s.valueShare;
       }
       EXPECT_NEAR(cost, 1.0f, 1e-6f) << "the segments add up to full rate";
       EXPECT_NEAR(value, 1.0f, 1e-6f);
+      EXPECT_EQ(select::rateSegment(effect, n - 1, fill).rate, RB_RATE_FULL);
+      EXPECT_EQ(n, select::sixteenthDominated(effect, fill) ? 2u : 3u);
     }
     EXPECT_LT(select::rateShare(RB_RATE_SIXTEENTH, fill), select::rateShare(RB_RATE_QUARTER, fill));
   }
-  // At the prior the segments' value per cost falls (a concave hull).
-  for (uint32_t effect : {RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS})
-    for (uint32_t k = 1; k < 3; ++k) {
-      const select::RateSegment a = select::rateSegment(effect, k - 1), b = select::rateSegment(effect, k);
-      EXPECT_GT(a.valueShare / a.costShare, b.valueShare / b.costShare) << "effect " << effect << " segment " << k;
-    }
+  EXPECT_FALSE(select::sixteenthDominated(RB_ITEM_REFLECTIONS, float(RB_FILL_SHARE_PRIOR)));
+  EXPECT_FALSE(select::sixteenthDominated(RB_ITEM_REFRACTIONS, float(RB_FILL_SHARE_PRIOR)));
+  EXPECT_TRUE(select::sixteenthDominated(RB_ITEM_REFLECTIONS, 0.4f)) << "1/16 costs 0.52 of full for 0.6 of its value, 1/4 0.63 for 0.78";
+  EXPECT_FALSE(select::sixteenthDominated(RB_ITEM_REFRACTIONS, 0.4f));
+  EXPECT_TRUE(select::sixteenthDominated(RB_ITEM_REFRACTIONS, 0.55f));
+  EXPECT_FALSE(select::sixteenthDominated(RB_ITEM_SHADOWS, float(RB_FILL_SHARE_MAX)));
+  const select::RateSegment quarterFirst = select::rateSegment(RB_ITEM_REFLECTIONS, 0, 0.4f);
+  EXPECT_EQ(quarterFirst.rate, RB_RATE_QUARTER);
+  EXPECT_EQ(quarterFirst.costShare, select::rateShare(RB_RATE_QUARTER, 0.4f));
+  EXPECT_EQ(quarterFirst.valueShare, float(RB_KEEP_QUARTER_REFLECTIONS));
 }
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {

@@ -119,25 +119,48 @@ float tracedPixelCost(uint rate) {
                               : (rate == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0));
 }
 
+// Whether an item of `effect` at fill share `fill` leaves 1/16 out of its options: 1/16 lies
+// below the line from skipping to 1/4 in (cost, value), so 1/4 on a share of the budget is worth
+// more (Funkhouser and Sequin's dominated option). Products precise, as the CPU's
+// (cost_model.cpp's sixteenthDominated).
+bool sixteenthDominated(uint effect, float fill) {
+  if (effect == RB_ITEM_SHADOWS) return false;
+  bool reflections = effect == RB_ITEM_REFLECTIONS;
+  precise float sixteenth = (reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS) * rateShare(RB_RATE_QUARTER, fill);
+  precise float chord = (reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS) * rateShare(RB_RATE_SIXTEENTH, fill);
+  return sixteenth < chord;
+}
+
 // RB_RATE_AUTO's segments of an item of `effect` (shared/selection.h): how many, the rate
 // segment k reaches, its share of the item's full-rate value, and of its full-rate cost at fill
-// share `fill` (cost_model.cpp's rateSegment is the CPU reference).
-uint rateSegments(uint effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
-uint segmentRate(uint effect, uint k) {
+// share `fill`; `dropped`: sixteenthDominated, the segments are skip -> 1/4 -> full
+// (cost_model.cpp's rateSegment is the CPU reference).
+uint rateSegments(uint effect, bool dropped) { return effect == RB_ITEM_SHADOWS ? 1u : (dropped ? 2u : 3u); }
+uint segmentRate(uint effect, uint k, bool dropped) {
   if (effect == RB_ITEM_SHADOWS) return RB_RATE_FULL;
-  return k == 0u ? RB_RATE_SIXTEENTH : (k == 1u ? RB_RATE_QUARTER : RB_RATE_FULL);
+  uint step = dropped ? k + 1u : k;
+  return step == 0u ? RB_RATE_SIXTEENTH : (step == 1u ? RB_RATE_QUARTER : RB_RATE_FULL);
 }
-float segmentValueShare(uint effect, uint k) {
+float segmentValueShare(uint effect, uint k, bool dropped) {
   if (effect == RB_ITEM_SHADOWS) return 1.0;
   bool reflections = effect == RB_ITEM_REFLECTIONS;
-  if (k == 0u) return reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS;
-  if (k == 1u) return reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS;
+  if (dropped && k == 0u) return reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS;
+  uint step = dropped ? k + 1u : k;
+  if (step == 0u) return reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS;
+  if (step == 1u) return reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS;
   return reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS;
 }
-float segmentCostShare(uint effect, uint k, float fill) {
+float segmentCostShare(uint effect, uint k, float fill, bool dropped) {
   if (effect == RB_ITEM_SHADOWS) return 1.0;
   float sixteenth = rateShare(RB_RATE_SIXTEENTH, fill), quarter = rateShare(RB_RATE_QUARTER, fill);
+  if (dropped) return k == 0u ? quarter : 1.0 - quarter;
   return k == 0u ? sixteenth : (k == 1u ? quarter - sixteenth : 1.0 - quarter);
+}
+// Whether item `item` (object * RB_ITEMS_PER_OBJECT + effect) left 1/16 out this frame, from what
+// the candidate pass learned (the walk reads it back to mark levels).
+bool itemSixteenthDropped(uint item) {
+  GpuItemCost c = items[item];
+  return sixteenthDominated(item % RB_ITEMS_PER_OBJECT, fillShare(c.fillPerPixel, c.workPerPixel));
 }
 
 // Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.

@@ -138,9 +138,10 @@ void main() {
         continue;
       }
       // Rates chosen per item: a candidate per segment of the item's hull (shared/selection.h).
+      bool dropped = sixteenthDominated(effect, fill);
       for (uint k = 0u; k < 3u; ++k)
-        append(add && k < rateSegments(effect), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(effect, k, fill),
-               value * segmentValueShare(effect, k), r.apdv.z);
+        append(add && k < rateSegments(effect, dropped), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(effect, k, fill, dropped),
+               value * segmentValueShare(effect, k, dropped), r.apdv.z);
     }
     return;
   }

@@ -62,7 +62,7 @@ void markLevels() {
   for (uint item = gl_SubgroupInvocationID; item < segmentGroups(); item += gl_SubgroupSize) {
     uint effect = item % RB_ITEMS_PER_OBJECT, level = scratch[item];
     if (level == 0u) continue;
-    uint rate = segmentRate(effect, level - 1u);
+    uint rate = segmentRate(effect, level - 1u, itemSixteenthDropped(item));
     atomicOr(selected[item / RB_ITEMS_PER_OBJECT], (1u << effect) | (rate << (RB_RATE_SHIFT + 2u * effect)));
   }
 }
@@ -106,7 +106,8 @@ float partialShare() {
 // Whether candidate `id` may become the partial one: an item's first segment below full rate
 // (a shadow item's only segment is full rate, which its pixel count would misprice).
 bool partialCandidate(uint id) {
-  return id % RB_SEGMENT_SLOTS == 0u && segmentRate(candidateItem(id) % RB_ITEMS_PER_OBJECT, 0u) != RB_RATE_FULL;
+  // (1/16, or 1/4 where 1/16 is dominated: below full rate either way)
+  return id % RB_SEGMENT_SLOTS == 0u && segmentRate(candidateItem(id) % RB_ITEMS_PER_OBJECT, 0u, false) != RB_RATE_FULL;
 }
 
 // The greedy fill-in, a subgroup's batch of the order at a time: the lanes load their

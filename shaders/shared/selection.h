@@ -109,6 +109,8 @@ struct GpuObjectCost {
 // lavapipe (docs/SELECTION.md): under full rate's value per cost, they keep full rate alone.
 #define RB_KEEP_SIXTEENTH_REFLECTIONS 0.6
 #define RB_KEEP_SIXTEENTH_REFRACTIONS 0.78
+#define RB_KEEP_QUARTER_REFLECTIONS 0.78
+#define RB_KEEP_QUARTER_REFRACTIONS 0.9
 #define RB_KEEP_QUARTER_GAIN_REFLECTIONS 0.18  // 0.78 - 0.6, a literal: glslang folds a
 #define RB_KEEP_QUARTER_GAIN_REFRACTIONS 0.12  // difference in double, C++ in float, and
 #define RB_KEEP_FULL_GAIN_REFLECTIONS 0.22     // the two must round alike
@@ -144,17 +146,17 @@ struct GpuObjectCost {
 // The prior fill share: the skipped pixels' ticks of the court, Suzanne, the WaterBottle and
 // TransmissionTest at 1/4 and 1/16 gave 0.0-0.48, the court 0.01-0.03, Suzanne 0.16-0.17.
 #define RB_FILL_SHARE_PRIOR 0.125
-// Up to this share 1/4 stays dearer than 1/16 and cheaper than full (the segments below stay
-// positive); a fill dearer than that is priced at it.
-#define RB_FILL_SHARE_MAX 0.85
+// Up to this share the items' options stay a concave hull (below); a fill dearer than that is
+// priced at it (the dearest measured, the WaterBottle's, is about 0.3-0.5).
+#define RB_FILL_SHARE_MAX 0.59
 // Each item offers 1/16, 1/4, full: three segments, skip -> 1/16, 1/16 -> 1/4, 1/4 -> full,
 // costing share(1/16), share(1/4) - share(1/16) and 1 - share(1/4) of its full-rate cost. At the
 // prior fill share their value per cost is 2.3, 1.07 and 0.38 for reflections, 3.0, 0.71 and 0.17
-// for refractions, a concave hull; from a fill share of 0.32 (reflections) or 0.52 (refractions)
-// the middle segment is worth more per cost than the first, and the walk, which takes a segment
-// only after the one before it, then stops such an item at 1/16 where 1/4 would be worth its cost
-// (docs/SELECTION.md). 1/2 lies near the line from 1/4 to full (at the constant shares measured
-// before: within 0.01 of value) and is left out.
+// for refractions, a concave hull. From a fill share of 0.32 (reflections) or 0.52 (refractions)
+// 1/16 falls below the line from skipping to 1/4 and the item offers 1/4 and full alone (two
+// segments, skip -> 1/4, 1/4 -> full: select_common.glsl's sixteenthDominated), concave up to a
+// fill share of 0.59 (reflections; refractions 0.76): RB_FILL_SHARE_MAX. 1/2 lies near the line
+// from 1/4 to full (at the constant shares measured before: within 0.01 of value) and is left out.
 
 // `benefit` with rates chosen per item, frame mode: where the walk leaves budget over, the first
 // item in its order whose first segment (1/16 for reflections and refractions) did not fit is

@@ -65,12 +65,26 @@ float fillShare(float fillPerPixel, float workPerPixel) {
                                                     : float(RB_FILL_SHARE_PRIOR);
 }
 
-uint32_t rateSegments(uint32_t effect) { return effect == RB_ITEM_SHADOWS ? 1u : 3u; }
+bool sixteenthDominated(uint32_t effect, float fill) {
+  if (effect == RB_ITEM_SHADOWS) return false;
+  const bool reflections = effect == RB_ITEM_REFLECTIONS;
+  const float sixteenth = float(reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS) * rateShare(RB_RATE_QUARTER, fill);
+  const float chord = float(reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS) * rateShare(RB_RATE_SIXTEENTH, fill);
+  return sixteenth < chord;
+}
+
+uint32_t rateSegments(uint32_t effect, float fill) {
+  return effect == RB_ITEM_SHADOWS ? 1u : sixteenthDominated(effect, fill) ? 2u : 3u;
+}
 
 RateSegment rateSegment(uint32_t effect, uint32_t k, float fill) {
   if (effect == RB_ITEM_SHADOWS) return {1.0f, 1.0f, RB_RATE_FULL};
   const bool reflections = effect == RB_ITEM_REFLECTIONS;
   const float sixteenth = rateShare(RB_RATE_SIXTEENTH, fill), quarter = rateShare(RB_RATE_QUARTER, fill);
+  if (sixteenthDominated(effect, fill)) {
+    if (k == 0) return {quarter, float(reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS), RB_RATE_QUARTER};
+    return {1.0f - quarter, float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS), RB_RATE_FULL};
+  }
   if (k == 0)
     return {sixteenth, float(reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS), RB_RATE_SIXTEENTH};
   if (k == 1)

@@ -35,11 +35,14 @@ float exactQuotient(float a, float b);
 // segmentCostShare, segmentValueShare): how many an effect's item offers, and segment k's share
 // of the item's full-rate cost (at fill share `fill`) and value and the rate (RB_RATE_*) taking
 // it reaches.
+// Where 1/16 lies below the line from skipping to 1/4 (sixteenthDominated: a dear fill) the item
+// offers 1/4 and full alone: two segments.
 struct RateSegment {
   float costShare = 1.0f, valueShare = 1.0f;
   uint32_t rate = 0;
 };
-uint32_t rateSegments(uint32_t effect);
+bool sixteenthDominated(uint32_t effect, float fill);
+uint32_t rateSegments(uint32_t effect, float fill = float(RB_FILL_SHARE_PRIOR));
 RateSegment rateSegment(uint32_t effect, uint32_t k, float fill = float(RB_FILL_SHARE_PRIOR));
 
 // An object's work per traced pixel after a frame that counted `work` over `pixels`: the

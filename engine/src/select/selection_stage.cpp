@@ -47,9 +47,13 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget)
 // An item's rate (RB_RATE_*) in an object's word of the frame's selection (rates.glsl's itemRate).
 uint32_t selectedRate(uint32_t word, uint32_t effect) { return (word >> (RB_RATE_SHIFT + 2 * effect)) & 3u; }
 
+// An item's fill share as the candidate pass left it (its segments: rateSegment).
+float itemFill(const gpu::GpuItemCost& item) { return fillShare(item.fillPerPixel, item.workPerPixel); }
+
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each), or
-// with rates chosen per item each selected item's segments up to the one its rate ends on.
-std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments) {
+// with rates chosen per item each selected item's segments up to the one its rate ends on
+// (`learned`: the items as the candidate pass left them, whose fill shares set their segments).
+std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments, const gpu::GpuItemCost* learned) {
   std::vector<uint32_t> ids;
   for (uint32_t i = 0; i < objects; ++i)
     for (uint32_t e = 0; e < (items ? RB_ITEMS_PER_OBJECT : 1u); ++e) {
@@ -61,7 +65,8 @@ std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool 
       }
       const uint32_t rate = selectedRate(flags[i], e);
       uint32_t last = 0;
-      while (last + 1 < rateSegments(e) && rateSegment(e, last).rate != rate) ++last;
+      const float fill = itemFill(learned[id]);
+      while (last + 1 < rateSegments(e, fill) && rateSegment(e, last, fill).rate != rate) ++last;
       for (uint32_t k = 0; k <= last; ++k) ids.push_back(id * RB_SEGMENT_SLOTS + k);
     }
   return ids;
@@ -280,7 +285,7 @@ struct SelectionStage::Impl {
     const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
     double left = 0.0, prior = 0.0;
     // The candidates taken (items, or their rate segments), in ascending order.
-    const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments);
+    const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments, after);
     for (const gpu::GpuCandidate& c : candidates) {
       const uint32_t item = itemOf(c.id);
       if (item < items && !((selected[item / RB_ITEMS_PER_OBJECT] >> (item % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
@@ -311,7 +316,7 @@ struct SelectionStage::Impl {
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
-      if (candidate) expected += segments ? rateSegments(e) : 1u;
+      if (candidate) expected += segments ? rateSegments(e, fillShare(learned[id].fillPerPixel, learned[id].workPerPixel)) : 1u;
       const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
       if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
     }
@@ -328,7 +333,7 @@ struct SelectionStage::Impl {
       float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
       if (segments) {
         const uint32_t k = c.id % RB_SEGMENT_SLOTS;
-        if (k >= rateSegments(e)) return false;
+        if (k >= rateSegments(e, fill)) return false;
         const RateSegment s = rateSegment(e, k, fill);
         cost *= s.costShare;
         value *= s.valueShare;
@@ -377,7 +382,8 @@ struct SelectionStage::Impl {
       }
       if (checkCpu) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
-        const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO);
+        const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO,
+                                                         static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped));
         const Selection cpu = selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s));
         t.selectionMatchesCpu = gpuIds == cpu.ids && (policy != Policy::Benefit || partialMatches(slot, cpu.partial));
         t.costsMatchCpu = costsMatchCpu(slot, policy, g);
