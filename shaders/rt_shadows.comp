@@ -42,7 +42,7 @@ float fillCorrection(uint slot, uint light) {
 // as much per pixel as a quarter rate's rays, so a skipped pixel that ran them made a rate
 // save little. `skipped` returns that pixel's fill centre (object RB_NO_OBJECT: nothing to fill)
 // and `sel` its object's selection.
-// Returns whether it traced (or went to: an unlit surface traces nothing).
+// Returns whether its rate traces the pixel here (an unlit surface then traces nothing).
 bool traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection sel) {
   sel = Selection(0u);
   skipped.objectId = RB_NO_OBJECT;
