@@ -294,6 +294,7 @@ struct SelectionStage::Impl {
     if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
     if (after[items].work != 0 || after[items].ticks != 0) return false;  // the totals restart
     std::vector<ItemLearned> learned(items);
+    std::vector<float> fill(items);  // each item's fill share, which prices its rates
     size_t expected = 0;
     for (uint32_t id = 0; id < items; ++id) {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
@@ -303,6 +304,7 @@ struct SelectionStage::Impl {
                                b.skippedTicks, b.skippedPixels},
                               exchange, frame.ablation,
                               priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
+      fill[id] = fillShare(learned[id].fillPerPixel, learned[id].workPerPixel);
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
       // The rate: the setting's, or the walk's choice (which selectionMatchesCpu checks).
@@ -316,7 +318,7 @@ struct SelectionStage::Impl {
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
-      if (candidate) expected += segments ? rateSegments(e, fillShare(learned[id].fillPerPixel, learned[id].workPerPixel)) : 1u;
+      if (candidate) expected += segments ? rateSegments(e, fill[id]) : 1u;
       const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
       if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
     }
@@ -326,15 +328,14 @@ struct SelectionStage::Impl {
       if (item >= items) return false;
       const uint32_t i = item / RB_ITEMS_PER_OBJECT, e = item % RB_ITEMS_PER_OBJECT, pixels = pixelsOf(i, e);
       if (records[i].crCandidatePixels.z < 0.5f || pixels == 0) return false;
-      const float fill = fillShare(learned[item].fillPerPixel, learned[item].workPerPixel);
-      const float work = predictedItemWork(e, pixels, learned[item].workPerPixel, frame.lights, slot.workPerRay) * rateShare(frame.rate, fill);
+      const float work = predictedItemWork(e, pixels, learned[item].workPerPixel, frame.lights, slot.workPerRay) * rateShare(frame.rate, fill[item]);
       const glm::vec4 kqiS = params[i].kqiS;
       float cost = predictedCost(float(slot.msPerUnit), work);
       float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
       if (segments) {
         const uint32_t k = c.id % RB_SEGMENT_SLOTS;
-        if (k >= rateSegments(e, fill)) return false;
-        const RateSegment s = rateSegment(e, k, fill);
+        if (k >= rateSegments(e, fill[item])) return false;
+        const RateSegment s = rateSegment(e, k, fill[item]);
         cost *= s.costShare;
         value *= s.valueShare;
       }
