@@ -161,10 +161,56 @@ void fillPending(ivec2 pixel, Surface s, Selection sel, bvec2 pending, EffectSam
   if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + shrunkMean(sum[1], squares[1], weights.y), 1.0));
 }
 
+// At a pixel a reduced rate traced, the display error its fill would have left had the rate
+// skipped it, per path (x reflection, y refraction), against the fallback's (the item's error):
+// each item learns its fill's quality from the two (GpuItemCost::fillQualitySixteenth, fillQualityQuarter). The fill's
+// prediction here follows the fill's order: what the temporal fill carries to the point (the
+// change traced a rate period ago: the oldest a skipped pixel carries), else the mean change
+// of the tile's other traced pixels on the object around it (1/16: the other three samples,
+// 1/4: the eight of the same phase two pixels away, weighted by depth and normal alone; farther
+// than the fill reads for a skipped pixel, so the estimate errs low), else none (the fallback).
+vec2 fillMiss(ivec2 pixel, Surface s, Selection sel, bvec2 shown, vec3 change[2], vec3 untraced, EffectSample samples[4], out bvec2 measured) {
+  uint rates[2] = uint[2](itemRate(sel, RB_ITEM_REFLECTIONS), itemRate(sel, RB_ITEM_REFRACTIONS));
+  measured = bvec2(shown.x && (rates[0] == RB_RATE_QUARTER || rates[0] == RB_RATE_SIXTEENTH),
+                         shown.y && (rates[1] == RB_RATE_QUARTER || rates[1] == RB_RATE_SIXTEENTH));
+  if (!any(measured)) return vec2(0.0);
+  vec3 predicted[2] = vec3[2](vec3(0.0), vec3(0.0));
+  bvec2 open = measured;
+  if (temporalFill()) {
+    History h = previousHistory(s.position, s.objectId);
+    bvec2 carried = bvec2(open.x && historyPredicts(h.age.x, h.turn.x, rates[0]),
+                          open.y && historyPredicts(h.age.y, h.turn.y, rates[1]));
+    predicted = vec3[2](carried.x ? h.change[0] : vec3(0.0), carried.y ? h.change[1] : vec3(0.0));
+    open = bvec2(open.x && !carried.x, open.y && !carried.y);
+  }
+  if (any(open)) {
+    FillCentre c = fillCentre(s.objectId, s.position, s.normal);
+    vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0)), squares[2] = vec3[2](vec3(0.0), vec3(0.0));
+    vec2 weights = vec2(0.0);
+    ivec2 here = pixel & (RB_TILE_SIZE - 1);
+    if (min(open.x ? rates[0] : RB_RATE_SIXTEENTH, open.y ? rates[1] : RB_RATE_SIXTEENTH) == RB_RATE_SIXTEENTH) {
+      for (int k = 0; k < 4; ++k)
+        if (samples[k].at.at != here)
+          addFillSample(sixteenthWeight(c, samples[k].at, pixel), samples[k].paths, samples[k].reflection, samples[k].refraction, open, sum, squares, weights);
+    } else {
+      for (int k = 0; k < 9; ++k) {
+        uint slot;
+        float w = k == 4 ? 0.0 : fillWeight(c, RB_RATE_QUARTER, pixel, 2 * fillOffset(k), slot);
+        if (w > 0.0) addFillSample(w, fillPaths[slot], fillReflection[slot], fillRefraction[slot], open, sum, squares, weights);
+      }
+    }
+    if (open.x && weights.x >= RB_FILL_MIN_WEIGHT) predicted[0] = shrunkMean(sum[0], squares[0], weights.x);
+    if (open.y && weights.y >= RB_FILL_MIN_WEIGHT) predicted[1] = shrunkMean(sum[1], squares[1], weights.y);
+  }
+  return vec2(measured.x ? displayError(untraced + predicted[0], untraced + change[0]) : 0.0,
+              measured.y ? displayError(untraced + predicted[1], untraced + change[1]) : 0.0);
+}
+
 // `shown`: the paths traced and shown here, with what they changed against the fallback in `change`.
-void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 shown, out vec3 change[2]) {
+void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 shown, out vec3 change[2], out vec3 untraced) {
   shown = bvec2(false);
   change = vec3[2](vec3(0.0), vec3(0.0));
+  untraced = vec3(0.0);
   if (!lit) return;
   // Per path: whether its item is probed here rather than selected.
   bool probed[2] = bool[2](!itemSelected(sel, RB_ITEM_REFLECTIONS) && itemProbed(sel, RB_ITEM_REFLECTIONS, pixel),
@@ -217,9 +263,9 @@ void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 sho
   }
   addObjectWork(s.objectId, (probed[0] ? 0u : work[0]) + (probed[1] ? 0u : work[1]));
   if (measuringItems()) {
-    vec3 direct = imageLoad(directImage, pixel).rgb, untraced = direct + fallback[0] + fallback[1];
-    float reflectionError = reflects ? displayError(direct + color[0] + fallback[1], untraced) : 0.0;
-    float refractionError = refracts ? displayError(direct + fallback[0] + color[1], untraced) : 0.0;
+    untraced = imageLoad(directImage, pixel).rgb + fallback[0] + fallback[1];
+    float reflectionError = reflects ? displayError(untraced + change[0], untraced) : 0.0;
+    float refractionError = refracts ? displayError(untraced + change[1], untraced) : 0.0;
     // Each path is charged its span shared among the lanes that traced it, and the rest of
     // the invocation (setup, fallback, measurement) shared among all, split over the lane's paths.
     uint rest = clockNow() - start - subgroupMax(pathTicks[0]) - subgroupMax(pathTicks[1]);
@@ -251,7 +297,7 @@ void main() {
   // where a reduced rate skipped it, what its fill needs: readFillSurface).
   Surface s;
   bvec2 pending = bvec2(false), shown = bvec2(false);
-  vec3 change[2] = vec3[2](vec3(0.0), vec3(0.0));
+  vec3 change[2] = vec3[2](vec3(0.0), vec3(0.0)), untraced = vec3(0.0);
   uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
   Selection sel = selectionAt(objectId, pixel);
   bool tracedAny = false;
@@ -261,7 +307,7 @@ void main() {
     tracedAny = any(traced);
     if (tracedAny) {
       bool lit = readSurface(pixel, s) && !s.unlit;
-      traceEffects(pixel, lit, s, sel, shown, change);
+      traceEffects(pixel, lit, s, sel, shown, change, untraced);
       if (lit) pending = pendingPaths(s, sel, pixel);
     } else if (fills && any(skipped) && readFillSurface(pixel, objectId, s)) {
       pending = pendingPaths(s, sel, pixel);
@@ -276,6 +322,11 @@ void main() {
   barrier();
   uint resumed = clockNow();
   EffectSample samples[4] = EffectSample[4](effectSample(0), effectSample(1), effectSample(2), effectSample(3));
+  // The fill's miss where a reduced rate traced, timed apart: its span is the traced paths' cost.
+  uint missBegun = clockNow();
+  bvec2 missed = bvec2(false);
+  vec2 miss = measuringItems() && any(shown) ? fillMiss(pixel, s, sel, shown, change, untraced, samples, missed) : vec2(0.0);
+  uint missSpan = clockNow() - missBegun;
   uvec2 age = uvec2(shown.x ? 0u : RB_HISTORY_NONE, shown.y ? 0u : RB_HISTORY_NONE), turn = uvec2(0u);
   if (temporalFill() && any(pending)) {
     // The pending paths still valid where the previous frame saw the point add what tracing
@@ -294,11 +345,14 @@ void main() {
   if (any(pending)) fillPending(pixel, s, sel, pending, samples);
   if (temporalFill() && any(notEqual(age, uvec2(RB_HISTORY_NONE)))) writeHistory(pixel, change, age, turn, s.objectId, s.position);
   if (measuringItems()) {
-    // Shared among the subgroup's skipped pixels, each one's split over the paths it skipped.
+    // Shared among the subgroup's skipped pixels, each one's split over the paths it skipped;
+    // the miss's span among the traced pixels that measured it, added to their paths' ticks.
     bool skipped = any(skippedPaths);
-    uint share = clockShare(0u, before + (clockNow() - resumed), subgroupAdd(skipped ? 1u : 0u));
-    uvec2 paths = uvec2(skippedPaths);
+    uint share = clockShare(0u, before + (clockNow() - resumed - missSpan), subgroupAdd(skipped ? 1u : 0u));
+    uvec2 paths = uvec2(skippedPaths), measured = uvec2(missed);
     uint each = share / max(paths.x + paths.y, 1u);
-    addItemCounts(skipped ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(0u, paths * each), uvec3(0u, paths));
+    uint missEach = clockShare(0u, missSpan, subgroupAdd(any(missed) ? 1u : 0u)) / max(measured.x + measured.y, 1u);
+    addItemCounts(skipped || any(missed) ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u, measured * missEach), vec3(0.0), uvec3(0u),
+                  uvec3(0u, paths * each), uvec3(0u, paths), vec3(0.0, miss));
   }
 }

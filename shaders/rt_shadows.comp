@@ -159,6 +159,6 @@ void main() {
   if (pending) fillPending(pixel, skipped, sel, samples);
   if (measuringItems()) {
     uint share = clockShare(0u, before + (clockNow() - resumed), subgroupAdd(pending ? 1u : 0u));
-    addItemCounts(skipped.objectId, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(pending ? share : 0u, 0u, 0u), uvec3(pending ? 1u : 0u, 0u, 0u));
+    addItemCounts(skipped.objectId, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(pending ? share : 0u, 0u, 0u), uvec3(pending ? 1u : 0u, 0u, 0u), vec3(0.0));
   }
 }

@@ -199,6 +199,37 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   EXPECT_GT(learnedFill, 0u) << "a mirror traced at a reduced rate learns what its skipped pixels cost";
 }
 
+// Each item learns how much of its benefit its fill keeps from the pixels its rate traced
+// (docs/SELECTION.md). On the default scene's mirror panel under a still camera at 1/4, the
+// temporal fill carries each traced change until the pattern comes round, so from the fifth
+// frame the fill's prediction at a traced pixel is what that pixel showed four frames before,
+// and the panel learns a quality near 1; the spatial fill alone, whose neighbours two pixels
+// away reflect other detail (AFlatMirrorAtAQuarterStaysCloseToFullRate: it keeps about half of
+// the image's gap), learns less. Every frame's learned figures equal the CPU reference's.
+TEST(Rates, AnItemLearnsHowMuchItsFillKeeps) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const uint32_t mirror = test::objectNamed(scene, "mirror_panel");
+  ASSERT_NE(mirror, test::kNoObjectNamed);
+  const std::vector<Camera> frames(12, defaultCamera(scene, 320.0f / 192.0f));
+  auto learned = [&](bool temporal) {
+    RenderSettings s = test::settingsFor(Policy::Benefit, 320, 192);
+    s.budgetMs = 1e6f;
+    s.rayTracing.rate = ItemRate::Quarter;
+    s.rayTracing.temporalFill = temporal;
+    const test::RenderedFrames r = test::renderFrames(scene, s, frames, test::kCheckSelection);
+    for (const FrameTiming& t : r.timings) EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
+    const ObjectMetrics& m = r.metrics[mirror];
+    EXPECT_GT(m.itemBenefit[1], 0.01f) << "tracing the panel removes error";
+    EXPECT_EQ(m.itemFillQualitySixteenth[1], 0.0f) << "1/16 never traced: not learned";
+    return m.itemFillQualityQuarter[1];
+  };
+  const float temporal = learned(true), spatial = learned(false);
+  std::printf("mirror panel at 1/4, learned fill quality: temporal %.3f, spatial %.3f\n", temporal, spatial);
+  EXPECT_GT(temporal, 0.9f) << "a still view's temporal fill keeps nearly all";
+  EXPECT_GT(spatial, 0.0f) << "learned";
+  EXPECT_LT(spatial, temporal - 0.2f);
+}
+
 // The partial item (docs/SELECTION.md): where the walk leaves budget that pays for a share of the
 // next item's 1/16, that item is traced on the 8x8 tiles whose hash falls below the share and
 // on no other, and the GPU's choice (item and share) is the CPU reference's. The hash is

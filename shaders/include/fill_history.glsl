@@ -71,6 +71,9 @@ History previousHistory(vec3 p, uint objectId) {
 // Whether a change `age` frames old, with the view turned by `turn` since, may stand for a pixel
 // its item's `rate` skips this frame.
 bool historyFits(uint age, uint turn, uint rate) { return age != RB_HISTORY_NONE && age + 1u < ratePeriod(rate) && turn <= 255u; }
+// Whether it would have stood for the pixel had `rate` skipped it this frame too, where the rate
+// traces it (rt_effects.comp's fillMiss: the history a rate period old).
+bool historyPredicts(uint age, uint turn, uint rate) { return age != RB_HISTORY_NONE && age < ratePeriod(rate) && turn <= 255u; }
 
 // This frame's history at `pixel`: the changes, their ages (RB_HISTORY_NONE where neither was
 // traced nor carried) and turns (at most 255), the object and its distance from the camera.

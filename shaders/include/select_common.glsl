@@ -119,48 +119,86 @@ float tracedPixelCost(uint rate) {
                               : (rate == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0));
 }
 
-// Whether an item of `effect` at fill share `fill` leaves 1/16 out of its options: 1/16 lies
-// below the line from skipping to 1/4 in (cost, value), so 1/4 on a share of the budget is worth
-// more (Funkhouser and Sequin's dominated option). Products precise, as the CPU's
-// (cost_model.cpp's sixteenthDominated).
-bool sixteenthDominated(uint effect, float fill) {
-  if (effect == RB_ITEM_SHADOWS) return false;
+// An item's learned fill qualities at 1/16 (x) and 1/4 (y) (0: not learned).
+vec2 itemFillQuality(GpuItemCost c) { return vec2(c.fillQualitySixteenth, c.fillQualityQuarter); }
+
+// The quality of an item's fill at 1/16 (x) and at 1/4 (y) (shared/selection.h): what it learned
+// (itemFillQuality), else the other rate's times RB_SIXTEENTH_QUALITY_* (or over it, at
+// most 1), else the prior (cost_model.cpp's fillQualities).
+vec2 fillQualities(uint effect, vec2 learned) {
   bool reflections = effect == RB_ITEM_REFLECTIONS;
-  precise float sixteenth = (reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS) * rateShare(RB_RATE_QUARTER, fill);
-  precise float chord = (reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS) * rateShare(RB_RATE_SIXTEENTH, fill);
-  return sixteenth < chord;
+  float sparser = reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS;
+  precise float fromQuarter = learned.y * sparser;
+  float fromSixteenth = min(exactQuotient(learned.x, sparser), 1.0);
+  float sixteenth = learned.x > 0.0 ? learned.x
+                                    : (learned.y > 0.0 ? fromQuarter : (reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS));
+  float quarter = learned.y > 0.0 ? learned.y
+                                  : (learned.x > 0.0 ? fromSixteenth : (reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS));
+  return vec2(sixteenth, quarter);
 }
 
-// RB_RATE_AUTO's segments of an item of `effect` (shared/selection.h): how many, the rate
-// segment k reaches, its share of the item's full-rate value, and of its full-rate cost at fill
-// share `fill`; `dropped`: sixteenthDominated, the segments are skip -> 1/4 -> full
-// (cost_model.cpp's rateSegment is the CPU reference).
-uint rateSegments(uint effect, bool dropped) { return effect == RB_ITEM_SHADOWS ? 1u : (dropped ? 2u : 3u); }
-uint segmentRate(uint effect, uint k, bool dropped) {
+// The share of an item's full-rate value that `rate` keeps at fill qualities q (fillQualities):
+// its traced pixels' and the filled ones' (cost_model.cpp's keepShare).
+float keepShare(uint rate, vec2 q) {
+  if (rate != RB_RATE_QUARTER && rate != RB_RATE_SIXTEENTH) return 1.0;
+  precise float filled = (rate == RB_RATE_QUARTER ? 0.75 * q.y : 0.9375 * q.x);
+  precise float keep = (rate == RB_RATE_QUARTER ? 0.25 : 0.0625) + filled;
+  return keep;
+}
+
+// Whether option b lies strictly above the line from a to c in (cost, value), costs in order.
+bool aboveChord(vec2 a, vec2 b, vec2 c) {
+  precise float rise = (b.y - a.y) * (c.x - a.x);
+  precise float chord = (c.y - a.y) * (b.x - a.x);
+  return rise > chord;
+}
+
+// The reduced rates on the upper convex hull of an item's options skip, 1/16, 1/4, full in
+// (cost share, value share) at fill share `fill` and learned fill qualities `learned`
+// (RB_HULL_* bits; shadows none): a rate below the line between its neighbours on the hull is
+// left out (Funkhouser and Sequin's dominated option), so that the segments' value per cost
+// falls (cost_model.cpp's rateHull).
+uint rateHull(uint effect, float fill, vec2 learned) {
+  if (effect == RB_ITEM_SHADOWS) return 0u;
+  vec2 q = fillQualities(effect, learned);
+  vec2 skip = vec2(0.0), full = vec2(1.0);
+  vec2 sixteenth = vec2(rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q));
+  vec2 quarter = vec2(rateShare(RB_RATE_QUARTER, fill), keepShare(RB_RATE_QUARTER, q));
+  bool onSixteenth = aboveChord(skip, sixteenth, quarter);
+  bool onQuarter = aboveChord(onSixteenth ? sixteenth : skip, quarter, full);
+  if (!onQuarter && onSixteenth) onSixteenth = aboveChord(skip, sixteenth, full);
+  return (onSixteenth ? RB_HULL_SIXTEENTH : 0u) | (onQuarter ? RB_HULL_QUARTER : 0u);
+}
+
+// RB_RATE_AUTO's segments of an item of `effect` with the rates `hull` (rateHull): how many, the
+// rate segment k reaches, and its shares of the item's full-rate value (at fill qualities q)
+// and cost (at fill share `fill`) (cost_model.cpp's rateSegment is the CPU reference).
+uint rateSegments(uint effect, uint hull) { return effect == RB_ITEM_SHADOWS ? 1u : 1u + bitCount(hull); }
+uint segmentRate(uint effect, uint k, uint hull) {
   if (effect == RB_ITEM_SHADOWS) return RB_RATE_FULL;
-  uint step = dropped ? k + 1u : k;
-  return step == 0u ? RB_RATE_SIXTEENTH : (step == 1u ? RB_RATE_QUARTER : RB_RATE_FULL);
+  uint step = k;
+  if ((hull & RB_HULL_SIXTEENTH) != 0u) {
+    if (step == 0u) return RB_RATE_SIXTEENTH;
+    --step;
+  }
+  if ((hull & RB_HULL_QUARTER) != 0u && step == 0u) return RB_RATE_QUARTER;
+  return RB_RATE_FULL;
 }
-float segmentValueShare(uint effect, uint k, bool dropped) {
+float segmentValueShare(uint effect, uint k, uint hull, vec2 q) {
   if (effect == RB_ITEM_SHADOWS) return 1.0;
-  bool reflections = effect == RB_ITEM_REFLECTIONS;
-  if (dropped && k == 0u) return reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS;
-  uint step = dropped ? k + 1u : k;
-  if (step == 0u) return reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS;
-  if (step == 1u) return reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS;
-  return reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS;
+  precise float gain = keepShare(segmentRate(effect, k, hull), q) - (k == 0u ? 0.0 : keepShare(segmentRate(effect, k - 1u, hull), q));
+  return gain;
 }
-float segmentCostShare(uint effect, uint k, float fill, bool dropped) {
+float segmentCostShare(uint effect, uint k, float fill, uint hull) {
   if (effect == RB_ITEM_SHADOWS) return 1.0;
-  float sixteenth = rateShare(RB_RATE_SIXTEENTH, fill), quarter = rateShare(RB_RATE_QUARTER, fill);
-  if (dropped) return k == 0u ? quarter : 1.0 - quarter;
-  return k == 0u ? sixteenth : (k == 1u ? quarter - sixteenth : 1.0 - quarter);
+  precise float cost = rateShare(segmentRate(effect, k, hull), fill) - (k == 0u ? 0.0 : rateShare(segmentRate(effect, k - 1u, hull), fill));
+  return cost;
 }
-// Whether item `item` (object * RB_ITEMS_PER_OBJECT + effect) left 1/16 out this frame, from what
-// the candidate pass learned (the walk reads it back to mark levels).
-bool itemSixteenthDropped(uint item) {
+// The rates on item `item`'s hull this frame, from what the candidate pass learned (the walk
+// reads it back to mark levels).
+uint itemHull(uint item) {
   GpuItemCost c = items[item];
-  return sixteenthDominated(item % RB_ITEMS_PER_OBJECT, fillShare(c.fillPerPixel, c.workPerPixel));
+  return rateHull(item % RB_ITEMS_PER_OBJECT, fillShare(c.fillPerPixel, c.workPerPixel), itemFillQuality(c));
 }
 
 // Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.

@@ -69,6 +69,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   // refraction path and the shadow rays of its hit (a refraction enters and leaves).
   float rays = float(push.items.y) + (effect == RB_ITEM_SHADOWS ? 0.0 : float(effect));
   float priorPerPixel = rays * push.budget.w;
+  uint rate = c.selectedLast == 0u ? RB_RATE_FULL : c.selectedLast - 1u;  // (1 + its rate; 0: probed)
   if (c.pixels > 0u) {  // traced last frame
     // Its cost per pixel: its time, in work units at the frame's exchange rate (shading,
     // texture lookups, the shadow classifier, divergence: what traversal work leaves out),
@@ -76,7 +77,6 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     bool timed = exchange > 0.0 && c.ticks > 0u;
     if (timed || c.work > 0u) {
       // Timed at a reduced rate (selectedLast: 1 + its rate), per pixel at full rate.
-      uint rate = c.selectedLast == 0u ? RB_RATE_FULL : c.selectedLast - 1u;
       float observed = timed ? exactQuotient(exactQuotient(float(c.ticks), float(c.pixels)) * exchange, tracedPixelCost(rate))
                              : exactQuotient(float(c.work), float(c.pixels));
       c.workPerPixel = c.selectedLast == 0u ? probedWorkPerPixel(c.workPerPixel, priorPerPixel, observed, c.pixels)
@@ -88,6 +88,13 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
       c.measured = 1u;
     }
   }
+  // How well its fill kept the benefit where its reduced rate traced last frame (shared/selection.h).
+  if (c.pixels > 0u && learnBenefit && (rate == RB_RATE_QUARTER || rate == RB_RATE_SIXTEENTH) &&
+      float(c.error) >= RB_FILL_QUALITY_MIN_ERROR * RB_ERROR_UNITS) {
+    float observed = clamp(1.0 - exactQuotient(float(c.fillError), float(c.error)), RB_FILL_QUALITY_MIN, 1.0);
+    if (rate == RB_RATE_SIXTEENTH) c.fillQualitySixteenth = averagedWith(c.fillQualitySixteenth, observed);
+    else c.fillQualityQuarter = averagedWith(c.fillQualityQuarter, observed);
+  }
   // Its cost per pixel its reduced rate skipped (the fill), at the same exchange rate.
   if (c.skippedPixels > 0u && exchange > 0.0 && c.skippedTicks > 0u)
     c.fillPerPixel = averagedWith(c.fillPerPixel, exactQuotient(float(c.skippedTicks), float(c.skippedPixels)) * exchange);
@@ -97,7 +104,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     float prior = params[i].priors[effect];
     c.benefit = c.measured != 0u ? c.benefit + (prior - c.benefit) * RB_BENEFIT_DRIFT : prior;
   }
-  items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u, c.fillPerPixel, 0u, 0u);
+  items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u, c.fillPerPixel, 0u, 0u, 0u, c.fillQualitySixteenth, c.fillQualityQuarter);
   uint pixels = itemPixels(i, effect);
   if (r.crCandidatePixels.z < 0.5 || pixels == 0u) return false;
   float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : priorPerPixel;
@@ -138,10 +145,12 @@ void main() {
         continue;
       }
       // Rates chosen per item: a candidate per segment of the item's hull (shared/selection.h).
-      bool dropped = sixteenthDominated(effect, fill);
+      vec2 learned = itemFillQuality(items[item]);
+      uint hull = rateHull(effect, fill, learned);
+      vec2 q = fillQualities(effect, learned);
       for (uint k = 0u; k < 3u; ++k)
-        append(add && k < rateSegments(effect, dropped), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(effect, k, fill, dropped),
-               value * segmentValueShare(effect, k, dropped), r.apdv.z);
+        append(add && k < rateSegments(effect, hull), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(effect, k, fill, hull),
+               value * segmentValueShare(effect, k, hull, q), r.apdv.z);
     }
     return;
   }

@@ -62,7 +62,7 @@ void markLevels() {
   for (uint item = gl_SubgroupInvocationID; item < segmentGroups(); item += gl_SubgroupSize) {
     uint effect = item % RB_ITEMS_PER_OBJECT, level = scratch[item];
     if (level == 0u) continue;
-    uint rate = segmentRate(effect, level - 1u, itemSixteenthDropped(item));
+    uint rate = segmentRate(effect, level - 1u, itemHull(item));
     atomicOr(selected[item / RB_ITEMS_PER_OBJECT], (1u << effect) | (rate << (RB_RATE_SHIFT + 2u * effect)));
   }
 }
@@ -103,11 +103,10 @@ float partialShare() {
   float share = partialId != RB_NO_PARTIAL ? exactQuotient(leftOver, partialCost) : 0.0;
   return share >= RB_PARTIAL_MIN_SHARE ? share : 0.0;
 }
-// Whether candidate `id` may become the partial one: an item's first segment below full rate
-// (a shadow item's only segment is full rate, which its pixel count would misprice).
+// Whether candidate `id` may become the partial one: the first segment of a reflection or
+// refraction item (the first rate on its hull; a shadow item's pixel count would misprice it).
 bool partialCandidate(uint id) {
-  // (1/16, or 1/4 where 1/16 is dominated: below full rate either way)
-  return id % RB_SEGMENT_SLOTS == 0u && segmentRate(candidateItem(id) % RB_ITEMS_PER_OBJECT, 0u, false) != RB_RATE_FULL;
+  return id % RB_SEGMENT_SLOTS == 0u && candidateItem(id) % RB_ITEMS_PER_OBJECT != RB_ITEM_SHADOWS;
 }
 
 // The greedy fill-in, a subgroup's batch of the order at a time: the lanes load their

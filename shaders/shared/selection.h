@@ -100,21 +100,35 @@ struct GpuObjectCost {
 // may be taken only after segment k - 1 (docs/SELECTION.md).
 #define RB_RATE_AUTO 4u  // (a push constant's value beside the rate codes, not a code)
 #define RB_SEGMENT_SLOTS 4u
-// The share of an item's full-rate benefit a rate keeps: its display difference from full rate
-// against the fallback's (mean over the image, tests/rates_test.cpp's metric), the effect alone
-// traced, the median over the court and the plaza from their default camera and 30 degrees
-// either way around, 480x270, with the in-tile fill. Reflections keep 0.89 at 1/2, 0.78 at 1/4
-// and 0.60 at 1/16, refractions 0.95, 0.90 and 0.78. Shadows, their fill correcting the map,
-// keep 0.41-0.84 of the FLIP gap at 1/4 but cost 0.55-0.69 of full rate with the classifier on
-// lavapipe (docs/SELECTION.md): under full rate's value per cost, they keep full rate alone.
-#define RB_KEEP_SIXTEENTH_REFLECTIONS 0.6
-#define RB_KEEP_SIXTEENTH_REFRACTIONS 0.78
-#define RB_KEEP_QUARTER_REFLECTIONS 0.78
-#define RB_KEEP_QUARTER_REFRACTIONS 0.9
-#define RB_KEEP_QUARTER_GAIN_REFLECTIONS 0.18  // 0.78 - 0.6, a literal: glslang folds a
-#define RB_KEEP_QUARTER_GAIN_REFRACTIONS 0.12  // difference in double, C++ in float, and
-#define RB_KEEP_FULL_GAIN_REFLECTIONS 0.22     // the two must round alike
-#define RB_KEEP_FULL_GAIN_REFRACTIONS 0.1
+// The share of an item's full-rate benefit a rate keeps: its own traced pixels, plus what the fill
+// keeps of the benefit at the pixels it skips, its quality q (1: as if traced, 0: the fallback's):
+//   keep(1/4) = 0.25 + 0.75 q(1/4),  keep(1/16) = 0.0625 + 0.9375 q(1/16).
+// Each item learns q per rate where that rate traced it (GpuItemCost::fillQualitySixteenth, fillQualityQuarter): at each pixel
+// it traced, the fill's prediction had it skipped the pixel (what the temporal fill carries there,
+// else the weighted mean of the tile's other traced pixels around it, else the fallback: the
+// fill's own order), and q = 1 - (the prediction's display error) / (the fallback's), summed over
+// the traced pixels (rt_effects.comp's fillMiss). A rate not learned yet takes the other's q
+// times RB_SIXTEENTH_QUALITY_* (1/16 fills from sparser and older samples than 1/4), else the
+// prior: the constant shares measured before, the display difference from full rate against the
+// fallback's (mean over the image, tests/rates_test.cpp's metric), the effect alone traced, the
+// median over the court and the plaza from their default camera and 30 degrees either way
+// around, 480x270, with the in-tile fill: reflections kept 0.78 at 1/4 and 0.60 at 1/16,
+// refractions 0.90 and 0.78, q(1/4) 0.7067 and 0.8667, q(1/16) 0.5733 and 0.7653 (literals:
+// glslang folds constant arithmetic in double, C++ in float, and the two must round alike).
+// Shadows, their fill correcting the map, keep 0.41-0.84 of the FLIP gap at 1/4 but cost
+// 0.55-0.69 of full rate with the classifier on lavapipe (docs/SELECTION.md): under full rate's
+// value per cost, they keep full rate alone.
+#define RB_FILL_QUALITY_QUARTER_REFLECTIONS 0.7067
+#define RB_FILL_QUALITY_QUARTER_REFRACTIONS 0.8667
+#define RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS 0.5733
+#define RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS 0.7653
+#define RB_SIXTEENTH_QUALITY_REFLECTIONS 0.811  // q(1/16) / q(1/4) of the priors
+#define RB_SIXTEENTH_QUALITY_REFRACTIONS 0.883
+// A learned quality is at least this (0: not learned), and an item learns it from a frame whose
+// traced pixels' fallback error sums to at least RB_FILL_QUALITY_MIN_ERROR (display error units
+// per pixel summed: 100 pixels at 0.01), where a few pixels' noise would decide it otherwise.
+#define RB_FILL_QUALITY_MIN 0.0009765625
+#define RB_FILL_QUALITY_MIN_ERROR 1.0
 // The share of an item's full-rate cost a rate costs is not the share of its rays: every pixel
 // of the item still reads its surface, and the skipped ones are filled (include/tile_fill.glsl)
 // and, with the temporal fill, reproject and write their history. Measured on `all` at 640x360
@@ -140,23 +154,28 @@ struct GpuObjectCost {
 #define RB_TRACED_PIXEL_COST_HALF 1.3
 #define RB_TRACED_PIXEL_COST_QUARTER 1.33
 #define RB_TRACED_PIXEL_COST_SIXTEENTH 2.24
-#define RB_TRACED_SHARE_HALF 0.65        // 0.5 * RB_TRACED_PIXEL_COST_HALF (literals, as RB_KEEP_*)
+#define RB_TRACED_SHARE_HALF 0.65        // 0.5 * RB_TRACED_PIXEL_COST_HALF (literals, as RB_FILL_QUALITY_*)
 #define RB_TRACED_SHARE_QUARTER 0.3325   // 0.25 * RB_TRACED_PIXEL_COST_QUARTER
 #define RB_TRACED_SHARE_SIXTEENTH 0.14   // 0.0625 * RB_TRACED_PIXEL_COST_SIXTEENTH
 // The prior fill share: the skipped pixels' ticks of the court, Suzanne, the WaterBottle and
 // TransmissionTest at 1/4 and 1/16 gave 0.0-0.48, the court 0.01-0.03, Suzanne 0.16-0.17.
 #define RB_FILL_SHARE_PRIOR 0.125
-// Up to this share the items' options stay a concave hull (below); a fill dearer than that is
-// priced at it (the dearest measured, the WaterBottle's, is about 0.3-0.5).
+// A fill share above this is priced at it (the dearest measured, the WaterBottle's, is about
+// 0.3-0.5): below it 1/16 costs less than 1/4 and 1/4 less than full, so the options stay in order.
 #define RB_FILL_SHARE_MAX 0.59
-// Each item offers 1/16, 1/4, full: three segments, skip -> 1/16, 1/16 -> 1/4, 1/4 -> full,
-// costing share(1/16), share(1/4) - share(1/16) and 1 - share(1/4) of its full-rate cost. At the
-// prior fill share their value per cost is 2.3, 1.07 and 0.38 for reflections, 3.0, 0.71 and 0.17
-// for refractions, a concave hull. From a fill share of 0.32 (reflections) or 0.52 (refractions)
-// 1/16 falls below the line from skipping to 1/4 and the item offers 1/4 and full alone (two
-// segments, skip -> 1/4, 1/4 -> full: select_common.glsl's sixteenthDominated), concave up to a
-// fill share of 0.59 (reflections; refractions 0.76): RB_FILL_SHARE_MAX. 1/2 lies near the line
-// from 1/4 to full (at the constant shares measured before: within 0.01 of value) and is left out.
+// Each item offers its options 1/16, 1/4 and full as the segments of their upper convex hull in
+// (cost, value) from skipping (Funkhouser and Sequin's dominated options left out): skip -> 1/16 ->
+// 1/4 -> full, costing share(1/16), share(1/4) - share(1/16) and 1 - share(1/4) of its full-rate
+// cost for keep(1/16), keep(1/4) - keep(1/16) and 1 - keep(1/4) of its value. A rate below the
+// line between its neighbours on the hull is left out (select_common.glsl's rateHull): at the
+// prior shares and qualities the value per cost is 2.3, 1.07 and 0.38 for reflections, 3.0, 0.71
+// and 0.17 for refractions, all three; from a fill share of 0.32 (reflections) or 0.52
+// (refractions) 1/16 falls below the line from skipping to 1/4; a fill that keeps little (q near
+// 0) leaves full rate alone, a temporal fill of a still view that keeps all (q near 1) 1/16
+// alone. 1/2 lies near the line from 1/4 to full (at the constant shares measured before:
+// within 0.01 of value) and is left out.
+#define RB_HULL_SIXTEENTH 1u  // rateHull's bits: 1/16 and 1/4 on the hull
+#define RB_HULL_QUARTER 2u
 
 // `benefit` with rates chosen per item, frame mode: where the walk leaves budget over, the first
 // item in its order whose first segment (1/16 for reflections and refractions) did not fit is
@@ -166,7 +185,7 @@ struct GpuObjectCost {
 #define RB_NO_PARTIAL 0xFFFFFFFFu
 #define RB_PARTIAL_MIN_SHARE 0.125
 
-// 44 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
+// 56 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
@@ -188,6 +207,9 @@ struct GpuItemCost {
   float fillPerPixel;  // learned work units per pixel its reduced rate skips (0: not learned)
   uint skippedTicks;   // this frame's ticks (RB_CLOCK_UNIT) of the pixels its rate skipped
   uint skippedPixels;  // and how many
+  uint fillError;      // this frame's display error of the fill's prediction at its traced pixels (RB_ERROR_UNITS)
+  float fillQualitySixteenth;  // the learned quality of its fill at 1/16 and 1/4 (0: not learned)
+  float fillQualityQuarter;
 };
 // Clock ticks per unit of GpuItemCost::ticks: a 32-bit sum then holds 2^36 ticks a frame.
 #define RB_CLOCK_UNIT 16u

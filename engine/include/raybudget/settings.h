@@ -271,6 +271,10 @@ struct ObjectMetrics {
   std::array<float, 3> itemBenefit{};
   std::array<float, 3> itemCostPerPixel{};  // `benefit`: the learned cost per traced pixel, work units (0: not learned)
   std::array<float, 3> itemFillPerPixel{};  // `benefit`: the learned cost per pixel a reduced rate skipped (0: not learned)
+  // `benefit`: the learned quality of the item's fill at 1/16 and at 1/4, the share of the
+  // benefit it keeps at the pixels those rates skip (0: not learned; docs/SELECTION.md)
+  std::array<float, 3> itemFillQualitySixteenth{};
+  std::array<float, 3> itemFillQualityQuarter{};
   // The share of its 8x8 tiles a selected item is traced on: 1, or below for `benefit`'s
   // partial item (with rates chosen per item: the budget the knapsack left, docs/SELECTION.md)
   std::array<float, 3> itemTileShare{1.0f, 1.0f, 1.0f};

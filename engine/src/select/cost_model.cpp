@@ -1,6 +1,7 @@
 #include "select/cost_model.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "shared/selection.h"
@@ -65,31 +66,70 @@ float fillShare(float fillPerPixel, float workPerPixel) {
                                                     : float(RB_FILL_SHARE_PRIOR);
 }
 
-bool sixteenthDominated(uint32_t effect, float fill) {
-  if (effect == RB_ITEM_SHADOWS) return false;
+FillQuality fillQualities(uint32_t effect, FillQuality learned) {
   const bool reflections = effect == RB_ITEM_REFLECTIONS;
-  const float sixteenth = float(reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS) * rateShare(RB_RATE_QUARTER, fill);
-  const float chord = float(reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS) * rateShare(RB_RATE_SIXTEENTH, fill);
-  return sixteenth < chord;
+  const float sparser = float(reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS);
+  const float fromQuarter = learned.quarter * sparser;
+  const float fromSixteenth = std::min(exactQuotient(learned.sixteenth, sparser), 1.0f);
+  FillQuality q;
+  q.sixteenth = learned.sixteenth > 0.0f ? learned.sixteenth
+                : learned.quarter > 0.0f ? fromQuarter
+                                         : float(reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
+  q.quarter = learned.quarter > 0.0f ? learned.quarter
+              : learned.sixteenth > 0.0f ? fromSixteenth
+                                         : float(reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
+  return q;
 }
 
-uint32_t rateSegments(uint32_t effect, float fill) {
-  return effect == RB_ITEM_SHADOWS ? 1u : sixteenthDominated(effect, fill) ? 2u : 3u;
+float keepShare(uint32_t rate, FillQuality q) {
+  if (rate != RB_RATE_QUARTER && rate != RB_RATE_SIXTEENTH) return 1.0f;
+  // Two roundings, as the GPU's precise product and sum.
+  const float filled = rate == RB_RATE_QUARTER ? 0.75f * q.quarter : 0.9375f * q.sixteenth;
+  return (rate == RB_RATE_QUARTER ? 0.25f : 0.0625f) + filled;
 }
 
-RateSegment rateSegment(uint32_t effect, uint32_t k, float fill) {
-  if (effect == RB_ITEM_SHADOWS) return {1.0f, 1.0f, RB_RATE_FULL};
-  const bool reflections = effect == RB_ITEM_REFLECTIONS;
-  const float sixteenth = rateShare(RB_RATE_SIXTEENTH, fill), quarter = rateShare(RB_RATE_QUARTER, fill);
-  if (sixteenthDominated(effect, fill)) {
-    if (k == 0) return {quarter, float(reflections ? RB_KEEP_QUARTER_REFLECTIONS : RB_KEEP_QUARTER_REFRACTIONS), RB_RATE_QUARTER};
-    return {1.0f - quarter, float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS), RB_RATE_FULL};
+namespace {
+struct Option {
+  float cost, value;
+};
+// Whether option b lies strictly above the line from a to c (select_common.glsl's aboveChord).
+bool aboveChord(Option a, Option b, Option c) { return (b.value - a.value) * (c.cost - a.cost) > (c.value - a.value) * (b.cost - a.cost); }
+}  // namespace
+
+uint32_t rateHull(uint32_t effect, float fill, FillQuality learned) {
+  if (effect == RB_ITEM_SHADOWS) return 0u;
+  const FillQuality q = fillQualities(effect, learned);
+  const Option skip{0.0f, 0.0f}, full{1.0f, 1.0f};
+  const Option sixteenth{rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q)};
+  const Option quarter{rateShare(RB_RATE_QUARTER, fill), keepShare(RB_RATE_QUARTER, q)};
+  bool onSixteenth = aboveChord(skip, sixteenth, quarter);
+  const bool onQuarter = aboveChord(onSixteenth ? sixteenth : skip, quarter, full);
+  if (!onQuarter && onSixteenth) onSixteenth = aboveChord(skip, sixteenth, full);
+  return (onSixteenth ? RB_HULL_SIXTEENTH : 0u) | (onQuarter ? RB_HULL_QUARTER : 0u);
+}
+
+uint32_t rateSegments(uint32_t effect, float fill, FillQuality learned) {
+  return effect == RB_ITEM_SHADOWS ? 1u : 1u + uint32_t(std::popcount(rateHull(effect, fill, learned)));
+}
+
+namespace {
+// The rate segment k of an item with the rates `hull` reaches (select_common.glsl's segmentRate).
+uint32_t segmentRate(uint32_t k, uint32_t hull) {
+  if (hull & RB_HULL_SIXTEENTH) {
+    if (k == 0) return RB_RATE_SIXTEENTH;
+    --k;
   }
-  if (k == 0)
-    return {sixteenth, float(reflections ? RB_KEEP_SIXTEENTH_REFLECTIONS : RB_KEEP_SIXTEENTH_REFRACTIONS), RB_RATE_SIXTEENTH};
-  if (k == 1)
-    return {quarter - sixteenth, float(reflections ? RB_KEEP_QUARTER_GAIN_REFLECTIONS : RB_KEEP_QUARTER_GAIN_REFRACTIONS), RB_RATE_QUARTER};
-  return {1.0f - quarter, float(reflections ? RB_KEEP_FULL_GAIN_REFLECTIONS : RB_KEEP_FULL_GAIN_REFRACTIONS), RB_RATE_FULL};
+  return (hull & RB_HULL_QUARTER) && k == 0 ? RB_RATE_QUARTER : RB_RATE_FULL;
+}
+}  // namespace
+
+RateSegment rateSegment(uint32_t effect, uint32_t k, float fill, FillQuality learned) {
+  if (effect == RB_ITEM_SHADOWS) return {1.0f, 1.0f, RB_RATE_FULL};
+  const uint32_t hull = rateHull(effect, fill, learned);
+  const FillQuality q = fillQualities(effect, learned);
+  const uint32_t rate = segmentRate(k, hull), from = k == 0 ? 0u : segmentRate(k - 1, hull);
+  const float costFrom = k == 0 ? 0.0f : rateShare(from, fill), valueFrom = k == 0 ? 0.0f : keepShare(from, q);
+  return {rateShare(rate, fill) - costFrom, keepShare(rate, q) - valueFrom, rate};
 }
 
 float tracedPixelCost(uint32_t rate) {
@@ -123,6 +163,14 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
       after.benefit = before.measured ? 0.5f * (before.benefit + removed) : removed;
       after.measured = true;
     }
+  }
+  // How well its fill kept the benefit where its reduced rate traced.
+  if (pixels > 0 && learnBenefit && !counts.probed && (counts.rate == RB_RATE_QUARTER || counts.rate == RB_RATE_SIXTEENTH) &&
+      float(counts.error) >= float(RB_FILL_QUALITY_MIN_ERROR * RB_ERROR_UNITS)) {
+    const float observed =
+        std::clamp(1.0f - exactQuotient(float(counts.fillError), float(counts.error)), float(RB_FILL_QUALITY_MIN), 1.0f);
+    float& q = counts.rate == RB_RATE_SIXTEENTH ? after.fillQuality.sixteenth : after.fillQuality.quarter;
+    q = averagedWith(q, observed);
   }
   if (counts.skippedPixels > 0 && exchange > 0.0f && counts.skippedTicks > 0)
     after.fillPerPixel = averagedWith(before.fillPerPixel, exactQuotient(float(counts.skippedTicks), float(counts.skippedPixels)) * exchange);
