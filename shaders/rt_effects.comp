@@ -161,8 +161,8 @@ void fillPending(ivec2 pixel, Surface s, Selection sel, bvec2 pending, EffectSam
   if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + shrunkMean(sum[1], squares[1], weights.y), 1.0));
 }
 
-// At a pixel a reduced rate traced, the display error its fill would have left had the rate
-// skipped it, per path (x reflection, y refraction), against the fallback's (the item's error):
+// With RB_RT_MEASURE_FILL, at a pixel a reduced rate traced, the display error its fill would
+// have left had the rate skipped it, per path (x reflection, y refraction), against the fallback's (the item's error):
 // each item learns its fill's quality from the two (GpuItemCost::fillQualitySixteenth, fillQualityQuarter). The fill's
 // prediction here follows the fill's order: what the temporal fill carries to the point (the
 // change traced a rate period ago: the oldest a skipped pixel carries), else the mean change
@@ -325,7 +325,7 @@ void main() {
   // The fill's miss where a reduced rate traced, timed apart: its span is the traced paths' cost.
   uint missBegun = clockNow();
   bvec2 missed = bvec2(false);
-  vec2 miss = measuringItems() && any(shown) ? fillMiss(pixel, s, sel, shown, change, untraced, samples, missed) : vec2(0.0);
+  vec2 miss = (frame.rayTracing.w & RB_RT_MEASURE_FILL) != 0u && any(shown) ? fillMiss(pixel, s, sel, shown, change, untraced, samples, missed) : vec2(0.0);
   uint missSpan = clockNow() - missBegun;
   uvec2 age = uvec2(shown.x ? 0u : RB_HISTORY_NONE, shown.y ? 0u : RB_HISTORY_NONE), turn = uvec2(0u);
   if (temporalFill() && any(pending)) {

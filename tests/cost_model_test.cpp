@@ -219,32 +219,34 @@ TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
   EXPECT_EQ(select::fillQualities(RB_ITEM_REFLECTIONS, {0.2f, 0.6f}).sixteenth, 0.2f);
 }
 
-// Where a reduced rate traced an item, the fill's predicted error at those pixels against the
-// fallback's (the item's error) is how much of the benefit its fill loses at that rate: the
-// item learns 1 minus their ratio per rate, averaged as its other figures are.
+// With learnedKeep, where a reduced rate traced an item, the fill's predicted error at those
+// pixels against the fallback's (the item's error) is how much of the benefit its fill loses at
+// that rate: the item learns 1 minus their ratio per rate, averaged as its other figures are.
 TEST(CostModel, AnItemLearnsItsFillQualityWhereItsReducedRateTraced) {
   const select::ItemLearned fresh;
+  constexpr uint32_t kLearn = RB_BENEFIT_LEARNED_KEEP;  // RayTracingSettings::learnedKeep
   select::ItemCounts quarter{100, 5000, 1024 * 10, 100, false, RB_RATE_QUARTER, 0, 0, 1024 * 4};
-  const select::ItemLearned once = select::learnItem(0.05f, fresh, quarter, 3.0f);
+  const select::ItemLearned once = select::learnItem(0.05f, fresh, quarter, 3.0f, kLearn);
   EXPECT_FLOAT_EQ(once.fillQuality.quarter, 0.6f);
   EXPECT_EQ(once.fillQuality.sixteenth, 0.0f) << "only the rate it was traced at";
+  EXPECT_EQ(select::learnItem(0.05f, fresh, quarter, 3.0f).fillQuality.quarter, 0.0f) << "learnedKeep off: nothing learned, the priors value the rates";
   quarter.fillError = 1024 * 2;
-  EXPECT_FLOAT_EQ(select::learnItem(0.05f, once, quarter, 3.0f).fillQuality.quarter, 0.7f);
+  EXPECT_FLOAT_EQ(select::learnItem(0.05f, once, quarter, 3.0f, kLearn).fillQuality.quarter, 0.7f);
   select::ItemCounts sixteenth = quarter;
   sixteenth.rate = RB_RATE_SIXTEENTH;
   sixteenth.fillError = 1024 * 30;
-  EXPECT_EQ(select::learnItem(0.05f, once, sixteenth, 3.0f).fillQuality.sixteenth, float(RB_FILL_QUALITY_MIN))
+  EXPECT_EQ(select::learnItem(0.05f, once, sixteenth, 3.0f, kLearn).fillQuality.sixteenth, float(RB_FILL_QUALITY_MIN))
       << "a fill worse than the fallback keeps nothing";
-  EXPECT_FLOAT_EQ(select::learnItem(0.05f, once, sixteenth, 3.0f).fillQuality.quarter, 0.6f);
+  EXPECT_FLOAT_EQ(select::learnItem(0.05f, once, sixteenth, 3.0f, kLearn).fillQuality.quarter, 0.6f);
   select::ItemCounts full = quarter;
   full.rate = RB_RATE_FULL;
-  EXPECT_EQ(select::learnItem(0.05f, once, full, 3.0f).fillQuality.quarter, 0.6f) << "full rate fills nothing";
+  EXPECT_EQ(select::learnItem(0.05f, once, full, 3.0f, kLearn).fillQuality.quarter, 0.6f) << "full rate fills nothing";
   select::ItemCounts faint = quarter;
   faint.error = 1000;
   faint.fillError = 0;
-  EXPECT_EQ(select::learnItem(0.05f, once, faint, 3.0f).fillQuality.quarter, 0.6f) << "under RB_FILL_QUALITY_MIN_ERROR: kept";
-  EXPECT_EQ(select::learnItem(0.05f, once, quarter, 3.0f, RB_BENEFIT_PRIOR_ONLY).fillQuality.quarter, 0.6f) << "the prior-only ablation";
-  EXPECT_EQ(select::learnItem(0.05f, once, {}, 3.0f).fillQuality.quarter, 0.6f) << "not traced: kept";
+  EXPECT_EQ(select::learnItem(0.05f, once, faint, 3.0f, kLearn).fillQuality.quarter, 0.6f) << "under RB_FILL_QUALITY_MIN_ERROR: kept";
+  EXPECT_EQ(select::learnItem(0.05f, once, quarter, 3.0f, kLearn | RB_BENEFIT_PRIOR_ONLY).fillQuality.quarter, 0.6f) << "the prior-only ablation";
+  EXPECT_EQ(select::learnItem(0.05f, once, {}, 3.0f, kLearn).fillQuality.quarter, 0.6f) << "not traced: kept";
 }
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {

@@ -199,8 +199,8 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   EXPECT_GT(learnedFill, 0u) << "a mirror traced at a reduced rate learns what its skipped pixels cost";
 }
 
-// Each item learns how much of its benefit its fill keeps from the pixels its rate traced
-// (docs/SELECTION.md). On the default scene's mirror panel under a still camera at 1/4, the
+// With learnedKeep each item learns how much of its benefit its fill keeps from the pixels its
+// rate traced (docs/SELECTION.md). On the default scene's mirror panel under a still camera at 1/4, the
 // temporal fill carries each traced change until the pattern comes round, so from the fifth
 // frame the fill's prediction at a traced pixel is what that pixel showed four frames before,
 // and the panel learns a quality near 1; the spatial fill alone, whose neighbours two pixels
@@ -216,6 +216,7 @@ TEST(Rates, AnItemLearnsHowMuchItsFillKeeps) {
     s.budgetMs = 1e6f;
     s.rayTracing.rate = ItemRate::Quarter;
     s.rayTracing.temporalFill = temporal;
+    s.rayTracing.learnedKeep = true;
     const test::RenderedFrames r = test::renderFrames(scene, s, frames, test::kCheckSelection);
     for (const FrameTiming& t : r.timings) EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
     const ObjectMetrics& m = r.metrics[mirror];

@@ -89,7 +89,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     }
   }
   // How well its fill kept the benefit where its reduced rate traced last frame (shared/selection.h).
-  if (c.pixels > 0u && learnBenefit && (rate == RB_RATE_QUARTER || rate == RB_RATE_SIXTEENTH) &&
+  if ((push.items.w & RB_BENEFIT_LEARNED_KEEP) != 0u && c.pixels > 0u && learnBenefit && (rate == RB_RATE_QUARTER || rate == RB_RATE_SIXTEENTH) &&
       float(c.error) >= RB_FILL_QUALITY_MIN_ERROR * RB_ERROR_UNITS) {
     float observed = clamp(1.0 - exactQuotient(float(c.fillError), float(c.error)), RB_FILL_QUALITY_MIN, 1.0);
     if (rate == RB_RATE_SIXTEENTH) c.fillQualitySixteenth = averagedWith(c.fillQualitySixteenth, observed);

@@ -43,6 +43,9 @@
 // The effects pass's fill takes a pixel's value from the last frames where it was traced, if it
 // is still valid there (include/fill_history.glsl), before its traced neighbours.
 #define RB_RT_TEMPORAL_FILL 16u
+// The effects pass predicts, where a reduced rate traced, what its fill would have shown there
+// (rt_effects.comp's fillMiss), for `benefit`'s learned fill quality (RayTracingSettings::learnedKeep).
+#define RB_RT_MEASURE_FILL 32u
 #define RB_FILL_HISTORY_LAYERS 4u  // colour and geometry for each frame parity
 // The trace passes' specialization constant: they fill what reduced rates left (include/tile_fill.glsl).
 #define RB_FILL_CONSTANT_ID 0

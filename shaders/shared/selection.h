@@ -71,6 +71,8 @@ struct GpuObjectCost {
 #define RB_BENEFIT_WITHOUT_CENTRALITY 1u
 #define RB_BENEFIT_WITHOUT_HYSTERESIS 2u
 #define RB_BENEFIT_PRIOR_ONLY 4u
+// With RayTracingSettings::learnedKeep (beside the ablations): the items learn their fill quality.
+#define RB_BENEFIT_LEARNED_KEEP 8u
 
 // The sparse probe (`benefit`): candidate items the walk left out are traced, measured and
 // not shown, on the 8x8 tiles whose turn it is this frame, one tile in `stride` each frame in
@@ -103,11 +105,13 @@ struct GpuObjectCost {
 // The share of an item's full-rate benefit a rate keeps: its own traced pixels, plus what the fill
 // keeps of the benefit at the pixels it skips, its quality q (1: as if traced, 0: the fallback's):
 //   keep(1/4) = 0.25 + 0.75 q(1/4),  keep(1/16) = 0.0625 + 0.9375 q(1/16).
-// Each item learns q per rate where that rate traced it (GpuItemCost::fillQualitySixteenth, fillQualityQuarter): at each pixel
+// With RayTracingSettings::learnedKeep (RB_BENEFIT_LEARNED_KEEP) each item learns q per rate where
+// that rate traced it (GpuItemCost::fillQualitySixteenth, fillQualityQuarter): at each pixel
 // it traced, the fill's prediction had it skipped the pixel (what the temporal fill carries there,
 // else the weighted mean of the tile's other traced pixels around it, else the fallback: the
 // fill's own order), and q = 1 - (the prediction's display error) / (the fallback's), summed over
-// the traced pixels (rt_effects.comp's fillMiss). A rate not learned yet takes the other's q
+// the traced pixels (rt_effects.comp's fillMiss; off by default: on the benchmark the learned
+// values recovered less, docs/SELECTION.md). A rate not learned yet takes the other's q
 // times RB_SIXTEENTH_QUALITY_* (1/16 fills from sparser and older samples than 1/4), else the
 // prior: the constant shares measured before, the display difference from full rate against the
 // fallback's (mean over the image, tests/rates_test.cpp's metric), the effect alone traced, the

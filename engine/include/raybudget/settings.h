@@ -73,6 +73,11 @@ struct RayTracingSettings {
   // history (64 bytes a pixel) is made when the renderer is made with a reduced `rate`
   // (restartSelection to one later fills spatially alone).
   bool temporalFill = true;
+  // `benefit` with reduced rates: each item learns how much of its benefit its fill keeps at
+  // each rate (the effects pass predicts each traced pixel as the fill would have) and its rates
+  // are valued from that, not from the constant shares (docs/SELECTION.md). Off by default: on
+  // the benchmark it recovered less (docs/BENCHMARKS.md).
+  bool learnedKeep = false;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };

@@ -218,7 +218,9 @@ struct Context::Impl {
     if (settings.policy != Policy::Benefit && settings.policy != Policy::Classified) return 0u;
     const RayTracingSettings& rt = settings.rayTracing;
     const bool classify = rt.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
-    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
+    const bool measureFill = settings.policy == Policy::Benefit && rt.learnedKeep && reducedRates();
+    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u) |
+           (measureFill ? RB_RT_MEASURE_FILL : 0u);
   }
 
   // Why the opaque frame behind glass is not lit this frame (PassSkip::None: it is): a host's

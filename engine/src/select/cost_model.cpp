@@ -165,7 +165,7 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
     }
   }
   // How well its fill kept the benefit where its reduced rate traced.
-  if (pixels > 0 && learnBenefit && !counts.probed && (counts.rate == RB_RATE_QUARTER || counts.rate == RB_RATE_SIXTEENTH) &&
+  if ((ablation & RB_BENEFIT_LEARNED_KEEP) && pixels > 0 && learnBenefit && !counts.probed && (counts.rate == RB_RATE_QUARTER || counts.rate == RB_RATE_SIXTEENTH) &&
       float(counts.error) >= float(RB_FILL_QUALITY_MIN_ERROR * RB_ERROR_UNITS)) {
     const float observed =
         std::clamp(1.0f - exactQuotient(float(counts.fillError), float(counts.error)), float(RB_FILL_QUALITY_MIN), 1.0f);

@@ -41,6 +41,7 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget)
   if (s.benefitAblation == BenefitAblation::NoCentrality) ablation = RB_BENEFIT_WITHOUT_CENTRALITY;
   if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
   if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
+  if (rt.learnedKeep) ablation |= RB_BENEFIT_LEARNED_KEEP;
   return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate)};
 }
 
