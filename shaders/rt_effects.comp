@@ -132,6 +132,35 @@ EffectSample effectSample(int k) {
   return EffectSample(sixteenthSample(k), fillPaths[slot], fillReflection[slot], fillRefraction[slot]);
 }
 
+// The weighted mean change against the fallback of the tile's traced neighbours of `pixel` for
+// its paths `paths` (x reflection, y refraction): `found` the paths some neighbour qualified for,
+// `mean` their means. Both paths' items may run at different rates: the denser rate's neighbours
+// are read (the rates nest, so they hold the sparser one's samples near the pixel), each where
+// either traced. `leaveOut`: the pixel is one its rate traced (fillMiss), so its own sample is
+// left out, and at 1/4 the neighbours of its phase two pixels away are read.
+void fillMean(ivec2 pixel, Surface s, Selection sel, bvec2 paths, EffectSample samples[4], bool leaveOut, out vec3 mean[2], out bvec2 found) {
+  FillCentre c = fillCentre(s.objectId, s.position, s.normal);
+  uint rates[2] = uint[2](paths.x ? itemRate(sel, RB_ITEM_REFLECTIONS) : RB_RATE_SIXTEENTH,
+                          paths.y ? itemRate(sel, RB_ITEM_REFRACTIONS) : RB_RATE_SIXTEENTH);
+  uint rate = min(rates[0], rates[1]);  // the denser of the two (the codes grow as the rate falls)
+  vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0)), squares[2] = vec3[2](vec3(0.0), vec3(0.0));
+  vec2 weights = vec2(0.0);
+  if (rate == RB_RATE_SIXTEENTH) {
+    ivec2 here = pixel & (RB_TILE_SIZE - 1);
+    for (int k = 0; k < 4; ++k)
+      if (!leaveOut || samples[k].at.at != here)
+        addFillSample(sixteenthWeight(c, samples[k].at, pixel), samples[k].paths, samples[k].reflection, samples[k].refraction, paths, sum, squares, weights);
+  } else {
+    for (int k = 0; k < 9; ++k) {
+      uint slot;
+      float w = leaveOut && k == 4 ? 0.0 : fillWeight(c, rate, pixel, (leaveOut ? 2 : 1) * fillOffset(k), slot);
+      if (w > 0.0) addFillSample(w, fillPaths[slot], fillReflection[slot], fillRefraction[slot], paths, sum, squares, weights);
+    }
+  }
+  found = bvec2(weights.x >= RB_FILL_MIN_WEIGHT, weights.y >= RB_FILL_MIN_WEIGHT);
+  mean = vec3[2](found.x ? shrunkMean(sum[0], squares[0], weights.x) : vec3(0.0), found.y ? shrunkMean(sum[1], squares[1], weights.y) : vec3(0.0));
+}
+
 // Fills the paths pending at `pixel` from the tile's traced neighbours: their weighted mean
 // change against the fallback is added to this pixel's fallback (reflectionImage,
 // refractionImage). Filling the
@@ -139,40 +168,26 @@ EffectSample effectSample(int k) {
 // rays escaped to it, and spares each filled pixel its weights and environment lookups (which
 // cost about as much as the fill's gather on lavapipe).
 void fillPending(ivec2 pixel, Surface s, Selection sel, bvec2 pending, EffectSample samples[4]) {
-  FillCentre c = fillCentre(s.objectId, s.position, s.normal);
-  // Both paths' items may run at different rates: the denser rate's neighbours are read (the
-  // rates nest, so they hold the sparser one's samples near the pixel), each where either traced.
-  uint rates[2] = uint[2](pending.x ? itemRate(sel, RB_ITEM_REFLECTIONS) : RB_RATE_SIXTEENTH,
-                          pending.y ? itemRate(sel, RB_ITEM_REFRACTIONS) : RB_RATE_SIXTEENTH);
-  uint rate = min(rates[0], rates[1]);  // the denser of the two (the codes grow as the rate falls)
-  vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0)), squares[2] = vec3[2](vec3(0.0), vec3(0.0));
-  vec2 weights = vec2(0.0);
-  if (rate == RB_RATE_SIXTEENTH) {
-    for (int k = 0; k < 4; ++k)
-      addFillSample(sixteenthWeight(c, samples[k].at, pixel), samples[k].paths, samples[k].reflection, samples[k].refraction, pending, sum, squares, weights);
-  } else {
-    for (int k = 0; k < 9; ++k) {
-      uint slot;
-      float w = fillWeight(c, rate, pixel, fillOffset(k), slot);
-      if (w > 0.0) addFillSample(w, fillPaths[slot], fillReflection[slot], fillRefraction[slot], pending, sum, squares, weights);
-    }
-  }
-  if (weights.x >= RB_FILL_MIN_WEIGHT) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + shrunkMean(sum[0], squares[0], weights.x), 1.0));
-  if (weights.y >= RB_FILL_MIN_WEIGHT) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + shrunkMean(sum[1], squares[1], weights.y), 1.0));
+  vec3 mean[2];
+  bvec2 found;
+  fillMean(pixel, s, sel, pending, samples, false, mean, found);
+  if (found.x) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + mean[0], 1.0));
+  if (found.y) imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + mean[1], 1.0));
 }
 
 // With RB_RT_MEASURE_FILL, at a pixel a reduced rate traced, the display error its fill would
-// have left had the rate skipped it, per path (x reflection, y refraction), against the fallback's (the item's error):
-// each item learns its fill's quality from the two (GpuItemCost::fillQualitySixteenth, fillQualityQuarter). The fill's
-// prediction here follows the fill's order: what the temporal fill carries to the point (the
-// change traced a rate period ago: the oldest a skipped pixel carries), else the mean change
-// of the tile's other traced pixels on the object around it (1/16: the other three samples,
-// 1/4: the eight of the same phase two pixels away, weighted by depth and normal alone; farther
-// than the fill reads for a skipped pixel, so the estimate errs low), else none (the fallback).
+// have left had the rate skipped it, per path (x reflection, y refraction), against the
+// fallback's (the item's error): each item learns its fill's quality from the two
+// (GpuItemCost::fillQualitySixteenth, fillQualityQuarter). The fill's prediction here follows
+// the fill's order: what the temporal fill carries to the point (the change traced a rate period
+// ago: the oldest a skipped pixel carries), else the mean change of the tile's other traced
+// pixels on the object around it (fillMean: 1/16's other three samples, 1/4's eight of the same
+// phase two pixels away; farther than the fill reads for a skipped pixel, so the estimate errs
+// low), else none (the fallback).
 vec2 fillMiss(ivec2 pixel, Surface s, Selection sel, bvec2 shown, vec3 change[2], vec3 untraced, EffectSample samples[4], out bvec2 measured) {
   uint rates[2] = uint[2](itemRate(sel, RB_ITEM_REFLECTIONS), itemRate(sel, RB_ITEM_REFRACTIONS));
   measured = bvec2(shown.x && (rates[0] == RB_RATE_QUARTER || rates[0] == RB_RATE_SIXTEENTH),
-                         shown.y && (rates[1] == RB_RATE_QUARTER || rates[1] == RB_RATE_SIXTEENTH));
+                   shown.y && (rates[1] == RB_RATE_QUARTER || rates[1] == RB_RATE_SIXTEENTH));
   if (!any(measured)) return vec2(0.0);
   vec3 predicted[2] = vec3[2](vec3(0.0), vec3(0.0));
   bvec2 open = measured;
@@ -184,23 +199,11 @@ vec2 fillMiss(ivec2 pixel, Surface s, Selection sel, bvec2 shown, vec3 change[2]
     open = bvec2(open.x && !carried.x, open.y && !carried.y);
   }
   if (any(open)) {
-    FillCentre c = fillCentre(s.objectId, s.position, s.normal);
-    vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0)), squares[2] = vec3[2](vec3(0.0), vec3(0.0));
-    vec2 weights = vec2(0.0);
-    ivec2 here = pixel & (RB_TILE_SIZE - 1);
-    if (min(open.x ? rates[0] : RB_RATE_SIXTEENTH, open.y ? rates[1] : RB_RATE_SIXTEENTH) == RB_RATE_SIXTEENTH) {
-      for (int k = 0; k < 4; ++k)
-        if (samples[k].at.at != here)
-          addFillSample(sixteenthWeight(c, samples[k].at, pixel), samples[k].paths, samples[k].reflection, samples[k].refraction, open, sum, squares, weights);
-    } else {
-      for (int k = 0; k < 9; ++k) {
-        uint slot;
-        float w = k == 4 ? 0.0 : fillWeight(c, RB_RATE_QUARTER, pixel, 2 * fillOffset(k), slot);
-        if (w > 0.0) addFillSample(w, fillPaths[slot], fillReflection[slot], fillRefraction[slot], open, sum, squares, weights);
-      }
-    }
-    if (open.x && weights.x >= RB_FILL_MIN_WEIGHT) predicted[0] = shrunkMean(sum[0], squares[0], weights.x);
-    if (open.y && weights.y >= RB_FILL_MIN_WEIGHT) predicted[1] = shrunkMean(sum[1], squares[1], weights.y);
+    vec3 mean[2];
+    bvec2 found;
+    fillMean(pixel, s, sel, open, samples, true, mean, found);
+    if (open.x && found.x) predicted[0] = mean[0];
+    if (open.y && found.y) predicted[1] = mean[1];
   }
   return vec2(measured.x ? displayError(untraced + predicted[0], untraced + change[0]) : 0.0,
               measured.y ? displayError(untraced + predicted[1], untraced + change[1]) : 0.0);

@@ -59,8 +59,9 @@ float ticksToWork() {
 }
 
 // Item `effect` of object i: learns from last frame's counters, restarts them, and returns
-// its candidate's cost and value and its fill share (false: not a candidate).
-bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value, out float fill) {
+// its candidate's cost and value, its fill share and its learned fill qualities (false: not a
+// candidate).
+bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value, out float fill, out vec2 quality) {
   uint id = i * RB_ITEMS_PER_OBJECT + effect;
   GpuItemCost c = items[id];
   fill = RB_FILL_SHARE_PRIOR;
@@ -105,6 +106,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     c.benefit = c.measured != 0u ? c.benefit + (prior - c.benefit) * RB_BENEFIT_DRIFT : prior;
   }
   items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u, c.fillPerPixel, 0u, 0u, 0u, c.fillQualitySixteenth, c.fillQualityQuarter);
+  quality = itemFillQuality(c);
   uint pixels = itemPixels(i, effect);
   if (r.crCandidatePixels.z < 0.5 || pixels == 0u) return false;
   float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : priorPerPixel;
@@ -138,14 +140,14 @@ void main() {
     float exchange = ticksToWork();
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       float cost = 0.0, value = 0.0, fill = 0.0;
-      bool add = itemCandidate(i, effect, r, exchange, cost, value, fill);
+      vec2 learned = vec2(0.0);
+      bool add = itemCandidate(i, effect, r, exchange, cost, value, fill, learned);
       uint item = i * RB_ITEMS_PER_OBJECT + effect;
       if (!rateSegmentsWalk()) {
         append(add, item, cost, value, r.apdv.z);
         continue;
       }
       // Rates chosen per item: a candidate per segment of the item's hull (shared/selection.h).
-      vec2 learned = itemFillQuality(items[item]);
       uint hull = rateHull(effect, fill, learned);
       vec2 q = fillQualities(effect, learned);
       for (uint k = 0u; k < 3u; ++k)
