@@ -95,8 +95,9 @@ bool traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection
   if (traced && !probe) markTraced(pixel, RB_RT_SHADOWS);
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
-  // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
-  bool counted = probe || rate != RB_RATE_FULL;
+  // The pixels a probe, a reduced rate or the partial item traced are counted here (a full
+  // rate's at selection).
+  bool counted = probe || rate != RB_RATE_FULL || partialItem(s.objectId, RB_ITEM_SHADOWS);
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
   return true;
 }

@@ -415,6 +415,28 @@ TEST(CostModel, FramesPricedByThePriorDoNotSetTheHeadroom) {
   EXPECT_GT(warm.headroom(0.9), 2.0);
 }
 
+// From a cold start the first frames are selected with the prior scale, then with one learned
+// from a frame or two: their errors (CesiumMilkTruck: 12x, then 4x) are the scale's bias, not
+// noise, and set no headroom; the scale itself learns from them.
+TEST(CostModel, FramesSelectedWithAnUnsettledScaleDoNotSetTheHeadroom) {
+  const double used = 1e-5, work = 1e5, budget = 2.0;
+  select::TimeScale k(640, 360);
+  k.set(0.0, 0.0, 0.0, 0.2, 0.3, 0.0);  // the fixed cost known, the scale not
+  EXPECT_FALSE(k.settled(CostUnit::Work));
+  for (double over : {12.0, 4.0, 4.0}) {
+    StageMeasurement cold{used, work, 0.3 + over * used * work, 0.2, false, budget, 1000};
+    cold.scaleSettled = k.settled(CostUnit::Work);
+    k.learn(CostUnit::Work, cold);
+  }
+  EXPECT_TRUE(k.settled(CostUnit::Work));
+  EXPECT_NEAR(k.msPerUnit(CostUnit::Work), 4.0 * used, 1e-9 * used) << "the scale learns from them";
+  const double now = k.msPerUnit(CostUnit::Work);
+  for (int f = 0; f < 8; ++f) k.learn(CostUnit::Work, {now, work, 0.3 + (f % 2 ? 1.0 : 1.1) * now * work, 0.2, false, budget});
+  EXPECT_LT(k.headroom(0.9), 1.15) << "the headroom holds the settled frames' spread alone";
+  k.set(used, 0.0, 0.0, 0.2, 0.3, 0.0);
+  EXPECT_TRUE(k.settled(CostUnit::Work)) << "a saved scale is settled";
+}
+
 // Before anything was traced, an item or object is priced at the work a ray costs: the recent
 // frames' trace time per ray over the unit's scale (at the priors, RB_PRIOR_WORK_PER_RAY).
 TEST(CostModel, WhatWasNeverTracedIsPricedAtTheMeasuredTimeOfARay) {

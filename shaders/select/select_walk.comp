@@ -103,11 +103,9 @@ float partialShare() {
   float share = partialId != RB_NO_PARTIAL ? exactQuotient(leftOver, partialCost) : 0.0;
   return share >= RB_PARTIAL_MIN_SHARE ? share : 0.0;
 }
-// Whether candidate `id` may become the partial one: the first segment of a reflection or
-// refraction item (the first rate on its hull; a shadow item's pixel count would misprice it).
-bool partialCandidate(uint id) {
-  return id % RB_SEGMENT_SLOTS == 0u && candidateItem(id) % RB_ITEMS_PER_OBJECT != RB_ITEM_SHADOWS;
-}
+// Whether candidate `id` may become the partial one: an item's first segment (the first rate
+// on its hull; a shadow item's is full rate).
+bool partialCandidate(uint id) { return id % RB_SEGMENT_SLOTS == 0u; }
 
 // The greedy fill-in, a subgroup's batch of the order at a time: the lanes load their
 // candidates together (the next batch's load in flight while this one decides), and the

@@ -261,7 +261,11 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   // T was left out for good. (The scale still learns from them: its median outvotes them, and
   // a selection that keeps taking untraced objects, as density's can on an orbit, would else
   // never learn it.)
-  if (m.priorWork <= kPriorPricedShare * m.work) recordError(scale / used);
+  // So is the error of a scale learned from fewer than three frames: on CesiumMilkTruck from
+  // a cold start the frames selected with the prior scale, then with one learned from a
+  // prior-priced frame, ran 12x and 4x over; among the first eight they divided the budget by
+  // 3.3 and left the truck, which fitted T twice over, out.
+  if (m.scaleSettled && m.priorWork <= kPriorPricedShare * m.work) recordError(scale / used);
   k.add(std::clamp(scale, used / 16.0, 16.0 * used));
 }
 

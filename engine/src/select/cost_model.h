@@ -147,6 +147,7 @@ struct StageMeasurement {
   double budgetMs = 0.0;  // the selection's budget (0: every traced frame is informative)
   uint64_t rays = 0;      // the rays the trace passes counted
   double priorWork = 0.0;  // of `work`, the part priced by the prior (items or objects never traced)
+  bool scaleSettled = true;  // the scale it was selected with had TimeScale::settled's observations
 };
 
 // The last kSize observations of a quantity and their median (the lower middle of an even
@@ -193,6 +194,9 @@ class TimeScale {
   double msPerUnit(CostUnit unit) const;
   // 0 where nothing was learned.
   double learned(CostUnit unit) const { return scales_[size_t(unit)].value(); }
+  // Whether the scale is learned from enough frames for its errors to be noise, not the cold
+  // start's bias (a saved state counts as a window).
+  bool settled(CostUnit unit) const { return scales_[size_t(unit)].size() >= kSettledObservations; }
   double overheadMs() const { return overhead_.value(); }
   double traceFixedMs() const { return traceFixed_.value(); }
   // The stage's fixed cost t0: overhead + the trace passes' fixed cost.
@@ -227,6 +231,7 @@ class TimeScale {
   std::array<RecentMedian, 3> scales_;  // per cost unit
   RecentMedian overhead_, traceFixed_, msPerRay_;
   static constexpr size_t kRatioWindow = 32;
+  static constexpr size_t kSettledObservations = 3;
   static constexpr double kInformativeShare = 0.25;
   // A frame whose predicted work is more than this share priced by the prior does not teach
   // the headroom (cost_model.cpp's learn says why).

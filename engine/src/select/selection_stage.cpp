@@ -102,6 +102,7 @@ struct SelectionStage::Impl {
     bool stageSkipped = false;  // the frame left the stage out (skipsStage)
     bool budgeted = false;      // ... with a budgeted policy
     double msPerUnit = 0.0;     // the time scale the frame was selected with
+    bool scaleSettled = false;  // and whether it was settled (TimeScale::settled)
     float workPerRay = 0.0f;    // and the work a ray costs, for what was never traced
     double traceFixedMs = 0.0;  // ... the trace passes' fixed cost it assumed
     ItemFrame items;  // ... and what `benefit` knew of the frame
@@ -173,6 +174,7 @@ struct SelectionStage::Impl {
     slot.selected = true;
     slot.budgeted = isBudgeted(s.policy);
     slot.msPerUnit = timeScale.msPerUnit(costUnitOf(policy));
+    slot.scaleSettled = timeScale.settled(costUnitOf(policy));
     slot.workPerRay = float(timeScale.priorWorkPerRay(costUnitOf(policy)));
     slot.traceFixedMs = timeScale.traceFixedMs();
     slot.belowFixedCost = belowFixedCost(s);
@@ -318,7 +320,7 @@ struct SelectionStage::Impl {
           std::bit_cast<uint32_t>(a.fillQualitySixteenth) != std::bit_cast<uint32_t>(learned[id].fillQuality.sixteenth) ||
           std::bit_cast<uint32_t>(a.fillQualityQuarter) != std::bit_cast<uint32_t>(learned[id].fillQuality.quarter) || a.fillError != 0 || a.skippedTicks != 0 ||
           a.skippedPixels != 0 || a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u + rate : 0u) ||
-          a.pixels != (on && rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
+          a.pixels != (on && rate == RB_RATE_FULL && after[items].selectedLast != id + 1 ? pixelsOf(i, e) : 0u))
         return false;
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
@@ -399,7 +401,7 @@ struct SelectionStage::Impl {
     if (!s.learnTimeScale) return;
     timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWorkMs / slot.msPerUnit, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
                                          r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced,
-                                         double(std::bit_cast<float>(r[9])) / slot.msPerUnit});
+                                         double(std::bit_cast<float>(r[9])) / slot.msPerUnit, slot.scaleSettled});
   }
 
   std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads
