@@ -223,6 +223,7 @@ void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 sho
   bool reflects = paths.x && ((itemSelected(sel, RB_ITEM_REFLECTIONS) && rateTraces(rates[0], pixel)) || probed[0]);
   bool refracts = paths.y && ((itemSelected(sel, RB_ITEM_REFRACTIONS) && rateTraces(rates[1], pixel)) || probed[1]);
   if (!reflects && !refracts) return;  // the environment fallback stands
+  rbPriorRays = (reflects ? priorRays(RB_ITEM_REFLECTIONS) : 0u) + (refracts ? priorRays(RB_ITEM_REFRACTIONS) : 0u);
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);
@@ -275,11 +276,8 @@ void traceEffects(ivec2 pixel, bool lit, Surface s, Selection sel, out bvec2 sho
     uint reflectors = subgroupAdd(reflects ? 1u : 0u), refractors = subgroupAdd(refracts ? 1u : 0u), lanes = subgroupAdd(1u);
     uint own = clockShare(0u, rest, lanes * (reflects && refracts ? 2u : 1u));
     uvec2 ticks = uvec2(reflects ? clockShare(0u, pathTicks[0], reflectors) + own : 0u, refracts ? clockShare(0u, pathTicks[1], refractors) + own : 0u);
-    // The pixels a probe, a reduced rate or the partial item traced are counted here (a full
-    // rate's at selection).
-    bvec2 partial = bvec2(partialItem(s.objectId, RB_ITEM_REFLECTIONS), partialItem(s.objectId, RB_ITEM_REFRACTIONS));
-    uvec3 counted = uvec3(0u, reflects && (probed[0] || rates[0] != RB_RATE_FULL || partial.x) ? 1u : 0u,
-                          refracts && (probed[1] || rates[1] != RB_RATE_FULL || partial.y) ? 1u : 0u);
+    // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
+    uvec3 counted = uvec3(0u, reflects && (probed[0] || rates[0] != RB_RATE_FULL) ? 1u : 0u, refracts && (probed[1] || rates[1] != RB_RATE_FULL) ? 1u : 0u);
     addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError), counted);
   }
 }

@@ -69,6 +69,7 @@ bool traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection
   uint work = 0u, word = 0u;
   uvec2 slots = fillSlots(pixel);
   bool traced = false;  // some light's ray was traced here
+  rbPriorRays = priorRays(RB_ITEM_SHADOWS);
   // Lights the classifier finds certain need no ray.
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     vec3 L;
@@ -95,9 +96,8 @@ bool traceShadows(ivec2 pixel, bool fills, out FillCentre skipped, out Selection
   if (traced && !probe) markTraced(pixel, RB_RT_SHADOWS);
   uint ticks = clockShare(start, clockNow(), subgroupAdd(1u));
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
-  // The pixels a probe, a reduced rate or the partial item traced are counted here (a full
-  // rate's at selection).
-  bool counted = probe || rate != RB_RATE_FULL || partialItem(s.objectId, RB_ITEM_SHADOWS);
+  // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
+  bool counted = probe || rate != RB_RATE_FULL;
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
   return true;
 }

@@ -74,66 +74,6 @@ Camera itemCamera() {
   return cam;
 }
 
-// A shadow item (full rate alone) can be the partial one too: CesiumMilkTruck's truck, one
-// shadow item, traced nothing under any budget short of its whole cost. Its pixels are then
-// counted where traced, so what it learns per pixel is what the whole item learns; counted at
-// selection, as a whole item's, its cost and benefit per pixel fell by the share (6.0 to 3.5
-// work units on the truck at a share of 0.5), and the share that bought went over budget.
-// Every pixel traces (no classifier), so the cost per pixel is about even over the tiles.
-TEST(Items, APartialShadowItemLearnsWhatTheWholeItemLearnsPerPixel) {
-  const Scene scene = itemScene();
-  const Camera cam = itemCamera();
-  RenderSettings s = settingsFor(Policy::Benefit, 160, 120);
-  s.rayTracing.rate = ItemRate::Auto;
-  s.rayTracing.reflections = false;  // shadow items alone
-  s.rayTracing.refractions = false;
-  s.rayTracing.classifyShadows = false;
-  s.rayTracing.shortenShadowRays = false;
-  s.learnTimeScale = false;
-  s.probeShare = 0.0f;
-  s.objectMetrics = true;
-  s.budgetMs = 1e6f;
-  Renderer renderer(scene, s, test::kCheckSelection);
-  std::vector<FrameTiming> timings;
-  auto run = [&](int frames) {
-    for (int f = 0; f < frames; ++f)
-      for (const FrameTiming& t : renderer.render(cam)) timings.push_back(t);
-    for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
-  };
-  run(3);
-  const std::vector<ObjectMetrics> whole = renderer.objectMetrics();
-  // Everything fits: the prediction is every shadow item's cost (the time scale learns nothing,
-  // so the stage has no fixed cost).
-  const double everything = timings.back().predictedTraceMs;
-  ASSERT_GT(everything, 0.0);
-  // Budgets that leave an item a share of at most 0.45, where a whole item's count per pixel
-  // would make it learn under half its cost in five frames (the clock's ticks are noisy on a
-  // busy machine: the bounds are wide).
-  uint32_t checked = 0;
-  for (double fraction = 0.1; fraction < 0.75; fraction += 0.05) {
-    renderer.setBudget(float(fraction * everything));
-    run(5);
-    const std::vector<ObjectMetrics> part = renderer.objectMetrics();
-    ASSERT_EQ(part.size(), whole.size());
-    for (size_t id = 0; id < part.size(); ++id) {
-      const float share = part[id].itemTileShare[0];
-      if (share > 0.45f) continue;
-      ++checked;
-      EXPECT_GE(share, 0.125f);
-      ASSERT_GT(whole[id].itemCostPerPixel[0], 0.0f) << "object " << id;
-      const double cost = part[id].itemCostPerPixel[0] / whole[id].itemCostPerPixel[0];
-      EXPECT_GT(cost, 0.6) << "object " << id << ", share " << share << ", budget " << fraction;
-      EXPECT_LT(cost, 1.67) << "object " << id << ", share " << share << ", budget " << fraction;
-    }
-  }
-  test::expectValidationClean(renderer.validationMessages());
-  for (const FrameTiming& t : timings) {
-    EXPECT_TRUE(t.selectionMatchesCpu.value_or(false)) << "frame " << t.frame;
-    EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
-  }
-  EXPECT_GE(checked, 1u) << "some budget should leave a shadow item partial at a share of at most 0.45";
-}
-
 // The error each traced item removed, as the trace and lighting passes measured it, equals
 // the per-object difference of the traced (`classified`: every item) and fallback (`none`)
 // images: one effect at a time, so that each object's image difference is that item's.

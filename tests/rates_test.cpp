@@ -179,16 +179,12 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   s.budgetMs = float(all.timings.front().candidatesMs / 3.0);
   const test::RenderedFrames part = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
   const test::RenderedFrames later = test::renderFrames(scene, s, std::vector<Camera>(3, cam), test::kCheckSelection);
-  uint32_t bounded = 0;
   for (const test::RenderedFrames* r : {&all, &part, &later})
     for (const FrameTiming& t : r->timings) {
       EXPECT_TRUE(t.selectionMatchesCpu.value_or(false)) << "frame " << t.frame;
       EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
-      if (t.partialShare > 0.0) continue;  // the bound takes whole options alone (a partial item can exceed it)
-      ++bounded;
       EXPECT_LE(t.selectedValue, t.optimalValueBound * (1.0 + 1e-5)) << "the multiple-choice bound holds, frame " << t.frame;
     }
-  EXPECT_GE(bounded, 4u);
   uint32_t reduced = 0;
   for (const ObjectMetrics& m : part.metrics)
     for (int e = 0; e < 3; ++e) reduced += ((m.selectedItems >> e) & 1u) && m.itemRate[size_t(e)] != ItemRate::Full;

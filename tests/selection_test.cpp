@@ -158,7 +158,7 @@ TEST(SelectionPolicies, RateSegmentsClimbEachItemsHullInOrder) {
 
 // The partial item (frame mode's after-step over rate segments): the first item in density
 // order whose first segment did not fit takes the share of its tiles the budget left, at
-// least an eighth (a shadow item too: its one segment is full rate); never when the best
+// least an eighth; never a shadow item (its one segment is full rate), never when the best
 // single candidate replaces the greedy selection.
 TEST(SelectionPolicies, ThePartialItemTakesTheShareOfItsTilesTheBudgetLeft) {
   select::PolicyOptions o;
@@ -170,22 +170,15 @@ TEST(SelectionPolicies, ThePartialItemTakesTheShareOfItsTilesTheBudgetLeft) {
   const std::vector<Candidate> c = {{reflections0, 1, 10, 0}, {shadows1, 2.5f, 15, 0}, {reflections1, 4, 20, 0}, {reflections2, 0.5f, 20, 0},
                                     {reflections3, 0.25f, 0.5f, 0}};
   // Density order: reflections 2 (40), 0 (10), shadows 1 (6), reflections 1 (5), 3 (2). Budget
-  // 3.5: reflections 2 and 0 (2 left); shadows 1 does not fit and takes 2 / 2.5 of its tiles,
-  // and the walk stops there: reflections 3, which fits, is worth less per cost than the
-  // partial item's share.
+  // 3.5: reflections 2 and 0 (2 left); shadows 1 does not fit but is no partial item;
+  // reflections 1 takes 2 / 4 of its tiles, and the walk stops there: reflections 3, which
+  // fits, is worth less per cost than the partial item's share.
   const select::Selection s = select::selectObjects(Policy::Benefit, c, 3.5f, o);
-  EXPECT_EQ(s.ids, (std::vector<uint32_t>{reflections0, shadows1, reflections2}));
-  EXPECT_EQ(s.partial.id, shadows1);
-  EXPECT_EQ(s.partial.share, 0.8f);
+  EXPECT_EQ(s.ids, (std::vector<uint32_t>{reflections0, reflections1, reflections2}));
+  EXPECT_EQ(s.partial.id, reflections1);
+  EXPECT_EQ(s.partial.share, 0.5f);
   EXPECT_DOUBLE_EQ(s.cost, 3.5);
-  EXPECT_DOUBLE_EQ(s.value, 42.0);
-  // Without the shadow item: reflections 1 takes 2 / 4 of its tiles.
-  const std::vector<Candidate> noShadows = {c[0], c[2], c[3], c[4]};
-  const select::Selection r = select::selectObjects(Policy::Benefit, noShadows, 3.5f, o);
-  EXPECT_EQ(r.ids, (std::vector<uint32_t>{reflections0, reflections1, reflections2}));
-  EXPECT_EQ(r.partial.id, reflections1);
-  EXPECT_EQ(r.partial.share, 0.5f);
-  EXPECT_DOUBLE_EQ(r.value, 40.0);
+  EXPECT_DOUBLE_EQ(s.value, 40.0);
   // Without the partial item (the GPU's select(), the benchmark's bound): the greedy alone,
   // with its fill-in.
   o.partialItem = false;

@@ -323,7 +323,7 @@ int runSweep(const SweepCommand& c) {
   csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
          "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,partial_share,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
-  calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,ms_per_item_work_unit,stage_overhead_ms,trace_fixed_ms,ms_per_ray,budgets_ms\n";
+  calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,ms_per_item_work_unit,stage_overhead_ms,trace_fixed_ms,ms_per_ray,ms_per_item_ray,budgets_ms\n";
   // The cost units the policies predict in, each calibrated with a policy that uses it.
   auto uses = [&](Policy unitPolicy) {
     return std::any_of(c.policies.begin(), c.policies.end(), [&](const SweepPolicy& p) { return costUnitPolicy(p.policy) == unitPolicy; });
@@ -374,7 +374,7 @@ int runSweep(const SweepCommand& c) {
       fullMs = float(median(full));
     }
     const CostModel model = renderer.costModel();
-    calibration << pathName << ',' << fullMs << ',' << fixedMs << ',' << model.msPerWorkUnit << ',' << model.msPerPaperCost << ',' << model.msPerItemWorkUnit << ',' << model.stageOverheadMs << ',' << model.traceFixedMs << ',' << model.msPerRay << ',';
+    calibration << pathName << ',' << fullMs << ',' << fixedMs << ',' << model.msPerWorkUnit << ',' << model.msPerPaperCost << ',' << model.msPerItemWorkUnit << ',' << model.stageOverheadMs << ',' << model.traceFixedMs << ',' << model.msPerRay << ',' << model.msPerItemRay << ',';
     for (size_t b = 0; b < points.size(); ++b) calibration << (b ? ";" : "") << points[b];
     calibration << '\n';
     std::printf("%s: full-RT stage %.3f ms, fixed stage cost %.4f ms, budgets %.4f..%.3f ms\n", pathName.c_str(), fullMs, fixedMs, points.front(), points.back());

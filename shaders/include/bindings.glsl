@@ -68,6 +68,7 @@ layout(set = 0, binding = 33, std430) buffer SelectionBlock { uint selected[]; }
 layout(set = 0, binding = 34, std430) buffer TileListBlock {
   uvec4 tileDispatch;    // the shadow pass's: x tiles (= groups in x), y 1, z 1, w rays the trace passes traced
   uvec4 effectDispatch;  // the reflection and refraction pass's: x tiles, y 1, z 1, w tiles in either list
+  uvec4 traceCounts;     // x the rays the items' prior counts at the pixels traced (rt_common.glsl); yzw 0
   uint tiles[];          // the shadow pass's tiles, then from RB_EFFECT_TILES the other's: tile x | tile y << 16
 };
 // Where a trace pass's list starts in tiles[].

@@ -37,13 +37,6 @@ uint selectionInTile(uint objectId, uint word, uvec2 tile) {
   return word & ~((1u << effect) | (3u << (RB_RATE_SHIFT + 2u * effect)));
 }
 
-// Whether item `effect` of the object is the partial one: its traced pixels are counted where
-// traced, as a reduced rate's (a full rate's item count at selection would take its whole
-// pixel count for the share's, and its cost and benefit per pixel would fall by the share).
-bool partialItem(uint objectId, uint effect) {
-  return itemCosts[itemTotalsIndex()].selectedLast == objectId * RB_ITEMS_PER_OBJECT + effect + 1u;
-}
-
 // An object's selection at a pixel: what the trace and lighting passes act on.
 Selection selectionAt(uint objectId, ivec2 pixel) {
   Selection sel = selectionOf(objectId);

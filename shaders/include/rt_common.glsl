@@ -11,16 +11,25 @@
 #include "include/tile_pixel.glsl"
 #include "shared/offset_ray.h"
 
-// Rays this invocation traced (every ray query counts one).
-uint rbRays = 0u;
+// Rays this invocation traced (every ray query counts one), and those an item's prior prices
+// for the paths it traced (select_candidates.comp: a shadow ray per light; a reflection or
+// refraction path, 1 or 2, and the shadow rays of its hit), which the cost model's time of a
+// ray is measured in for items (cost_model.h's TimeScale::priorWorkPerRay).
+uint rbRays = 0u, rbPriorRays = 0u;
+
+// The prior's rays of an item of `effect` (RB_ITEM_*) at one traced pixel.
+uint priorRays(uint effect) { return frame.sizeLightsFrame.z + effect; }
 
 // Adds this invocation's traversal work to its object's counter: lanes of the subgroup
 // that traced the same object are summed first, one atomic per object and subgroup; and its
-// rays to the frame's count (tileDispatch.w). The includer enables
+// rays to the frame's counts (tileDispatch.w, traceCounts.x). The includer enables
 // GL_KHR_shader_subgroup_basic, _vote and _arithmetic.
 void addObjectWork(uint objectId, uint work) {
-  uint rays = subgroupAdd(rbRays);
-  if (subgroupElect()) atomicAdd(tileDispatch.w, rays);
+  uint rays = subgroupAdd(rbRays), prior = subgroupAdd(rbPriorRays);
+  if (subgroupElect()) {
+    atomicAdd(tileDispatch.w, rays);
+    atomicAdd(traceCounts.x, prior);
+  }
   bool pending = true;
   while (subgroupAny(pending)) {
     uint current = subgroupMin(pending ? objectId : RB_NO_OBJECT);

@@ -32,10 +32,8 @@ void applySelection(uint i) {
     uint option = on ? 1u + rate : 0u;
     if (items[id].selectedLast != option) atomicAdd(result3.x, 1u);
     items[id].selectedLast = option;
-    // A probed item's, one traced at a reduced rate or the partial one on a share of its
-    // tiles: counted by the trace passes.
-    bool partial = items[push.walk.z * RB_ITEMS_PER_OBJECT].selectedLast == id + 1u;
-    items[id].pixels = on && rate == RB_RATE_FULL && !partial ? pixels : 0u;
+    // A probed item's, or one traced at a reduced rate: counted by the trace passes.
+    items[id].pixels = on && rate == RB_RATE_FULL ? pixels : 0u;
     if (!on && probing && pixels > 0u) marks |= 1u << (RB_PROBE_SHIFT + effect);
     if (on && fixedRate != RB_RATE_AUTO) marks |= fixedRate << (RB_RATE_SHIFT + 2u * effect);
   }

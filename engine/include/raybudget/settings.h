@@ -244,8 +244,10 @@ struct CostModel {
   double msPerItemWorkUnit = 0.0;
   double stageOverheadMs = 0.0;
   double traceFixedMs = 0.0;
-  // Trace time per ray counted, what an item or object not traced yet is priced at.
+  // Trace time per ray counted, what an object not traced yet is priced at; and per ray an
+  // item's prior counts (a shadow ray per light, a path with its hit's), what an item is.
   double msPerRay = 0.0;
+  double msPerItemRay = 0.0;
   bool operator==(const CostModel&) const = default;
 };
 // The time scale the selection uses before it has measured any: ms per unit of predicted

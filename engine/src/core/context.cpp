@@ -487,7 +487,7 @@ struct Context::Impl {
   }
 
   void setCostModel(const CostModel& m) {
-    for (double v : {m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs, m.msPerRay})
+    for (double v : {m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs, m.msPerRay, m.msPerItemRay})
       if (!std::isfinite(v) || v < 0.0 || v > 1e6) throw Error("cost model values must be finite and within 0..1e6, got " + std::to_string(v));
     selection.setCostModel(m);
   }

@@ -220,14 +220,16 @@ double TimeScale::msPerUnit(CostUnit unit) const {
   return k.empty() ? priorMsPerUnit(unit, width_, height_) : k.value();
 }
 
-void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay) {
+void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay,
+                    double msPerItemRay) {
   auto restore = [](RecentMedian& m, double x) { x > 0.0 ? m.fill(x) : m.clear(); };
   restore(scales_[size_t(CostUnit::Work)], msPerWorkUnit);
   restore(scales_[size_t(CostUnit::PaperCost)], msPerPaperCost);
   restore(scales_[size_t(CostUnit::ItemWork)], msPerItemWorkUnit);
   restore(overhead_, overheadMs);
   restore(traceFixed_, traceFixedMs);
-  restore(msPerRay_, msPerRay);
+  restore(msPerRay_[rayKind(CostUnit::Work)], msPerRay);
+  restore(msPerRay_[rayKind(CostUnit::ItemWork)], msPerItemRay);
   forgetErrors();
 }
 
@@ -253,7 +255,7 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   }
   const double excess = m.traceMs - traceFixedMs();
   if (std::max(m.work * used, excess) < kInformativeShare * m.budgetMs) return;
-  if (m.rays > 0 && excess > 0.0) msPerRay_.add(excess / double(m.rays));
+  if (m.rays > 0 && excess > 0.0) msPerRay_[rayKind(unit)].add(excess / double(m.rays));
   const double scale = excess / m.work;
   // The prior's error is a bias the first traced frame of each item removes, not the noise the
   // headroom is for: from a restart, two such frames (3x and 6x their prediction) were the

@@ -145,7 +145,9 @@ struct StageMeasurement {
   double overheadMs = 0.0;     // the coverage and select passes' timestamps
   bool candidatesButNoneFit = false;
   double budgetMs = 0.0;  // the selection's budget (0: every traced frame is informative)
-  uint64_t rays = 0;      // the rays the trace passes counted
+  // The rays the trace passes counted: traced for objects, and for items (CostUnit::ItemWork)
+  // the rays an item's prior prices per traced pixel (TimeScale::priorWorkPerRay).
+  uint64_t rays = 0;
   double priorWork = 0.0;  // of `work`, the part priced by the prior (items or objects never traced)
   bool scaleSettled = true;  // the scale it was selected with had TimeScale::settled's observations
 };
@@ -213,13 +215,22 @@ class TimeScale {
   // Before an item or object was traced, its work per ray in `unit`: the recent frames' trace
   // time per counted ray (kPriorMsPerRay before any) over the unit's scale. A constant in work
   // units was 10x the learned costs under a calibrated scale: too dear for the probe to run,
-  // so a restarted configuration never learned its items' costs.
-  double priorWorkPerRay(CostUnit unit) const { return msPerRay() / msPerUnit(unit); }
-  double msPerRay() const { return msPerRay_.empty() ? kPriorMsPerRay : msPerRay_.value(); }
-  double learnedMsPerRay() const { return msPerRay_.value(); }  // 0 where nothing was learned
+  // so a restarted configuration never learned its items' costs. Objects count the rays
+  // traced; items the rays their prior prices per traced pixel (a light's shadow ray, a path
+  // and the shadow rays of its hit), so that the classifier's shadow-map taps, which trace few
+  // rays, price items at what they cost per prior ray: counted as traced rays, a frame with a
+  // shadow item made every ray 1.6x dearer and left Suzanne's mirror unpriced at a budget
+  // that bought it.
+  double priorWorkPerRay(CostUnit unit) const { return msPerRay(unit) / msPerUnit(unit); }
+  double msPerRay(CostUnit unit) const {
+    const RecentMedian& m = msPerRay_[rayKind(unit)];
+    return m.empty() ? kPriorMsPerRay : m.value();
+  }
+  double learnedMsPerRay(CostUnit unit) const { return msPerRay_[rayKind(unit)].value(); }  // 0 where nothing was learned
   // A saved state (zeros: the prior, no fixed cost), without the recent errors behind the
   // headroom. Values are the caller's to validate.
-  void set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay);
+  void set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay,
+           double msPerItemRay);
   // Forgets the recent errors (a restarted selection's headroom must not depend on what ran
   // before it).
   void forgetErrors() { ratioCount_ = 0; }
@@ -229,7 +240,9 @@ class TimeScale {
  private:
   uint32_t width_, height_;
   std::array<RecentMedian, 3> scales_;  // per cost unit
-  RecentMedian overhead_, traceFixed_, msPerRay_;
+  RecentMedian overhead_, traceFixed_;
+  std::array<RecentMedian, 2> msPerRay_;  // per ray traced (objects), per prior ray (items)
+  static size_t rayKind(CostUnit unit) { return unit == CostUnit::ItemWork ? 1 : 0; }
   static constexpr size_t kRatioWindow = 32;
   static constexpr size_t kSettledObservations = 3;
   static constexpr double kInformativeShare = 0.25;

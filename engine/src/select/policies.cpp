@@ -31,9 +31,11 @@ std::vector<uint32_t> greedyFit(std::span<const Candidate> c, const std::vector<
 
 constexpr uint32_t kSegmentSlots = 4;  // shared/selection.h's RB_SEGMENT_SLOTS
 
-// Whether candidate `id` (a rate segment) may become the partial item: an item's first segment
-// (select_walk.comp's partialCandidate).
-bool partialCandidate(uint32_t id) { return id % kSegmentSlots == 0; }
+// Whether candidate `id` (a rate segment) may become the partial item: the first segment of a
+// reflection or refraction item (select_walk.comp's partialCandidate says why not a shadow's).
+bool partialCandidate(uint32_t id) {
+  return id % kSegmentSlots == 0 && id / kSegmentSlots % RB_ITEMS_PER_OBJECT != RB_ITEM_SHADOWS;
+}
 
 // The same over rate segments: one goes in only onto its item's previous segment. `partial`
 // (when given) gets the first candidate in `order` that partialCandidate allows and that did

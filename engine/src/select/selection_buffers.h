@@ -21,9 +21,11 @@ struct SelectionBuffers {
   vk::Buffer objectCosts;    // GpuObjectCost per object: learned work per pixel, this frame's work
   vk::Buffer itemCosts;      // GpuItemCost per item (RB_ITEMS_PER_OBJECT per object), then the frame's totals: what `benefit` learns
   vk::Buffer tileObjects;    // RB_TILE_OBJECT_WORDS per tile (shaders/select/coverage.comp)
-  // uvec4 dispatch (x = tiles, w = rays traced), then the tiles to trace.
+  // The header (shaders/include/bindings.glsl's TileListBlock: each trace pass's dispatch, the
+  // rays traced, the rays the items' prior counts), then the tiles to trace.
   vk::Buffer tileList;
 };
+constexpr uint32_t kTileListHeaderBytes = 48;
 
 // Each object's K, Q, I (its glTF extras or the defaults) and S = 0, as the selection starts;
 // `maxRoughness`: the reflections' roughness cut-off, which the derived Q counts.

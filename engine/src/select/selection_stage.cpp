@@ -137,7 +137,7 @@ struct SelectionStage::Impl {
     ensureSelector(s);
     const VkDeviceSize records = std::max<VkDeviceSize>(1, buffers.objects);
     for (Slot& slot : slots) {
-      slot.tileHeader = vk::createBuffer(c, 32, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      slot.tileHeader = vk::createBuffer(c, kTileListHeaderBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       slot.result = vk::createBuffer(c, 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       if (s.optimalBound || checkCpu)
         // Up to three rate segments per item (`benefit` with rates chosen per item).
@@ -320,7 +320,7 @@ struct SelectionStage::Impl {
           std::bit_cast<uint32_t>(a.fillQualitySixteenth) != std::bit_cast<uint32_t>(learned[id].fillQuality.sixteenth) ||
           std::bit_cast<uint32_t>(a.fillQualityQuarter) != std::bit_cast<uint32_t>(learned[id].fillQuality.quarter) || a.fillError != 0 || a.skippedTicks != 0 ||
           a.skippedPixels != 0 || a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u + rate : 0u) ||
-          a.pixels != (on && rate == RB_RATE_FULL && after[items].selectedLast != id + 1 ? pixelsOf(i, e) : 0u))
+          a.pixels != (on && rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
         return false;
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
@@ -359,6 +359,7 @@ struct SelectionStage::Impl {
     t.shadowTiles = slot.selected ? header[0] : 0u;
     t.effectTiles = slot.selected ? header[4] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
+    const uint64_t priorRays = slot.selected ? header[8] : 0u;  // the items' prior's rays at the traced pixels
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
       t.budgetBelowFixedCost = true;
@@ -400,7 +401,8 @@ struct SelectionStage::Impl {
     t.measuredTraceMs = t.traceMs();
     if (!s.learnTimeScale) return;
     timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWorkMs / slot.msPerUnit, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
-                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced,
+                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs,
+                                         policy == Policy::Benefit ? priorRays : uint64_t(t.raysTraced),
                                          double(std::bit_cast<float>(r[9])) / slot.msPerUnit, slot.scaleSettled});
   }
 
@@ -509,7 +511,7 @@ void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot,
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {
   if (!impl_->slots[slot].selected) return;
   readToTransfer(cmd);
-  const VkBufferCopy header{0, 0, 32};
+  const VkBufferCopy header{0, 0, kTileListHeaderBytes};
   vkCmdCopyBuffer(cmd, impl_->buffers.tileList.buffer, impl_->slots[slot].tileHeader.buffer, 1, &header);
 }
 
@@ -519,11 +521,12 @@ void SelectionStage::restart(const RenderSettings& settings) { impl_->restart(se
 
 CostModel SelectionStage::costModel() const {
   const TimeScale& k = impl_->timeScale;
-  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.learned(CostUnit::ItemWork), k.overheadMs(), k.traceFixedMs(), k.learnedMsPerRay()};
+  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.learned(CostUnit::ItemWork), k.overheadMs(), k.traceFixedMs(), k.learnedMsPerRay(CostUnit::Work),
+          k.learnedMsPerRay(CostUnit::ItemWork)};
 }
 
 void SelectionStage::setCostModel(const CostModel& m) {
-  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs, m.msPerRay);
+  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs, m.msPerRay, m.msPerItemRay);
 }
 
 std::vector<ObjectMetrics> SelectionStage::objectMetrics() const { return impl_->objectMetrics(); }
