@@ -1,6 +1,7 @@
 // Items per effect (`benefit`, `classified`): the GPU's per-item learning and selection equal
 // their CPU references; the display error the trace passes measure equals the difference of
 // the traced and fallback images; the shadow classifier saves rays and keeps the image.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -72,6 +73,47 @@ Camera itemCamera() {
   cam.position = {0.0f, 6.0f, 7.0f};
   cam.target = {0.0f, 0.0f, 1.0f};
   return cam;
+}
+
+// Items' untraced prices learn the time of a ray their prior counts (a shadow ray per light at
+// each traced pixel), apart from the objects' time per ray traced. Every shadow pixel traces
+// here (no classifier) under one sun: the prior's rays are the rays traced plus the pixels
+// facing away from it, so the time per prior ray lies at or a little under the time per ray
+// traced, and the objects' time per ray stays unlearned.
+TEST(Items, ItemsLearnTheTimeOfTheRaysTheirPriorCounts) {
+  const Scene scene = itemScene();
+  RenderSettings s = settingsFor(Policy::Benefit, 160, 120);
+  s.rayTracing.reflections = false;
+  s.rayTracing.refractions = false;
+  s.rayTracing.classifyShadows = false;
+  s.rayTracing.shortenShadowRays = false;
+  s.probeShare = 0.0f;
+  s.budgetMs = 1e6f;
+  Renderer renderer(scene, s);
+  std::vector<FrameTiming> timings;
+  auto run = [&](int frames) {
+    for (int f = 0; f < frames; ++f)
+      for (const FrameTiming& t : renderer.render(itemCamera())) timings.push_back(t);
+    for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
+  };
+  run(4);
+  // A budget everything fits in three times over: frames that use a quarter of their budget
+  // teach the time scale (cost_model.cpp).
+  ASSERT_GT(timings.back().rtStageMs(), 0.0);
+  renderer.setBudget(float(3.0 * timings.back().rtStageMs()));
+  timings.clear();
+  run(12);
+  const CostModel model = renderer.costModel();
+  test::expectValidationClean(renderer.validationMessages());
+  std::vector<double> perTracedRay;
+  for (const FrameTiming& t : timings)
+    if (t.raysTraced > 0 && t.measuredTraceMs > model.traceFixedMs) perTracedRay.push_back((t.measuredTraceMs - model.traceFixedMs) / t.raysTraced);
+  ASSERT_GE(perTracedRay.size(), 6u);
+  std::sort(perTracedRay.begin(), perTracedRay.end());
+  const double median = perTracedRay[perTracedRay.size() / 2];
+  EXPECT_EQ(model.msPerRay, 0.0) << "no object's ray was timed";
+  EXPECT_GT(model.msPerItemRay, 0.7 * median) << "counted twice, it would halve";
+  EXPECT_LT(model.msPerItemRay, 1.25 * median);
 }
 
 // The error each traced item removed, as the trace and lighting passes measured it, equals
