@@ -202,8 +202,8 @@ vec2 fillMiss(ivec2 pixel, Surface s, Selection sel, bvec2 shown, vec3 change[2]
     vec3 mean[2];
     bvec2 found;
     fillMean(pixel, s, sel, open, samples, true, mean, found);
-    if (open.x && found.x) predicted[0] = mean[0];
-    if (open.y && found.y) predicted[1] = mean[1];
+    if (found.x) predicted[0] = mean[0];  // (found only on open paths: fillMean reads no other)
+    if (found.y) predicted[1] = mean[1];
   }
   return vec2(measured.x ? displayError(untraced + predicted[0], untraced + change[0]) : 0.0,
               measured.y ? displayError(untraced + predicted[1], untraced + change[1]) : 0.0);

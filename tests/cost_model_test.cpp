@@ -448,9 +448,11 @@ TEST(CostModel, WhatWasNeverTracedIsPricedAtTheMeasuredTimeOfARay) {
   const double itemScale = 4e-5, msPerRay = 3e-4;
   k.set(0.0, 0.0, itemScale, 0.2, 0.3, 0.0, 0.0);
   EXPECT_DOUBLE_EQ(k.priorWorkPerRay(CostUnit::ItemWork), select::kPriorMsPerRay / itemScale) << "the prior ray time, the learned scale";
-  for (int f = 0; f < 4; ++f) {  // 20 ms of work over 20/msPerRay rays
+  for (int f = 0; f < 4; ++f) {  // 20 ms of work over 20/msPerRay prior rays (and half as many traced)
     const double work = 20.0 / itemScale;
-    k.learn(CostUnit::ItemWork, {itemScale, work, 0.3 + 20.0, 0.2, false, 20.0, uint64_t(20.0 / msPerRay)});
+    StageMeasurement m{itemScale, work, 0.3 + 20.0, 0.2, false, 20.0, uint64_t(10.0 / msPerRay)};
+    m.priorRays = uint64_t(20.0 / msPerRay);
+    k.learn(CostUnit::ItemWork, m);
   }
   EXPECT_NEAR(k.msPerRay(CostUnit::ItemWork), msPerRay, 1e-4 * msPerRay);
   EXPECT_NEAR(k.priorWorkPerRay(CostUnit::ItemWork), msPerRay / itemScale, 1e-4);

@@ -12,13 +12,12 @@
 #include "shared/offset_ray.h"
 
 // Rays this invocation traced (every ray query counts one), and those an item's prior prices
-// for the paths it traced (select_candidates.comp: a shadow ray per light; a reflection or
-// refraction path, 1 or 2, and the shadow rays of its hit), which the cost model's time of a
-// ray is measured in for items (cost_model.h's TimeScale::priorWorkPerRay).
+// for the paths it traced (shared/selection.h's RB_ITEM_PRIOR_RAYS), which the cost model's
+// time of a ray is measured in for items (cost_model.h's TimeScale::priorWorkPerRay).
 uint rbRays = 0u, rbPriorRays = 0u;
 
 // The prior's rays of an item of `effect` (RB_ITEM_*) at one traced pixel.
-uint priorRays(uint effect) { return frame.sizeLightsFrame.z + effect; }
+uint priorRays(uint effect) { return RB_ITEM_PRIOR_RAYS(frame.sizeLightsFrame.z, effect); }
 
 // Adds this invocation's traversal work to its object's counter: lanes of the subgroup
 // that traced the same object are summed first, one atomic per object and subgroup; and its

@@ -66,9 +66,8 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   GpuItemCost c = items[id];
   fill = RB_FILL_SHARE_PRIOR;
   bool learnBenefit = (push.items.w & RB_BENEFIT_PRIOR_ONLY) == 0u;
-  // Rays per pixel before anything was measured: a shadow ray per light; a reflection or
-  // refraction path and the shadow rays of its hit (a refraction enters and leaves).
-  float rays = float(push.items.y) + (effect == RB_ITEM_SHADOWS ? 0.0 : float(effect));
+  // Rays per pixel before anything was measured (shared/selection.h).
+  float rays = float(RB_ITEM_PRIOR_RAYS(push.items.y, effect));
   float priorPerPixel = rays * push.budget.w;
   uint rate = c.selectedLast == 0u ? RB_RATE_FULL : c.selectedLast - 1u;  // (1 + its rate; 0: probed)
   if (c.pixels > 0u) {  // traced last frame

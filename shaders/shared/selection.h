@@ -53,6 +53,10 @@ struct GpuObjectCost {
 #define RB_ITEM_REFLECTIONS 1u
 #define RB_ITEM_REFRACTIONS 2u
 #define RB_ITEMS_ALL 7u
+// The rays an item's prior prices per pixel (TimeScale::priorWorkPerRay), and the trace passes
+// count at each pixel they trace for it: a shadow ray per light; a reflection or refraction
+// path (a refraction enters and leaves: 2) and the shadow rays of its hit.
+#define RB_ITEM_PRIOR_RAYS(lights, effect) ((lights) + (effect))
 
 // The trace passes' error sums (GpuItemCost::error): per traced pixel, the mean absolute
 // difference of the display-space (tonemapped, sRGB-encoded) channels between the traced

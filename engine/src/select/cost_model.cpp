@@ -182,7 +182,7 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
 }
 
 float priorItemWorkPerPixel(uint32_t effect, uint32_t lights, float workPerRay) {
-  const float rays = float(lights) + (effect == RB_ITEM_SHADOWS ? 0.0f : float(effect));
+  const float rays = float(RB_ITEM_PRIOR_RAYS(lights, effect));
   return rays * workPerRay;
 }
 
@@ -255,7 +255,8 @@ void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
   }
   const double excess = m.traceMs - traceFixedMs();
   if (std::max(m.work * used, excess) < kInformativeShare * m.budgetMs) return;
-  if (m.rays > 0 && excess > 0.0) msPerRay_[rayKind(unit)].add(excess / double(m.rays));
+  const uint64_t rays = unit == CostUnit::ItemWork ? m.priorRays : m.rays;  // (msPerRay_, per kind)
+  if (rays > 0 && excess > 0.0) msPerRay_[rayKind(unit)].add(excess / double(rays));
   const double scale = excess / m.work;
   // The prior's error is a bias the first traced frame of each item removes, not the noise the
   // headroom is for: from a restart, two such frames (3x and 6x their prediction) were the

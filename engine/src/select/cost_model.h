@@ -145,11 +145,10 @@ struct StageMeasurement {
   double overheadMs = 0.0;     // the coverage and select passes' timestamps
   bool candidatesButNoneFit = false;
   double budgetMs = 0.0;  // the selection's budget (0: every traced frame is informative)
-  // The rays the trace passes counted: traced for objects, and for items (CostUnit::ItemWork)
-  // the rays an item's prior prices per traced pixel (TimeScale::priorWorkPerRay).
-  uint64_t rays = 0;
+  uint64_t rays = 0;      // the rays the trace passes traced
   double priorWork = 0.0;  // of `work`, the part priced by the prior (items or objects never traced)
   bool scaleSettled = true;  // the scale it was selected with had TimeScale::settled's observations
+  uint64_t priorRays = 0;    // the rays the items' prior counts at the pixels traced (RB_ITEM_PRIOR_RAYS)
 };
 
 // The last kSize observations of a quantity and their median (the lower middle of an even

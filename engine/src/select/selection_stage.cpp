@@ -359,7 +359,6 @@ struct SelectionStage::Impl {
     t.shadowTiles = slot.selected ? header[0] : 0u;
     t.effectTiles = slot.selected ? header[4] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
-    const uint64_t priorRays = slot.selected ? header[8] : 0u;  // the items' prior's rays at the traced pixels
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
       t.budgetBelowFixedCost = true;
@@ -401,9 +400,9 @@ struct SelectionStage::Impl {
     t.measuredTraceMs = t.traceMs();
     if (!s.learnTimeScale) return;
     timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWorkMs / slot.msPerUnit, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
-                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs,
-                                         policy == Policy::Benefit ? priorRays : uint64_t(t.raysTraced),
-                                         double(std::bit_cast<float>(r[9])) / slot.msPerUnit, slot.scaleSettled});
+                                         r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced,
+                                         double(std::bit_cast<float>(r[9])) / slot.msPerUnit, slot.scaleSettled,
+                                         uint64_t(header[8])});  // the items' prior's rays (tile list header)
   }
 
   std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads
