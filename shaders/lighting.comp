@@ -14,6 +14,7 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
+#include "include/shadow_fill.glsl"
 #include "include/screen_pixel.glsl"
 
 // Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
@@ -59,6 +60,10 @@ void main() {
   // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.
   bool traced = probed || (rtShadows && itemTracedHere(sel, RB_ITEM_SHADOWS, pixel));
   bool measure = traced && measuringItems();
+  // Where the item's reduced rate skipped the pixel, its traced neighbours correct the maps.
+  ShadowFill fill;
+  fill.total = 0.0;
+  if (rtShadows && !traced) fill = shadowFillSources(pixel, fillCentre(s.objectId, s.position, N), itemRate(sel, RB_ITEM_SHADOWS));
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
@@ -81,10 +86,11 @@ void main() {
         if (attenuation <= 0.0) continue;
       }
     }
-    // The mask: traced, certain or filled visibility (negative: none, then the map's).
-    float masked = rtShadows || probed ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
-    float mapped = rtShadows && !measure && masked >= 0.0 ? 1.0 : shadowFromLight(light, s.position, N);
-    float visibility = masked >= 0.0 ? masked : mapped;
+    // The mask where traced (the rays' or the certain map's visibility), else the map's,
+    // corrected where the fill found traced neighbours.
+    float masked = traced ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
+    float mapped = rtShadows && traced && !measure ? 1.0 : shadowFromLight(light, s.position, N);
+    float visibility = traced ? masked : (fill.total > 0.0 ? clamp(mapped + shadowFillCorrection(fill, i, mapped), 0.0, 1.0) : mapped);
     vec3 unshadowed = shadeLayered(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.layers) * light.colorIntensity.rgb * attenuation;
     color += unshadowed * visibility;
     fallbackColor += unshadowed * mapped;

@@ -1,8 +1,10 @@
 // Reduced ray rates (RayTracingSettings::rate): items traced on a checkerboard or one pixel per
-// 2x2 quad, the rest filled inside the trace passes by a joint bilateral filter from traced
-// neighbours in the same tile on the same object (shaders/include/tile_fill.glsl). The fill
+// 2x2 quad, the rest filled by a joint bilateral filter from traced neighbours on the same
+// object: reflections and refractions inside the effects pass from the same tile
+// (shaders/include/tile_fill.glsl), shadows in the lighting pass (include/shadow_fill.glsl). The fill
 // never takes another object's values; a flat mirror at 1/4 stays close to its full-rate
 // image, and so do shadows; a lower rate traces fewer rays.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -58,6 +60,57 @@ TEST(Rates, TheFillNeverReadsAcrossObjectIds) {
   }
 }
 
+// Two coplanar grey floors (objects 0 and 1, touching at x = 0) under a sun straight above, and
+// a thin board hovering over the left floor's edge: its shadow is a line on the left floor
+// along x = 0. The shadow map (16 texels) misses the board, which lies between its texel
+// centres, so the map lights both floors alike and the rays correct the line darker. At 1/4
+// and 1/16 the shadow fill (include/shadow_fill.glsl) fills a right-floor pixel from right-floor
+// neighbours alone: never darker than both the traced and the map's visibility there, which a
+// left-floor neighbour's correction would make it (the map guides no neighbour out here).
+TEST(Rates, TheShadowFillNeverReadsAcrossObjectIds) {
+  Scene scene;
+  Material grey;
+  grey.metallic = 0.0f;
+  grey.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+  for (float x : {-1.0f, 1.0f}) test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.0f, 0.0f)), grey);
+  const glm::mat4 board = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(-0.03f, 1.2f, 0.0f)), glm::vec3(0.03f, 1.0f, 1.0f));
+  test::addObject(scene, test::quad(1.0f), board, grey);
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  scene.lights = {sun};
+  Camera cam;
+  cam.position = {0.0f, 3.0f, 3.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  auto render = [&](Policy policy, ItemRate rate) {
+    RenderSettings s = test::settingsFor(policy, 256, 192);
+    s.rayTracing.rate = rate;
+    s.rayTracing.reflections = false;
+    s.rayTracing.refractions = false;
+    s.shadowMapSize = 16;
+    s.skyIntensity = 0.0f;
+    // The second frame: 1/4 and 1/16 trace odd columns, so a right-floor pixel at the boundary
+    // (an even column) is filled with a traced left-floor pixel beside it.
+    return test::renderFrames(scene, s, {cam, cam});
+  };
+  const test::RenderedFrames full = render(Policy::All, ItemRate::Full), none = render(Policy::None, ItemRate::Full);
+  auto luminance = [](const test::RenderedFrames& r, size_t p) { return int(r.images.ldrRgba8[p * 4 + 1]); };
+  size_t corrected[2] = {0, 0};  // pixels per floor where the rays change the map's shadow
+  for (size_t p = 0; p < full.images.objectIds.size(); ++p) {
+    const uint32_t id = full.images.objectIds[p];
+    if (id <= 1 && std::abs(luminance(full, p) - luminance(none, p)) > 16) ++corrected[id];
+  }
+  ASSERT_GT(corrected[0], 100u) << "the map should miss the board's shadow on the left floor";
+  ASSERT_EQ(corrected[1], 0u) << "the right floor should be lit alike by the map and the rays";
+  for (ItemRate rate : {ItemRate::Quarter, ItemRate::Sixteenth}) {
+    const test::RenderedFrames reduced = render(Policy::All, rate);
+    size_t foreign = 0;
+    for (size_t p = 0; p < full.images.objectIds.size(); ++p)
+      if (full.images.objectIds[p] == 1 && luminance(reduced, p) < std::min(luminance(full, p), luminance(none, p)) - 16) ++foreign;
+    EXPECT_EQ(foreign, 0u) << itemRateName(rate) << ": right-floor pixels darkened by the left floor's corrections";
+  }
+}
+
 // On the default scene's mirror panel (which reflects small, detailed objects), 1/4 rate keeps
 // over half of what tracing adds over the environment fallback and 1/2 about two thirds (mean
 // display difference from full rate, as the benefit measures it; measured 0.039 and 0.023
@@ -107,7 +160,7 @@ TEST(Rates, AFlatMirrorAtAQuarterStaysCloseToFullRate) {
 }
 
 // Shadows alone on the default scene: the fill corrects the shadow map by the traced
-// neighbours' difference from it (rt_shadows.comp), so at 1/4 and 1/2 the image stays closer
+// neighbours' difference from it (include/shadow_fill.glsl), so at 1/4 and 1/2 the image stays closer
 // to full rate than the maps are: with coarse (128 texel) maps (measured 0.0018 and 0.0032
 // against the maps' 0.0089 at 320x192) and with the default 1024-texel ones (0.0008 and 0.0014
 // against 0.0016), where filling the visibility itself lost to the maps (0.0019 and 0.0031: the

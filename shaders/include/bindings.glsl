@@ -49,11 +49,14 @@ layout(set = 0, binding = 22, rgba16f) uniform writeonly imageCube envStorage[RB
 layout(set = 0, binding = 23) uniform sampler2D envSource;
 
 // Ray tracing: the BVH (bindings 24-26, see rayquery.glsl), the mesh indices for hit
-// attributes, and the ray-traced shadow mask (one layer per light).
+// attributes, and the ray-traced shadow mask: a layer per light of its visibility, then as
+// many again holding the shadow map's visibility where a reduced ray rate traced the pixel
+// (the lighting pass's fill reads it: include/shadow_fill.glsl).
 #define RB_BVH_SET 0
 #define RB_BVH_BINDING 24
 layout(set = 0, binding = 27, std430) readonly buffer IndexBlock { uint meshIndices[]; };
 layout(set = 0, binding = 28, r32f) uniform image2DArray shadowMask;
+int mappedLayer(uint light) { return imageSize(shadowMask).z / 2 + int(light); }
 layout(set = 0, binding = 29) uniform sampler2D gPosition;  // xyz world position, w packed geometric normal
 
 // The heuristic (shared/selection.h): per-object coverage, parameters and records.

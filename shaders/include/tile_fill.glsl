@@ -1,24 +1,18 @@
-// The fill of reduced ray rates (include/rates.glsl), inside the trace passes: after the
-// pixels a rate traces this frame have traced, each shares what it traced in the workgroup's
-// shared memory, the workgroup waits at a barrier, and every pixel its item skipped this frame
-// takes the weighted mean of the values traced around it (fillOffset) in the same 8x8 tile on
-// the same object (never another object's), each weighted by
-//   distance  exp(-d^2 / 2), d in pixels (exp(-d^2 / 8) for 1/16's sparser samples);
-//   depth     max(0, 1 - h / (RB_FILL_PLANE * r)), h the neighbour's distance from the
-//             pixel's tangent plane, r the pixel's distance from the camera;
-//   normal    max(0, n . n')^RB_FILL_NORMAL_POWER.
-// For 1/2 and 1/4 the 3x3 pixels around it, which always hold its own 2x2 quad (1/4 traces one
-// pixel of it, 1/2 two); for 1/16 the tile's four pixels it traced, one per 4x4 block, up to
-// three pixels away on each axis. Neighbours across the tile's edge are left out (a pass of
-// its own reading them from images cost as much as the tracing it saved on lavapipe). Where no
-// neighbour qualifies the fallback stays. The includer includes bindings.glsl.
+// The fill of reduced ray rates (include/rates.glsl) for reflections and refractions, inside
+// the effects pass: after the pixels a rate traces this frame have traced, each shares what it
+// traced in the workgroup's shared memory, the workgroup waits at a barrier, and every pixel
+// its item skipped this frame takes the weighted mean of the values traced around it
+// (fillOffset) in the same 8x8 tile on the same object, weighted as include/fill_weights.glsl
+// says. For 1/2 and 1/4 the 3x3 pixels around it, which always hold its own 2x2 quad (1/4
+// traces one pixel of it, 1/2 two); for 1/16 the tile's four pixels it traced, one per 4x4
+// block, up to three pixels away on each axis. Neighbours across the tile's edge are left out
+// (a pass of its own reading them from images cost as much as the tracing it saved on
+// lavapipe). Where no neighbour qualifies the fallback stays. The includer includes
+// bindings.glsl. (Shadows fill in the lighting pass: include/shadow_fill.glsl.)
 #ifndef RB_TILE_FILL_GLSL
 #define RB_TILE_FILL_GLSL
+#include "include/fill_weights.glsl"
 
-#define RB_FILL_PLANE 0.02
-#define RB_FILL_NORMAL_POWER 16  // (fillWeight squares four times)
-// Below this summed weight no neighbour qualifies.
-#define RB_FILL_MIN_WEIGHT 1e-3
 #define RB_TILE_PIXELS (RB_TILE_SIZE * RB_TILE_SIZE)
 
 // Per pixel of the tile: the object it traced for (RB_NO_OBJECT: nothing to share), where;
@@ -64,30 +58,8 @@ void shareFillSource(uvec2 slots, uint objectId, vec3 position, vec3 normal) {
   }
 }
 
-struct FillCentre {
-  uint objectId;
-  vec3 position;
-  vec3 normal;
-  float planeScale;  // 1 / (RB_FILL_PLANE * distance from the camera)
-};
-
-FillCentre fillCentre(uint objectId, vec3 position, vec3 normal) {
-  return FillCentre(objectId, position, normal, 1.0 / (RB_FILL_PLANE * max(length(position - frame.cameraPositionNear.xyz), 1e-6)));
-}
-
 // The k-th of the 3x3 neighbours a pixel's fill reads at 1/2 and 1/4.
 ivec2 fillOffset(int k) { return ivec2(k % 3 - 1, k / 3 - 1); }
-
-// The depth and normal weights of a neighbour at `position` with `normal` for the fill of c.
-float fillSimilarity(FillCentre c, vec3 position, vec3 normal) {
-  float plane = max(0.0, 1.0 - abs(dot(c.normal, position - c.position)) * c.planeScale);
-  float facing = max(dot(c.normal, normal), 0.0);
-  facing *= facing;  // ^RB_FILL_NORMAL_POWER by squaring: four multiplies where pow is a log and an exp
-  facing *= facing;
-  facing *= facing;
-  facing *= facing;
-  return plane * facing;
-}
 
 // The slot of the neighbour at `offset` from `pixel` and its weight at 1/2 or 1/4; 0 where the
 // item's `rate` did not trace it this frame (1 to 4 of 1/4's 9 are left: tested first, the

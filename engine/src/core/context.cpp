@@ -415,8 +415,9 @@ struct Context::Impl {
       selection.recordSelect(fc, s, settings);
     });
     tracedMaskWritten = traced != 0;
-    // Items at a reduced ray rate are filled inside the trace passes (shaders/include/tile_fill.glsl).
-    run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc, reducedRates()); });
+    // Reflections and refractions at a reduced ray rate are filled inside the effects pass
+    // (shaders/include/tile_fill.glsl), shadows in the lighting pass (shaders/include/shadow_fill.glsl).
+    run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc, false); });
     if (traced & RB_RT_SHADOWS) computeToCompute(cmd);
     // The environment fallback first: the lighting pass reads it to measure the display error
     // of the traced shadows (RB_RT_MEASURE_ITEMS).
@@ -529,7 +530,7 @@ FrameOutputs Context::outputs() const {
   o.reflectionView = t.reflection.view;
   o.refractionView = t.refraction.view;
   o.shadowVisibility = t.shadowMask.image;
-  o.shadowVisibilityLayers = t.shadowMask.desc.layers;
+  o.shadowVisibilityLayers = t.shadowMask.desc.layers / 2;  // (the second half: the fill's, frame_targets.h)
   o.tracedMask = t.tracedMask.image;
   o.tracedMaskView = t.tracedMask.view;
   return o;
@@ -599,7 +600,6 @@ std::vector<std::string> Context::builtPipelines() const {
   if (r.probes.built()) out.push_back("reflection_probes");
   if (r.screenReflections.built()) out.push_back("ssr");
   if (r.traceShadows.builtPlain()) out.push_back("trace_shadows");
-  if (r.traceShadows.builtFilling()) out.push_back("trace_shadows+fill");
   // The effects pass's pipelines by the paths they hold: trace_effects(reflections), ...
   const uint32_t paths = r.traceEffects.paths();
   const std::string effects = std::string("trace_effects(") + (paths & RB_RT_REFLECTIONS ? "reflections" : "") +

@@ -67,8 +67,9 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.depthPyramid = image2d(ctx, VK_FORMAT_R32_SFLOAT, ssrW, ssrH, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 1, false, levels);
   for (uint32_t l = 0; l < levels; ++l) t.depthPyramidLevels.push_back(vk::createView(ctx, t.depthPyramid, VK_IMAGE_VIEW_TYPE_2D, l, 1, 0, 1));
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
-  t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, std::max(lightCount, 1u));
-  t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, std::max(lightCount, 1u));
+  const uint32_t maskLayers = 2 * std::max(lightCount, 1u);
+  t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, maskLayers);
+  t.shadowMaskArray = vk::createView(ctx, t.shadowMask, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, maskLayers);
   t.tracedMask = image2d(ctx, VK_FORMAT_R32_UINT, width, height, storage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   // Colour and geometry, per frame parity (include/fill_history.glsl).
   t.fillHistory = image2d(ctx, VK_FORMAT_R32G32B32A32_UINT, needs.fillHistory ? width : 1, needs.fillHistory ? height : 1,

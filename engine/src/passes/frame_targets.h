@@ -50,7 +50,9 @@ struct FrameTargets {
   vk::Owned<VkImageView> skyStorageView;           // mip 0
   std::vector<vk::Owned<VkImageView>> envMipViews;  // one cube view per mip
   vk::Image envSource;                             // equirectangular HDR image, or 1x1 black
-  vk::Image shadowMask;                            // ray-traced light visibility, a layer per light
+  // Ray-traced light visibility, a layer per light, then a layer per light of the shadow
+  // map's visibility where a reduced ray rate traced (the lighting pass's fill reads both).
+  vk::Image shadowMask;
   vk::Owned<VkImageView> shadowMaskArray;          // 2D-array view (also for one light)
   vk::Image tracedMask;                            // R32_UINT: the RB_RT_* effects traced per pixel
   vk::Image behindGlass;                           // the opaque frame behind transmissive surfaces, half resolution, full mip chain
