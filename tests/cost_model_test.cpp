@@ -140,12 +140,14 @@ TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
   EXPECT_EQ(select::learnItem(0.05f, once, {100, 5000, 0, 100, false, RB_RATE_QUARTER, 3000, 300}, 0.0f).fillPerPixel, 60.0f)
       << "not timed: kept";
   EXPECT_EQ(select::learnItem(0.05f, once, {}, 3.0f).fillPerPixel, 60.0f) << "not traced: kept";
-  // Shares: the traced pixels' part plus the skipped ones' at the fill share, capped, the prior
-  // before anything was learned.
-  EXPECT_EQ(select::fillShare(0.0f, 100.0f), float(RB_FILL_SHARE_PRIOR));
-  EXPECT_EQ(select::fillShare(20.0f, 0.0f), float(RB_FILL_SHARE_PRIOR));
-  EXPECT_EQ(select::fillShare(20.0f, 100.0f), 0.2f);
-  EXPECT_EQ(select::fillShare(500.0f, 100.0f), float(RB_FILL_SHARE_MAX));
+  // Shares: the traced pixels' part plus the skipped ones' at the fill share, capped, the
+  // effect's prior before anything was learned (shadows fill outside the stage).
+  EXPECT_EQ(select::fillShare(RB_ITEM_REFLECTIONS, 0.0f, 100.0f), float(RB_FILL_SHARE_PRIOR));
+  EXPECT_EQ(select::fillShare(RB_ITEM_REFRACTIONS, 20.0f, 0.0f), float(RB_FILL_SHARE_PRIOR));
+  EXPECT_EQ(select::fillShare(RB_ITEM_SHADOWS, 0.0f, 100.0f), float(RB_FILL_SHARE_PRIOR_SHADOWS));
+  EXPECT_LT(float(RB_FILL_SHARE_PRIOR_SHADOWS), float(RB_FILL_SHARE_PRIOR));
+  EXPECT_EQ(select::fillShare(RB_ITEM_REFLECTIONS, 20.0f, 100.0f), 0.2f);
+  EXPECT_EQ(select::fillShare(RB_ITEM_SHADOWS, 500.0f, 100.0f), float(RB_FILL_SHARE_MAX));
   EXPECT_EQ(select::rateShare(RB_RATE_FULL, 0.5f), 1.0f);
   EXPECT_EQ(select::rateShare(RB_RATE_QUARTER, 0.0f), float(RB_TRACED_SHARE_QUARTER));
   EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_SIXTEENTH, 0.2f), 0.0625f * 2.24f + 0.9375f * 0.2f);
@@ -198,7 +200,12 @@ TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
   // reflections) 1/4 first.
   EXPECT_EQ(select::rateSegments(RB_ITEM_REFLECTIONS, float(RB_FILL_SHARE_PRIOR)), 3u);
   EXPECT_EQ(select::rateSegments(RB_ITEM_REFRACTIONS, float(RB_FILL_SHARE_PRIOR)), 3u);
-  EXPECT_EQ(select::rateSegments(RB_ITEM_SHADOWS, float(RB_FILL_SHARE_MAX)), 1u);
+  // Shadows, whose fill keeps less (shared/selection.h): at their prior fill share 1/4 and full
+  // rate, 1/16 under the line from skipping to 1/4; at a fill as dear as reflections' prior,
+  // full rate alone.
+  EXPECT_EQ(select::rateSegments(RB_ITEM_SHADOWS, float(RB_FILL_SHARE_PRIOR_SHADOWS)), 2u);
+  EXPECT_EQ(select::rateSegment(RB_ITEM_SHADOWS, 0, float(RB_FILL_SHARE_PRIOR_SHADOWS)).rate, RB_RATE_QUARTER);
+  EXPECT_EQ(select::rateSegments(RB_ITEM_SHADOWS, float(RB_FILL_SHARE_PRIOR)), 1u);
   const select::RateSegment quarterFirst = select::rateSegment(RB_ITEM_REFLECTIONS, 0, 0.4f);
   EXPECT_EQ(quarterFirst.rate, RB_RATE_QUARTER);
   EXPECT_EQ(quarterFirst.costShare, select::rateShare(RB_RATE_QUARTER, 0.4f));

@@ -66,8 +66,9 @@ render options:
                         benefit, all and classified: trace every selected item on all its
                         pixels, a checkerboard, one pixel per 2x2 quad or per 4x4 block each
                         frame, and fill the others from traced neighbours on the same object
-                        (default full); auto: benefit chooses a rate per item (1/16, 1/4 or
-                        full for reflections and refractions, full for shadows)
+                        (default full); auto: benefit chooses a rate per item (at the priors
+                        1/16, 1/4 or full for reflections and refractions, 1/4 or full for
+                        shadows)
   --no-temporal-fill    with reduced rates, fill the reflection and refraction pixels not traced
                         this frame from traced neighbours alone (default: first from what
                         tracing changed there when last traced, reprojected, while its

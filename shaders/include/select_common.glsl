@@ -107,9 +107,10 @@ float rateShare(uint rate, float fill) {
 }
 
 // An item's fill share: its learned cost per skipped pixel over its cost per pixel at full rate,
-// at most RB_FILL_SHARE_MAX; the prior before either was learned (cost_model.cpp's fillShare).
-float fillShare(float fillPerPixel, float workPerPixel) {
-  return fillPerPixel > 0.0 && workPerPixel > 0.0 ? min(exactQuotient(fillPerPixel, workPerPixel), RB_FILL_SHARE_MAX) : RB_FILL_SHARE_PRIOR;
+// at most RB_FILL_SHARE_MAX; the effect's prior before either was learned (cost_model.cpp's fillShare).
+float fillShare(uint effect, float fillPerPixel, float workPerPixel) {
+  if (fillPerPixel > 0.0 && workPerPixel > 0.0) return min(exactQuotient(fillPerPixel, workPerPixel), RB_FILL_SHARE_MAX);
+  return effect == RB_ITEM_SHADOWS ? RB_FILL_SHARE_PRIOR_SHADOWS : RB_FILL_SHARE_PRIOR;
 }
 
 // The clock time of a pixel a rate traces over full rate's per pixel (shared/selection.h;
@@ -126,14 +127,15 @@ vec2 itemFillQuality(GpuItemCost c) { return vec2(c.fillQualitySixteenth, c.fill
 // (itemFillQuality), else the other rate's times RB_SIXTEENTH_QUALITY_* (or over it, at
 // most 1), else the prior (cost_model.cpp's fillQualities).
 vec2 fillQualities(uint effect, vec2 learned) {
-  bool reflections = effect == RB_ITEM_REFLECTIONS;
-  float sparser = reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS;
+  bool shadows = effect == RB_ITEM_SHADOWS, reflections = effect == RB_ITEM_REFLECTIONS;
+  float sparser = shadows ? RB_SIXTEENTH_QUALITY_SHADOWS : (reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS);
   precise float fromQuarter = learned.y * sparser;
   float fromSixteenth = min(exactQuotient(learned.x, sparser), 1.0);
-  float sixteenth = learned.x > 0.0 ? learned.x
-                                    : (learned.y > 0.0 ? fromQuarter : (reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS));
-  float quarter = learned.y > 0.0 ? learned.y
-                                  : (learned.x > 0.0 ? fromSixteenth : (reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS));
+  float priorSixteenth = shadows ? RB_FILL_QUALITY_SIXTEENTH_SHADOWS
+                                 : (reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
+  float priorQuarter = shadows ? RB_FILL_QUALITY_QUARTER_SHADOWS : (reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
+  float sixteenth = learned.x > 0.0 ? learned.x : (learned.y > 0.0 ? fromQuarter : priorSixteenth);
+  float quarter = learned.y > 0.0 ? learned.y : (learned.x > 0.0 ? fromSixteenth : priorQuarter);
   return vec2(sixteenth, quarter);
 }
 
@@ -155,11 +157,10 @@ bool aboveChord(vec2 a, vec2 b, vec2 c) {
 
 // The reduced rates on the upper convex hull of an item's options skip, 1/16, 1/4, full in
 // (cost share, value share) at fill share `fill` and learned fill qualities `learned`
-// (RB_HULL_* bits; shadows none): a rate below the line between its neighbours on the hull is
+// (RB_HULL_* bits): a rate below the line between its neighbours on the hull is
 // left out (Funkhouser and Sequin's dominated option), so that the segments' value per cost
 // falls (cost_model.cpp's rateHull).
 uint rateHull(uint effect, float fill, vec2 learned) {
-  if (effect == RB_ITEM_SHADOWS) return 0u;
   vec2 q = fillQualities(effect, learned);
   vec2 skip = vec2(0.0), full = vec2(1.0);
   vec2 sixteenth = vec2(rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q));
@@ -173,9 +174,8 @@ uint rateHull(uint effect, float fill, vec2 learned) {
 // RB_RATE_AUTO's segments of an item of `effect` with the rates `hull` (rateHull): how many, the
 // rate segment k reaches, and its shares of the item's full-rate value (at fill qualities q)
 // and cost (at fill share `fill`) (cost_model.cpp's rateSegment is the CPU reference).
-uint rateSegments(uint effect, uint hull) { return effect == RB_ITEM_SHADOWS ? 1u : 1u + bitCount(hull); }
+uint rateSegments(uint effect, uint hull) { return 1u + bitCount(hull); }
 uint segmentRate(uint effect, uint k, uint hull) {
-  if (effect == RB_ITEM_SHADOWS) return RB_RATE_FULL;
   uint step = k;
   if ((hull & RB_HULL_SIXTEENTH) != 0u) {
     if (step == 0u) return RB_RATE_SIXTEENTH;
@@ -185,12 +185,10 @@ uint segmentRate(uint effect, uint k, uint hull) {
   return RB_RATE_FULL;
 }
 float segmentValueShare(uint effect, uint k, uint hull, vec2 q) {
-  if (effect == RB_ITEM_SHADOWS) return 1.0;
   precise float gain = keepShare(segmentRate(effect, k, hull), q) - (k == 0u ? 0.0 : keepShare(segmentRate(effect, k - 1u, hull), q));
   return gain;
 }
 float segmentCostShare(uint effect, uint k, float fill, uint hull) {
-  if (effect == RB_ITEM_SHADOWS) return 1.0;
   precise float cost = rateShare(segmentRate(effect, k, hull), fill) - (k == 0u ? 0.0 : rateShare(segmentRate(effect, k - 1u, hull), fill));
   return cost;
 }
@@ -198,7 +196,8 @@ float segmentCostShare(uint effect, uint k, float fill, uint hull) {
 // reads it back to mark levels).
 uint itemHull(uint item) {
   GpuItemCost c = items[item];
-  return rateHull(item % RB_ITEMS_PER_OBJECT, fillShare(c.fillPerPixel, c.workPerPixel), itemFillQuality(c));
+  uint effect = item % RB_ITEMS_PER_OBJECT;
+  return rateHull(effect, fillShare(effect, c.fillPerPixel, c.workPerPixel), itemFillQuality(c));
 }
 
 // Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.

@@ -64,7 +64,7 @@ float ticksToWork() {
 bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value, out float fill, out vec2 quality) {
   uint id = i * RB_ITEMS_PER_OBJECT + effect;
   GpuItemCost c = items[id];
-  fill = RB_FILL_SHARE_PRIOR;
+  fill = fillShare(effect, 0.0, 0.0);
   bool learnBenefit = (push.items.w & RB_BENEFIT_PRIOR_ONLY) == 0u;
   // Rays per pixel before anything was measured (shared/selection.h).
   float rays = float(RB_ITEM_PRIOR_RAYS(push.items.y, effect));
@@ -111,7 +111,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : priorPerPixel;
   // At a fixed reduced rate its share of the full rate's cost; with rates chosen per item (share
   // 1) the full rate's, which the segments share out.
-  fill = fillShare(c.fillPerPixel, c.workPerPixel);
+  fill = fillShare(effect, c.fillPerPixel, c.workPerPixel);
   cost = push.budget.y * (float(pixels) * perPixel * rateShare(push.walk.w, fill));
   // R' = (S·I + E)·K with the hysteresis relative to E (docs/SELECTION.md): E·(1 + S·I)·K,
   // E = A·P·b.

@@ -123,15 +123,20 @@ struct GpuObjectCost {
 // around, 480x270, with the in-tile fill: reflections kept 0.78 at 1/4 and 0.60 at 1/16,
 // refractions 0.90 and 0.78, q(1/4) 0.7067 and 0.8667, q(1/16) 0.5733 and 0.7653 (literals:
 // glslang folds constant arithmetic in double, C++ in float, and the two must round alike).
-// Shadows, their fill correcting the map, keep 0.41-0.84 of the FLIP gap at 1/4 but cost
-// 0.55-0.69 of full rate with the classifier on lavapipe (docs/SELECTION.md): under full rate's
-// value per cost, they keep full rate alone.
+// Shadows, their fill correcting the shadow map in the lighting pass (include/shadow_fill.glsl),
+// keep less: their error lies in lines a pixel wide along the maps' shadow edges, which a
+// sparser lattice of traced pixels samples poorly. Measured the same way (`all`, shadows alone,
+// bench/rate_keep.py on the court, the plaza, CesiumMilkTruck and SheenChair, 12 views): keep
+// 0.40 at 1/4 and 0.10 at 1/16 (median), q(1/4) 0.2027 and q(1/16) 0.0368.
 #define RB_FILL_QUALITY_QUARTER_REFLECTIONS 0.7067
 #define RB_FILL_QUALITY_QUARTER_REFRACTIONS 0.8667
 #define RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS 0.5733
 #define RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS 0.7653
 #define RB_SIXTEENTH_QUALITY_REFLECTIONS 0.811  // q(1/16) / q(1/4) of the priors
 #define RB_SIXTEENTH_QUALITY_REFRACTIONS 0.883
+#define RB_FILL_QUALITY_QUARTER_SHADOWS 0.2027
+#define RB_FILL_QUALITY_SIXTEENTH_SHADOWS 0.0368
+#define RB_SIXTEENTH_QUALITY_SHADOWS 0.1815
 // A learned quality is at least this (0: not learned), and an item learns it from a frame whose
 // traced pixels' fallback error sums to at least RB_FILL_QUALITY_MIN_ERROR (display error units
 // per pixel summed: 100 pixels at 0.01), where a few pixels' noise would decide it otherwise.
@@ -167,7 +172,12 @@ struct GpuObjectCost {
 #define RB_TRACED_SHARE_SIXTEENTH 0.14   // 0.0625 * RB_TRACED_PIXEL_COST_SIXTEENTH
 // The prior fill share: the skipped pixels' ticks of the court, Suzanne, the WaterBottle and
 // TransmissionTest at 1/4 and 1/16 gave 0.0-0.48, the court 0.01-0.03, Suzanne 0.16-0.17.
+// Shadows fill in the lighting pass, outside the stage: a skipped pixel costs the shadow pass
+// its object's read alone, which is not timed. Their share is the pass's: `classified` on
+// CesiumMilkTruck's fly-through (640x360, the cheapest rays of the bench scenes) cost 0.37 of
+// full rate at 1/4 and 0.24 at 1/16, a fill share of 0.045 and 0.105.
 #define RB_FILL_SHARE_PRIOR 0.125
+#define RB_FILL_SHARE_PRIOR_SHADOWS 0.0625
 // A fill share above this is priced at it (the dearest measured, the WaterBottle's, is about
 // 0.3-0.5): below it 1/16 costs less than 1/4 and 1/4 less than full, so the options stay in order.
 #define RB_FILL_SHARE_MAX 0.59

@@ -110,7 +110,8 @@ struct FrameOutputs {
   // says so and the raster fallback's elsewhere, so a host can keep one term and replace another.
   VkImage direct = VK_NULL_HANDLE, reflection = VK_NULL_HANDLE, refraction = VK_NULL_HANDLE;
   VkImageView directView = VK_NULL_HANDLE, reflectionView = VK_NULL_HANDLE, refractionView = VK_NULL_HANDLE;
-  // R32_SFLOAT array, a layer per light: the ray-traced visibility of each light where
+  // R32_SFLOAT array, a layer per light (the first shadowVisibilityLayers; the image holds as
+  // many more for the renderer's own use): the ray-traced visibility of each light where
   // shadows were traced this frame
   VkImage shadowVisibility = VK_NULL_HANDLE;
   uint32_t shadowVisibilityLayers = 0;

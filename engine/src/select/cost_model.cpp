@@ -61,23 +61,26 @@ float rateShare(uint32_t code, float fill) {
   return traced + skipped;
 }
 
-float fillShare(float fillPerPixel, float workPerPixel) {
-  return fillPerPixel > 0.0f && workPerPixel > 0.0f ? std::min(exactQuotient(fillPerPixel, workPerPixel), float(RB_FILL_SHARE_MAX))
-                                                    : float(RB_FILL_SHARE_PRIOR);
+float fillShare(uint32_t effect, float fillPerPixel, float workPerPixel) {
+  if (fillPerPixel > 0.0f && workPerPixel > 0.0f) return std::min(exactQuotient(fillPerPixel, workPerPixel), float(RB_FILL_SHARE_MAX));
+  return float(effect == RB_ITEM_SHADOWS ? RB_FILL_SHARE_PRIOR_SHADOWS : RB_FILL_SHARE_PRIOR);
 }
 
 FillQuality fillQualities(uint32_t effect, FillQuality learned) {
-  const bool reflections = effect == RB_ITEM_REFLECTIONS;
-  const float sparser = float(reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS);
+  const bool shadows = effect == RB_ITEM_SHADOWS, reflections = effect == RB_ITEM_REFLECTIONS;
+  const float sparser =
+      float(shadows ? RB_SIXTEENTH_QUALITY_SHADOWS : reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS);
   const float fromQuarter = learned.quarter * sparser;
   const float fromSixteenth = std::min(exactQuotient(learned.sixteenth, sparser), 1.0f);
+  const float priorSixteenth = float(shadows       ? RB_FILL_QUALITY_SIXTEENTH_SHADOWS
+                                     : reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS
+                                                   : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
+  const float priorQuarter = float(shadows       ? RB_FILL_QUALITY_QUARTER_SHADOWS
+                                   : reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS
+                                                 : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
   FillQuality q;
-  q.sixteenth = learned.sixteenth > 0.0f ? learned.sixteenth
-                : learned.quarter > 0.0f ? fromQuarter
-                                         : float(reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
-  q.quarter = learned.quarter > 0.0f ? learned.quarter
-              : learned.sixteenth > 0.0f ? fromSixteenth
-                                         : float(reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
+  q.sixteenth = learned.sixteenth > 0.0f ? learned.sixteenth : learned.quarter > 0.0f ? fromQuarter : priorSixteenth;
+  q.quarter = learned.quarter > 0.0f ? learned.quarter : learned.sixteenth > 0.0f ? fromSixteenth : priorQuarter;
   return q;
 }
 
@@ -97,7 +100,6 @@ bool aboveChord(Option a, Option b, Option c) { return (b.value - a.value) * (c.
 }  // namespace
 
 uint32_t rateHull(uint32_t effect, float fill, FillQuality learned) {
-  if (effect == RB_ITEM_SHADOWS) return 0u;
   const FillQuality q = fillQualities(effect, learned);
   const Option skip{0.0f, 0.0f}, full{1.0f, 1.0f};
   const Option sixteenth{rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q)};
@@ -109,7 +111,7 @@ uint32_t rateHull(uint32_t effect, float fill, FillQuality learned) {
 }
 
 uint32_t rateSegments(uint32_t effect, float fill, FillQuality learned) {
-  return effect == RB_ITEM_SHADOWS ? 1u : 1u + uint32_t(std::popcount(rateHull(effect, fill, learned)));
+  return 1u + uint32_t(std::popcount(rateHull(effect, fill, learned)));
 }
 
 namespace {
@@ -124,7 +126,6 @@ uint32_t segmentRate(uint32_t k, uint32_t hull) {
 }  // namespace
 
 RateSegment rateSegment(uint32_t effect, uint32_t k, float fill, FillQuality learned) {
-  if (effect == RB_ITEM_SHADOWS) return {1.0f, 1.0f, RB_RATE_FULL};
   const uint32_t hull = rateHull(effect, fill, learned);
   const FillQuality q = fillQualities(effect, learned);
   const uint32_t rate = segmentRate(k, hull), from = k == 0 ? 0u : segmentRate(k - 1, hull);

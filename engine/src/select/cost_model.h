@@ -26,8 +26,9 @@ uint32_t rateCode(ItemRate rate);
 ItemRate itemRateOfCode(uint32_t code);
 float rateShare(uint32_t code, float fill);
 // An item's fill share: its learned cost per skipped pixel over its full-rate cost per pixel,
-// at most RB_FILL_SHARE_MAX; RB_FILL_SHARE_PRIOR before either was learned.
-float fillShare(float fillPerPixel, float workPerPixel);
+// at most RB_FILL_SHARE_MAX; before either was learned the effect's prior (RB_FILL_SHARE_PRIOR,
+// for shadows RB_FILL_SHARE_PRIOR_SHADOWS).
+float fillShare(uint32_t effect, float fillPerPixel, float workPerPixel);
 // a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
 float exactQuotient(float a, float b);
 

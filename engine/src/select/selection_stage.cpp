@@ -49,7 +49,7 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget)
 uint32_t selectedRate(uint32_t word, uint32_t effect) { return (word >> (RB_RATE_SHIFT + 2 * effect)) & 3u; }
 
 // An item's fill share and learned fill qualities as the candidate pass left them (its segments: rateSegment).
-float itemFill(const gpu::GpuItemCost& item) { return fillShare(item.fillPerPixel, item.workPerPixel); }
+float itemFill(uint32_t effect, const gpu::GpuItemCost& item) { return fillShare(effect, item.fillPerPixel, item.workPerPixel); }
 FillQuality itemFillQuality(const gpu::GpuItemCost& item) { return {item.fillQualitySixteenth, item.fillQualityQuarter}; }
 
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each), or
@@ -67,7 +67,7 @@ std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool 
       }
       const uint32_t rate = selectedRate(flags[i], e);
       uint32_t last = 0;
-      const float fill = itemFill(learned[id]);
+      const float fill = itemFill(e, learned[id]);
       const FillQuality quality = itemFillQuality(learned[id]);
       while (last + 1 < rateSegments(e, fill, quality) && rateSegment(e, last, fill, quality).rate != rate) ++last;
       for (uint32_t k = 0; k <= last; ++k) ids.push_back(id * RB_SEGMENT_SLOTS + k);
@@ -309,7 +309,7 @@ struct SelectionStage::Impl {
                                b.skippedTicks, b.skippedPixels, b.fillError},
                               exchange, frame.ablation,
                               priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
-      fill[id] = fillShare(learned[id].fillPerPixel, learned[id].workPerPixel);
+      fill[id] = fillShare(e, learned[id].fillPerPixel, learned[id].workPerPixel);
       const gpu::GpuItemCost& a = after[id];
       const bool on = (selected[i] >> e) & 1u;
       // The rate: the setting's, or the walk's choice (which selectionMatchesCpu checks).
