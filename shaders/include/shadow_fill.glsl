@@ -53,8 +53,8 @@ ShadowFill shadowFillSources(ivec2 pixel, FillCentre c, uint rate) {
 // The fill's correction of light `light`'s shadow-map visibility `mapped` at the pixel: each
 // traced neighbour's correction weighted again by how alike the map's visibility is there
 // (1 - |difference|)^RB_SHADOW_FILL_GUIDE_POWER, a joint bilateral filter guided by the map: a
-// neighbour across one of the map's edges is corrected for the other side's error (0 where
-// nothing qualified).
+// neighbour across one of the map's edges carries the other side's error and counts little
+// (0 where nothing qualified).
 #define RB_SHADOW_FILL_GUIDE_POWER 8
 float shadowFillCorrection(ShadowFill f, uint light, float mapped) {
   float sum = 0.0, total = 0.0;
