@@ -18,6 +18,6 @@ void main() {
   vec3 radiance = max(imageLoad(directImage, pixel).rgb + indirectLight(pixel), vec3(0.0));
   float distance = RB_BEHIND_GLASS_SKY;
   if (texelFetch(gObjectId, pixel, 0).r != RB_NO_OBJECT)
-    distance = min(length(worldFromDepth(pixel, texelFetch(gDepth, pixel, 0).r) - frame.cameraPositionNear.xyz), RB_BEHIND_GLASS_SKY);
+    distance = min(length(surfacePosition(pixel) - frame.cameraPositionNear.xyz), RB_BEHIND_GLASS_SKY);
   imageStore(behindGlassImage, pixel / int(screenStride()), vec4(min(radiance, vec3(65000.0)), distance));
 }

@@ -87,7 +87,7 @@ vec4 reflectionAt(Surface s, out float hitDistance) {
   float rayW = 1.0 / mix(1.0 / c0.w, 1.0 / c1.w, t);
   vec4 hitPosition = texelFetch(gPosition, hit, 0);
   float surfaceW = (frame.viewProj * vec4(hitPosition.xyz, 1.0)).w;
-  vec3 hitNormal = normalize(texelFetch(gNormal, hit, 0).xyz);
+  vec3 hitNormal = surfaceNormal(hit);
   bool front = dot(hitNormal, R) < 0.0;
   if (texelFetch(gObjectId, hit, 0).r == RB_NO_OBJECT || rayW - surfaceW >= hitShell(surfaceW) || !front) return vec4(0.0);
   vec2 uv;

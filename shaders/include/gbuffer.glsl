@@ -31,12 +31,15 @@ vec3 viewDirection(ivec2 pixel) {
   return normalize(worldFromDepth(pixel, 1.0) - frame.cameraPositionNear.xyz);
 }
 
+// A pixel's world position and shading normal, as the G-buffer holds them.
+vec3 surfacePosition(ivec2 pixel) { return worldFromDepth(pixel, texelFetch(gDepth, pixel, 0).r); }
+vec3 surfaceNormal(ivec2 pixel) { return normalize(texelFetch(gNormal, pixel, 0).xyz); }
+
 bool readSurface(ivec2 pixel, out Surface s) {
-  float depth = texelFetch(gDepth, pixel, 0).r;
   s.objectId = texelFetch(gObjectId, pixel, 0).r;
   if (s.objectId == RB_NO_OBJECT) return false;
-  s.position = worldFromDepth(pixel, depth);
-  s.normal = normalize(texelFetch(gNormal, pixel, 0).xyz);
+  s.position = surfacePosition(pixel);
+  s.normal = surfaceNormal(pixel);
   vec4 bm = texelFetch(gBaseMetal, pixel, 0);
   s.baseColor = bm.rgb;
   s.metallic = bm.a;
@@ -60,8 +63,8 @@ bool readSurface(ivec2 pixel, out Surface s) {
 // seven fetches, where a skipped pixel's fetches are most of what it costs on lavapipe.
 bool readFillSurface(ivec2 pixel, uint objectId, out Surface s) {
   s.objectId = objectId;
-  s.position = worldFromDepth(pixel, texelFetch(gDepth, pixel, 0).r);
-  s.normal = normalize(texelFetch(gNormal, pixel, 0).xyz);
+  s.position = surfacePosition(pixel);
+  s.normal = surfaceNormal(pixel);
   s.metallic = texelFetch(gBaseMetal, pixel, 0).a;
   vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
   s.roughness = rti.r;

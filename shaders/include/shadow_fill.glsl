@@ -24,9 +24,11 @@ struct ShadowFill {
 float shadowSourceWeight(FillCentre c, ivec2 q, float near) {
   if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), frame.sizeLightsFrame.xy))) return 0.0;
   if (texelFetch(gObjectId, q, 0).r != c.objectId || texelFetch(gRoughTransIor, q, 0).a > 0.5) return 0.0;
-  vec3 position = worldFromDepth(q, texelFetch(gDepth, q, 0).r);
-  return near * fillSimilarity(c, position, normalize(texelFetch(gNormal, q, 0).xyz));
+  return near * fillSimilarity(c, surfacePosition(q), surfaceNormal(q));
 }
+
+// 1/2's traced pixels beside a pixel it skipped.
+const ivec2 kHalfRateNeighbours[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
 
 // The pixels around `pixel` that `rate` traced this frame, and their weights for the fill of c.
 ShadowFill shadowFillSources(ivec2 pixel, FillCentre c, uint rate) {
@@ -39,7 +41,7 @@ ShadowFill shadowFillSources(ivec2 pixel, FillCentre c, uint rate) {
   int spacing = sixteenth ? 4 : 2;
   ivec2 below = pixel - ((pixel - offset) & (spacing - 1));
   for (int k = 0; k < 4; ++k) {
-    ivec2 q = rate == RB_RATE_HALF ? pixel + ivec2(k < 2 ? 2 * k - 1 : 0, k < 2 ? 0 : 2 * k - 5) : below + ivec2(k & 1, k >> 1) * spacing;
+    ivec2 q = rate == RB_RATE_HALF ? pixel + kHalfRateNeighbours[k] : below + ivec2(k & 1, k >> 1) * spacing;
     ivec2 d = q - pixel;
     float d2 = float(d.x * d.x + d.y * d.y);
     bool near = sixteenth || all(lessThanEqual(abs(d), ivec2(1)));  // 1/4: within the 3x3 pixels around it
@@ -52,16 +54,18 @@ ShadowFill shadowFillSources(ivec2 pixel, FillCentre c, uint rate) {
 
 // The fill's correction of light `light`'s shadow-map visibility `mapped` at the pixel: each
 // traced neighbour's correction weighted again by how alike the map's visibility is there
-// (1 - |difference|)^RB_SHADOW_FILL_GUIDE_POWER, a joint bilateral filter guided by the map: a
+// (1 - |difference|)^8, a joint bilateral filter guided by the map: a
 // neighbour across one of the map's edges carries the other side's error and counts little
 // (0 where nothing qualified).
-#define RB_SHADOW_FILL_GUIDE_POWER 8
 float shadowFillCorrection(ShadowFill f, uint light, float mapped) {
   float sum = 0.0, total = 0.0;
   for (int k = 0; k < 4; ++k)
     if (f.weight[k] > 0.0) {
       float neighbourMapped = imageLoad(shadowMask, ivec3(f.at[k], mappedLayer(light))).r;
-      float guide = pow(max(1.0 - abs(neighbourMapped - mapped), 0.0), float(RB_SHADOW_FILL_GUIDE_POWER));
+      float guide = max(1.0 - abs(neighbourMapped - mapped), 0.0);
+      guide *= guide;  // ^8 by squaring, as fillSimilarity's normal weight: three multiplies where pow is a log and an exp
+      guide *= guide;
+      guide *= guide;
       float w = f.weight[k] * guide;
       sum += w * (imageLoad(shadowMask, ivec3(f.at[k], int(light))).r - neighbourMapped);
       total += w;
