@@ -304,7 +304,7 @@ TEST(CostModel, TimeScaleStartsAtThePriorThenFollowsTheMedianOfRecentFrames) {
   k.learn(CostUnit::Work, {now, 0.0, 0.1, 0.2, true});
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 0.9 * now);
   // A saved model restores exactly; zeros mean the prior.
-  k.set(0.0, 2.5, 0.7, 0.1, 0.3, 0.0, 0.0);
+  k.set({.msPerPaperCost = 2.5, .msPerItemWorkUnit = 0.7, .stageOverheadMs = 0.1, .traceFixedMs = 0.3});
   EXPECT_EQ(k.msPerUnit(CostUnit::Work), prior);
   EXPECT_EQ(k.msPerUnit(CostUnit::PaperCost), 2.5);
   EXPECT_EQ(k.msPerUnit(CostUnit::ItemWork), 0.7);
@@ -348,7 +348,7 @@ TEST(CostModel, HeadroomIsAQuantileOfTheRecentPredictionErrors) {
   EXPECT_EQ(k.headroom(0.9), 1.0) << "frames where nothing fitted relax it";
   for (int f = 0; f < 40; ++f) k.learn(CostUnit::Work, {used, work, ratios[f % 5] * used * work, 0.2, false});
   EXPECT_GT(k.headroom(0.9), 1.0);
-  k.set(used, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0);
+  k.set({.msPerWorkUnit = used, .stageOverheadMs = 0.2});
   EXPECT_EQ(k.headroom(0.9), 1.0) << "a saved state has no errors behind it";
 }
 
@@ -373,7 +373,7 @@ TEST(CostModel, FramesThatTraceNothingGiveTheFixedCostAndTheScaleFitsTheRest) {
 TEST(CostModel, FramesThatTraceLittleOfTheirBudgetTeachNeitherTheScaleNorTheHeadroom) {
   select::TimeScale k(640, 360);
   const double used = 1e-5, budget = 10.0;
-  k.set(used, 0.0, 0.0, 0.2, 0.3, 0.0, 0.0);
+  k.set({.msPerWorkUnit = used, .stageOverheadMs = 0.2, .traceFixedMs = 0.3});
   for (int f = 0; f < 40; ++f)  // 0.2 ms predicted, 1.3 measured: 5x "off", 0.1 of the budget
     k.learn(CostUnit::Work, {used, 0.2 / used, 0.3 + 1.0, 0.2, false, budget});
   EXPECT_EQ(k.msPerUnit(CostUnit::Work), used);
@@ -382,7 +382,7 @@ TEST(CostModel, FramesThatTraceLittleOfTheirBudgetTeachNeitherTheScaleNorTheHead
     k.learn(CostUnit::Work, {used, 0.5 / used, 0.3 + 4.0, 0.2, false, budget});
   EXPECT_DOUBLE_EQ(k.msPerUnit(CostUnit::Work), 8.0 * used) << "an under-prediction that matters is learned";
   select::TimeScale full(640, 360);
-  full.set(used, 0.0, 0.0, 0.2, 0.3, 0.0, 0.0);
+  full.set({.msPerWorkUnit = used, .stageOverheadMs = 0.2, .traceFixedMs = 0.3});
   for (int f = 0; f < 4; ++f) full.learn(CostUnit::Work, {used, 3.0 / used, 0.3 + 6.0, 0.2, false, budget});
   EXPECT_DOUBLE_EQ(full.msPerUnit(CostUnit::Work), 2.0 * used) << "a frame that used its budget is learned";
 }
@@ -403,7 +403,7 @@ TEST(CostModel, ALoneOutlierDoesNotSetTheHeadroom) {
 TEST(CostModel, FramesPricedByThePriorDoNotSetTheHeadroom) {
   const double used = 1e-5, work = 1e5, budget = 2.0;
   select::TimeScale k(640, 360);
-  k.set(0.0, 0.0, 0.0, 0.2, 0.3, 0.0, 0.0);  // the fixed cost known, the scale not
+  k.set({.stageOverheadMs = 0.2, .traceFixedMs = 0.3});  // the fixed cost known, the scale not
   StageMeasurement cold{used, work, 0.3 + 6.0 * used * work, 0.2, false, budget, 1000};
   cold.priorWork = 0.5 * work;
   for (int f = 0; f < 3; ++f) k.learn(CostUnit::Work, cold);
@@ -414,7 +414,7 @@ TEST(CostModel, FramesPricedByThePriorDoNotSetTheHeadroom) {
   EXPECT_NEAR(k.msPerUnit(CostUnit::Work), used, 1e-9 * used) << "and the scale their median, the cold frames outvoted";
   // The same frames with learned costs: their error is the model's, and the headroom holds it.
   select::TimeScale warm(640, 360);
-  warm.set(used, 0.0, 0.0, 0.2, 0.3, 0.0, 0.0);
+  warm.set({.msPerWorkUnit = used, .stageOverheadMs = 0.2, .traceFixedMs = 0.3});
   StageMeasurement learned = cold;
   learned.priorWork = 0.2 * work;  // under a quarter priced by the prior
   for (int f = 0; f < 3; ++f) warm.learn(CostUnit::Work, learned);
@@ -428,7 +428,7 @@ TEST(CostModel, FramesPricedByThePriorDoNotSetTheHeadroom) {
 TEST(CostModel, FramesSelectedWithAnUnsettledScaleDoNotSetTheHeadroom) {
   const double used = 1e-5, work = 1e5, budget = 2.0;
   select::TimeScale k(640, 360);
-  k.set(0.0, 0.0, 0.0, 0.2, 0.3, 0.0, 0.0);  // the fixed cost known, the scale not
+  k.set({.stageOverheadMs = 0.2, .traceFixedMs = 0.3});  // the fixed cost known, the scale not
   EXPECT_FALSE(k.settled(CostUnit::Work));
   for (double over : {12.0, 4.0, 4.0}) {
     StageMeasurement cold{used, work, 0.3 + over * used * work, 0.2, false, budget, 1000};
@@ -440,7 +440,7 @@ TEST(CostModel, FramesSelectedWithAnUnsettledScaleDoNotSetTheHeadroom) {
   const double now = k.msPerUnit(CostUnit::Work);
   for (int f = 0; f < 8; ++f) k.learn(CostUnit::Work, {now, work, 0.3 + (f % 2 ? 1.0 : 1.1) * now * work, 0.2, false, budget});
   EXPECT_LT(k.headroom(0.9), 1.15) << "the headroom holds the settled frames' spread alone";
-  k.set(used, 0.0, 0.0, 0.2, 0.3, 0.0, 0.0);
+  k.set({.msPerWorkUnit = used, .stageOverheadMs = 0.2, .traceFixedMs = 0.3});
   EXPECT_TRUE(k.settled(CostUnit::Work)) << "a saved scale is settled";
 }
 
@@ -453,7 +453,7 @@ TEST(CostModel, WhatWasNeverTracedIsPricedAtTheMeasuredTimeOfARay) {
   EXPECT_DOUBLE_EQ(k.priorWorkPerRay(CostUnit::Work), RB_PRIOR_WORK_PER_RAY);
   EXPECT_DOUBLE_EQ(k.priorWorkPerRay(CostUnit::ItemWork), RB_PRIOR_WORK_PER_RAY);
   const double itemScale = 4e-5, msPerRay = 3e-4;
-  k.set(0.0, 0.0, itemScale, 0.2, 0.3, 0.0, 0.0);
+  k.set({.msPerItemWorkUnit = itemScale, .stageOverheadMs = 0.2, .traceFixedMs = 0.3});
   EXPECT_DOUBLE_EQ(k.priorWorkPerRay(CostUnit::ItemWork), select::kPriorMsPerRay / itemScale) << "the prior ray time, the learned scale";
   for (int f = 0; f < 4; ++f) {  // 20 ms of work over 20/msPerRay prior rays (and half as many traced)
     const double work = 20.0 / itemScale;
@@ -469,7 +469,11 @@ TEST(CostModel, WhatWasNeverTracedIsPricedAtTheMeasuredTimeOfARay) {
   EXPECT_NEAR(k.msPerRay(CostUnit::Work), 2.0 * msPerRay, 1e-4 * msPerRay);
   EXPECT_NEAR(k.msPerRay(CostUnit::ItemWork), msPerRay, 1e-4 * msPerRay) << "and the objects' rays no item";
   select::TimeScale restored(640, 360);
-  restored.set(0.0, 0.0, itemScale, 0.2, 0.3, k.learnedMsPerRay(CostUnit::Work), k.learnedMsPerRay(CostUnit::ItemWork));
+  restored.set({.msPerItemWorkUnit = itemScale,
+                .stageOverheadMs = 0.2,
+                .traceFixedMs = 0.3,
+                .msPerRay = k.learnedMsPerRay(CostUnit::Work),
+                .msPerItemRay = k.learnedMsPerRay(CostUnit::ItemWork)});
   EXPECT_EQ(restored.priorWorkPerRay(CostUnit::ItemWork), k.priorWorkPerRay(CostUnit::ItemWork)) << "a saved model keeps it";
   EXPECT_EQ(restored.msPerRay(CostUnit::Work), k.msPerRay(CostUnit::Work));
 }

@@ -221,17 +221,21 @@ double TimeScale::msPerUnit(CostUnit unit) const {
   return k.empty() ? priorMsPerUnit(unit, width_, height_) : k.value();
 }
 
-void TimeScale::set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay,
-                    double msPerItemRay) {
-  auto restore = [](RecentMedian& m, double x) { x > 0.0 ? m.fill(x) : m.clear(); };
-  restore(scales_[size_t(CostUnit::Work)], msPerWorkUnit);
-  restore(scales_[size_t(CostUnit::PaperCost)], msPerPaperCost);
-  restore(scales_[size_t(CostUnit::ItemWork)], msPerItemWorkUnit);
-  restore(overhead_, overheadMs);
-  restore(traceFixed_, traceFixedMs);
-  restore(msPerRay_[rayKind(CostUnit::Work)], msPerRay);
-  restore(msPerRay_[rayKind(CostUnit::ItemWork)], msPerItemRay);
+void TimeScale::set(const CostModel& m) {
+  auto restore = [](RecentMedian& median, double x) { x > 0.0 ? median.fill(x) : median.clear(); };
+  restore(scales_[size_t(CostUnit::Work)], m.msPerWorkUnit);
+  restore(scales_[size_t(CostUnit::PaperCost)], m.msPerPaperCost);
+  restore(scales_[size_t(CostUnit::ItemWork)], m.msPerItemWorkUnit);
+  restore(overhead_, m.stageOverheadMs);
+  restore(traceFixed_, m.traceFixedMs);
+  restore(msPerRay_[rayKind(CostUnit::Work)], m.msPerRay);
+  restore(msPerRay_[rayKind(CostUnit::ItemWork)], m.msPerItemRay);
   forgetErrors();
+}
+
+CostModel TimeScale::saved() const {
+  return {learned(CostUnit::Work), learned(CostUnit::PaperCost), learned(CostUnit::ItemWork), overheadMs(), traceFixedMs(),
+          learnedMsPerRay(CostUnit::Work), learnedMsPerRay(CostUnit::ItemWork)};
 }
 
 // The scale observed is (trace - fixed) / work, kept within 1/16-16x of the scale the frame

@@ -229,8 +229,8 @@ class TimeScale {
   double learnedMsPerRay(CostUnit unit) const { return msPerRay_[rayKind(unit)].value(); }  // 0 where nothing was learned
   // A saved state (zeros: the prior, no fixed cost), without the recent errors behind the
   // headroom. Values are the caller's to validate.
-  void set(double msPerWorkUnit, double msPerPaperCost, double msPerItemWorkUnit, double overheadMs, double traceFixedMs, double msPerRay,
-           double msPerItemRay);
+  void set(const CostModel& saved);
+  CostModel saved() const;  // what set() restores: the learned values, 0 where nothing was learned
   // Forgets the recent errors (a restarted selection's headroom must not depend on what ran
   // before it).
   void forgetErrors() { ratioCount_ = 0; }

@@ -518,15 +518,9 @@ void SelectionStage::retire(uint32_t slot, const RenderSettings& settings, Frame
 
 void SelectionStage::restart(const RenderSettings& settings) { impl_->restart(settings); }
 
-CostModel SelectionStage::costModel() const {
-  const TimeScale& k = impl_->timeScale;
-  return {k.learned(CostUnit::Work), k.learned(CostUnit::PaperCost), k.learned(CostUnit::ItemWork), k.overheadMs(), k.traceFixedMs(), k.learnedMsPerRay(CostUnit::Work),
-          k.learnedMsPerRay(CostUnit::ItemWork)};
-}
+CostModel SelectionStage::costModel() const { return impl_->timeScale.saved(); }
 
-void SelectionStage::setCostModel(const CostModel& m) {
-  impl_->timeScale.set(m.msPerWorkUnit, m.msPerPaperCost, m.msPerItemWorkUnit, m.stageOverheadMs, m.traceFixedMs, m.msPerRay, m.msPerItemRay);
-}
+void SelectionStage::setCostModel(const CostModel& m) { impl_->timeScale.set(m); }
 
 std::vector<ObjectMetrics> SelectionStage::objectMetrics() const { return impl_->objectMetrics(); }
 
