@@ -61,9 +61,9 @@ void main() {
   bool traced = probed || (rtShadows && itemTracedHere(sel, RB_ITEM_SHADOWS, pixel));
   bool measure = traced && measuringItems();
   // Where the item's reduced rate skipped the pixel, its traced neighbours correct the maps.
-  ShadowFill fill;
+  FillSources fill;
   fill.total = 0.0;
-  if (rtShadows && !traced) fill = shadowFillSources(pixel, fillCentre(s.objectId, s.position, N), itemRate(sel, RB_ITEM_SHADOWS));
+  if (rtShadows && !traced) fill = fillSources(pixel, fillCentre(s.objectId, s.position, N), itemRate(sel, RB_ITEM_SHADOWS));
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];

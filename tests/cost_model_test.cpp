@@ -156,46 +156,42 @@ TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
     EXPECT_LT(select::rateShare(RB_RATE_SIXTEENTH, fill), select::rateShare(RB_RATE_QUARTER, fill));
 }
 
-// The segments are the upper convex hull of an item's options at every fill share and learned
-// quality: they add up to full rate, each worth less per cost than the one before, and no
-// option left out lies above the line between its neighbours on the hull.
+// The segments are the upper convex hull of an item's options at every fill share: they add
+// up to full rate, each worth less per cost than the one before, and no option left out lies
+// above the line between its neighbours on the hull.
 TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
-  const float qualities[] = {0.0f, float(RB_FILL_QUALITY_MIN), 0.1f, 0.3f, 0.5f, 0.7f, 0.9f, 1.0f};
-  for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR), 0.3f, 0.4f, 0.55f, float(RB_FILL_SHARE_MAX)})
-    for (uint32_t effect : {RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS})
-      for (float q16 : qualities)
-        for (float q4 : qualities) {
-          const select::FillQuality learned{q16, q4};
-          const select::FillQuality q = select::fillQualities(effect, learned);
-          float cost = 0.0f, value = 0.0f, density = INFINITY;
-          const uint32_t n = select::rateSegments(effect, fill, learned);
-          std::vector<uint32_t> rates;
-          for (uint32_t k = 0; k < n; ++k) {
-            const select::RateSegment s = select::rateSegment(effect, k, fill, learned);
-            EXPECT_GT(s.costShare, 0.0f) << "fill " << fill << " segment " << k;
-            EXPECT_GE(s.valueShare, 0.0f);
-            EXPECT_LE(s.valueShare / s.costShare, density) << "fill " << fill << " q " << q16 << " " << q4 << " segment " << k;
-            density = s.valueShare / s.costShare;
-            cost += s.costShare;
-            value += s.valueShare;
-            rates.push_back(s.rate);
-          }
-          EXPECT_NEAR(cost, 1.0f, 1e-6f) << "the segments add up to full rate";
-          EXPECT_NEAR(value, 1.0f, 1e-6f);
-          EXPECT_EQ(rates.back(), RB_RATE_FULL);
-          // Each rate left out lies on or below the chord between the options around it.
-          for (uint32_t rate : {RB_RATE_SIXTEENTH, RB_RATE_QUARTER}) {
-            if (std::find(rates.begin(), rates.end(), rate) != rates.end()) continue;
-            float c0 = 0.0f, v0 = 0.0f, c1 = 1.0f, v1 = 1.0f;
-            for (uint32_t r : rates) {
-              const float c = select::rateShare(r, fill), v = select::keepShare(r, q);
-              if (c < select::rateShare(rate, fill)) c0 = c, v0 = v;
-              else if (c < c1) c1 = c, v1 = v;
-            }
-            const float c = select::rateShare(rate, fill), v = select::keepShare(rate, q);
-            EXPECT_LE(v, v0 + (v1 - v0) * (c - c0) / (c1 - c0) + 1e-6f) << "rate " << rate << " dominated";
-          }
+  for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR_SHADOWS), float(RB_FILL_SHARE_PRIOR), 0.3f, 0.4f, 0.55f, float(RB_FILL_SHARE_MAX)})
+    for (uint32_t effect : {RB_ITEM_SHADOWS, RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS}) {
+      const select::FillQuality q = select::fillQualities(effect);
+      float cost = 0.0f, value = 0.0f, density = INFINITY;
+      const uint32_t n = select::rateSegments(effect, fill);
+      std::vector<uint32_t> rates;
+      for (uint32_t k = 0; k < n; ++k) {
+        const select::RateSegment s = select::rateSegment(effect, k, fill);
+        EXPECT_GT(s.costShare, 0.0f) << "fill " << fill << " segment " << k;
+        EXPECT_GE(s.valueShare, 0.0f);
+        EXPECT_LE(s.valueShare / s.costShare, density) << "fill " << fill << " effect " << effect << " segment " << k;
+        density = s.valueShare / s.costShare;
+        cost += s.costShare;
+        value += s.valueShare;
+        rates.push_back(s.rate);
+      }
+      EXPECT_NEAR(cost, 1.0f, 1e-6f) << "the segments add up to full rate";
+      EXPECT_NEAR(value, 1.0f, 1e-6f);
+      EXPECT_EQ(rates.back(), RB_RATE_FULL);
+      // Each rate left out lies on or below the chord between the options around it.
+      for (uint32_t rate : {RB_RATE_SIXTEENTH, RB_RATE_QUARTER}) {
+        if (std::find(rates.begin(), rates.end(), rate) != rates.end()) continue;
+        float c0 = 0.0f, v0 = 0.0f, c1 = 1.0f, v1 = 1.0f;
+        for (uint32_t r : rates) {
+          const float c = select::rateShare(r, fill), v = select::keepShare(r, q);
+          if (c < select::rateShare(rate, fill)) c0 = c, v0 = v;
+          else if (c < c1) c1 = c, v1 = v;
         }
+        const float c = select::rateShare(rate, fill), v = select::keepShare(rate, q);
+        EXPECT_LE(v, v0 + (v1 - v0) * (c - c0) / (c1 - c0) + 1e-6f) << "rate " << rate << " dominated";
+      }
+    }
   // At the prior qualities: all three rates at the prior fill share; from a dear fill (0.4 for
   // reflections) 1/4 first.
   EXPECT_EQ(select::rateSegments(RB_ITEM_REFLECTIONS, float(RB_FILL_SHARE_PRIOR)), 3u);
@@ -212,48 +208,6 @@ TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
   EXPECT_NEAR(quarterFirst.valueShare, 0.78f, 1e-4f) << "the prior keep of 1/4";
   EXPECT_EQ(select::rateSegments(RB_ITEM_REFRACTIONS, 0.4f), 3u);
   EXPECT_EQ(select::rateSegments(RB_ITEM_REFRACTIONS, 0.55f), 2u);
-  // A fill that keeps nothing leaves full rate alone; one that keeps all at 1/16 (a still view's
-  // temporal fill), 1/16 alone, full rate adding nothing.
-  EXPECT_EQ(select::rateSegments(RB_ITEM_REFLECTIONS, float(RB_FILL_SHARE_PRIOR), {float(RB_FILL_QUALITY_MIN), 0.0f}), 1u);
-  const select::FillQuality perfect{1.0f, 0.0f};
-  EXPECT_EQ(select::rateSegments(RB_ITEM_REFLECTIONS, float(RB_FILL_SHARE_PRIOR), perfect), 2u);
-  EXPECT_EQ(select::rateSegment(RB_ITEM_REFLECTIONS, 0, float(RB_FILL_SHARE_PRIOR), perfect).rate, RB_RATE_SIXTEENTH);
-  EXPECT_EQ(select::rateSegment(RB_ITEM_REFLECTIONS, 0, float(RB_FILL_SHARE_PRIOR), perfect).valueShare, 1.0f);
-  // A quality learned at one rate stands for the other through RB_SIXTEENTH_QUALITY_*.
-  EXPECT_FLOAT_EQ(select::fillQualities(RB_ITEM_REFLECTIONS, {0.0f, 0.5f}).sixteenth, 0.5f * float(RB_SIXTEENTH_QUALITY_REFLECTIONS));
-  EXPECT_FLOAT_EQ(select::fillQualities(RB_ITEM_REFRACTIONS, {0.5f, 0.0f}).quarter, 0.5f / float(RB_SIXTEENTH_QUALITY_REFRACTIONS));
-  EXPECT_EQ(select::fillQualities(RB_ITEM_REFLECTIONS, {0.9f, 0.0f}).quarter, 1.0f) << "at most 1";
-  EXPECT_EQ(select::fillQualities(RB_ITEM_REFLECTIONS, {0.2f, 0.6f}).sixteenth, 0.2f);
-}
-
-// With learnedKeep, where a reduced rate traced an item, the fill's predicted error at those
-// pixels against the fallback's (the item's error) is how much of the benefit its fill loses at
-// that rate: the item learns 1 minus their ratio per rate, averaged as its other figures are.
-TEST(CostModel, AnItemLearnsItsFillQualityWhereItsReducedRateTraced) {
-  const select::ItemLearned fresh;
-  constexpr uint32_t kLearn = RB_BENEFIT_LEARNED_KEEP;  // RayTracingSettings::learnedKeep
-  select::ItemCounts quarter{100, 5000, 1024 * 10, 100, false, RB_RATE_QUARTER, 0, 0, 1024 * 4};
-  const select::ItemLearned once = select::learnItem(0.05f, fresh, quarter, 3.0f, kLearn);
-  EXPECT_FLOAT_EQ(once.fillQuality.quarter, 0.6f);
-  EXPECT_EQ(once.fillQuality.sixteenth, 0.0f) << "only the rate it was traced at";
-  EXPECT_EQ(select::learnItem(0.05f, fresh, quarter, 3.0f).fillQuality.quarter, 0.0f) << "learnedKeep off: nothing learned, the priors value the rates";
-  quarter.fillError = 1024 * 2;
-  EXPECT_FLOAT_EQ(select::learnItem(0.05f, once, quarter, 3.0f, kLearn).fillQuality.quarter, 0.7f);
-  select::ItemCounts sixteenth = quarter;
-  sixteenth.rate = RB_RATE_SIXTEENTH;
-  sixteenth.fillError = 1024 * 30;
-  EXPECT_EQ(select::learnItem(0.05f, once, sixteenth, 3.0f, kLearn).fillQuality.sixteenth, float(RB_FILL_QUALITY_MIN))
-      << "a fill worse than the fallback keeps nothing";
-  EXPECT_FLOAT_EQ(select::learnItem(0.05f, once, sixteenth, 3.0f, kLearn).fillQuality.quarter, 0.6f);
-  select::ItemCounts full = quarter;
-  full.rate = RB_RATE_FULL;
-  EXPECT_EQ(select::learnItem(0.05f, once, full, 3.0f, kLearn).fillQuality.quarter, 0.6f) << "full rate fills nothing";
-  select::ItemCounts faint = quarter;
-  faint.error = 1000;
-  faint.fillError = 0;
-  EXPECT_EQ(select::learnItem(0.05f, once, faint, 3.0f, kLearn).fillQuality.quarter, 0.6f) << "under RB_FILL_QUALITY_MIN_ERROR: kept";
-  EXPECT_EQ(select::learnItem(0.05f, once, quarter, 3.0f, kLearn | RB_BENEFIT_PRIOR_ONLY).fillQuality.quarter, 0.6f) << "the prior-only ablation";
-  EXPECT_EQ(select::learnItem(0.05f, once, {}, 3.0f, kLearn).fillQuality.quarter, 0.6f) << "not traced: kept";
 }
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {

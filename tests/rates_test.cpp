@@ -1,7 +1,7 @@
 // Reduced ray rates (RayTracingSettings::rate): items traced on a checkerboard or one pixel per
 // 2x2 quad, the rest filled by a joint bilateral filter from traced neighbours on the same
-// object: reflections and refractions inside the effects pass from the same tile
-// (shaders/include/tile_fill.glsl), shadows in the lighting pass (include/shadow_fill.glsl). The fill
+// object, across tiles: reflections and refractions in a pass of their own after the effects
+// pass (shaders/include/effect_fill.glsl), shadows in the lighting pass (include/shadow_fill.glsl). The fill
 // never takes another object's values; a flat mirror at 1/4 stays close to its full-rate
 // image, and so do shadows; a lower rate traces fewer rays.
 #include <algorithm>
@@ -252,38 +252,6 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   EXPECT_GT(learnedFill, 0u) << "a mirror traced at a reduced rate learns what its skipped pixels cost";
 }
 
-// With learnedKeep each item learns how much of its benefit its fill keeps from the pixels its
-// rate traced (docs/SELECTION.md). On the default scene's mirror panel under a still camera at 1/4, the
-// temporal fill carries each traced change until the pattern comes round, so from the fifth
-// frame the fill's prediction at a traced pixel is what that pixel showed four frames before,
-// and the panel learns a quality near 1; the spatial fill alone, whose neighbours two pixels
-// away reflect other detail (AFlatMirrorAtAQuarterStaysCloseToFullRate: it keeps about half of
-// the image's gap), learns less. Every frame's learned figures equal the CPU reference's.
-TEST(Rates, AnItemLearnsHowMuchItsFillKeeps) {
-  const Scene scene = loadScene(test::defaultScenePath());
-  const uint32_t mirror = test::objectNamed(scene, "mirror_panel");
-  ASSERT_NE(mirror, test::kNoObjectNamed);
-  const std::vector<Camera> frames(12, defaultCamera(scene, 320.0f / 192.0f));
-  auto learned = [&](bool temporal) {
-    RenderSettings s = test::settingsFor(Policy::Benefit, 320, 192);
-    s.budgetMs = 1e6f;
-    s.rayTracing.rate = ItemRate::Quarter;
-    s.rayTracing.temporalFill = temporal;
-    s.rayTracing.learnedKeep = true;
-    const test::RenderedFrames r = test::renderFrames(scene, s, frames, test::kCheckSelection);
-    for (const FrameTiming& t : r.timings) EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
-    const ObjectMetrics& m = r.metrics[mirror];
-    EXPECT_GT(m.itemBenefit[1], 0.01f) << "tracing the panel removes error";
-    EXPECT_EQ(m.itemFillQualitySixteenth[1], 0.0f) << "1/16 never traced: not learned";
-    return m.itemFillQualityQuarter[1];
-  };
-  const float temporal = learned(true), spatial = learned(false);
-  std::printf("mirror panel at 1/4, learned fill quality: temporal %.3f, spatial %.3f\n", temporal, spatial);
-  EXPECT_GT(temporal, 0.9f) << "a still view's temporal fill keeps nearly all";
-  EXPECT_GT(spatial, 0.0f) << "learned";
-  EXPECT_LT(spatial, temporal - 0.2f);
-}
-
 // The partial item (docs/SELECTION.md): where the walk leaves budget that pays for a share of the
 // next item's 1/16, that item is traced on the 8x8 tiles whose hash falls below the share and
 // on no other, and the GPU's choice (item and share) is the CPU reference's. The hash is
@@ -384,6 +352,27 @@ TEST(Rates, UnknownRateNamesAreRefusedNamingTheChoices) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("full, half, quarter"), std::string::npos) << e.what();
   }
+}
+
+// The reflection and refraction fill reads the history of the pixels traced this frame, made
+// only for a renderer made with a reduced rate: restarting one made at full rate with a reduced
+// rate is refused with a clear error, not filled from an image that is not there; one made
+// with a reduced rate restarts at any rate.
+TEST(Rates, ARendererMadeAtFullRateRefusesToRestartAtAReducedOne) {
+  auto [scene, s, cam] = mirrorsUnderSun();
+  s.rayTracing.rate = ItemRate::Full;
+  Renderer full(scene, s);
+  try {
+    full.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Auto);
+    FAIL() << "restarted at a reduced rate without the fill's history";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("RayTracingSettings::rate"), std::string::npos) << e.what();
+  }
+  full.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Full);
+  s.rayTracing.rate = ItemRate::Quarter;
+  Renderer reduced(scene, s);
+  reduced.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Sixteenth);
+  EXPECT_EQ(reduced.render(cam).size() + reduced.finish().size(), 1u);
 }
 
 }  // namespace

@@ -74,9 +74,6 @@ render options:
                         tracing changed there when last traced, reprojected, while its
                         object, distance and view direction still match, until the rate
                         traces it again)
-  --learned-keep        benefit with reduced rates: value each item's rates by how much of its
-                        benefit its fill kept where they traced it, learned per item, not by
-                        constant shares (an experiment: docs/SELECTION.md)
   --explain[=frames]    print the pass plan: per pass the frames it ran in and its median
                         time, the frames it was left out of and why; the effects the scene can
                         show, the pipelines built, the pixels per effect that could take rays
@@ -255,7 +252,6 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--full-shadow-rays") c.settings.rayTracing.shortenShadowRays = false;
     else if (a == "--rate") c.settings.rayTracing.rate = parseItemRate(value());
     else if (a == "--no-temporal-fill") c.settings.rayTracing.temporalFill = false;
-    else if (a == "--learned-keep") c.settings.rayTracing.learnedKeep = true;
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
     else if (a == "--budget-confidence") c.settings.budgetConfidence = parseWithin(a, value(), 0.5f, 0.99f);
     else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);

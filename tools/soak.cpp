@@ -141,7 +141,9 @@ int runSoak(const SoakCommand& c) {
   RenderSettings s = c.target.settings();
   s.objectMetrics = true;  // the per-object records the scans read
   s.policy = Policy::All;
+  s.rayTracing.rate = c.rate;  // made with the rate, so that its fill's history exists
   Renderer renderer(scene, s);
+  renderer.restartSelection(Policy::All, s.budgetMs, BenefitAblation::None, ItemRate::Full);  // full RT calibrates
   const Camera start = pathStartCamera(scene, renderer.aspect());
   const FlythroughShape shape = flythroughShape(scene, start);
   auto cameraAt = [&](uint32_t f) {

@@ -41,8 +41,6 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
                         no screen-space reflections (the fallbacks' ablation)
   --no-temporal-fill    reduced rates fill from traced neighbours alone
                         (RayTracingSettings::temporalFill off)
-  --learned-keep        benefit's rates valued by each item's learned fill quality
-                        (RayTracingSettings::learnedKeep on)
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -281,8 +279,6 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       c.screenSpaceTransmission = false;
     } else if (a == "--no-temporal-fill") {
       c.temporalFill = false;
-    } else if (a == "--learned-keep") {
-      c.learnedKeep = true;
     } else if (a == "--no-reflection-probes") {
       c.reflectionProbes = false;
     } else if (a == "--no-screen-space-reflections") {
@@ -311,8 +307,7 @@ int runSweep(const SweepCommand& c) {
   s.reflectionProbes = c.reflectionProbes;
   s.screenSpaceReflections = c.screenSpaceReflections;
   s.rayTracing.temporalFill = c.temporalFill;
-  s.rayTracing.learnedKeep = c.learnedKeep;
-  s.rayTracing.rate = ItemRate::Quarter;  // makes the temporal fill's history; each configuration sets its own rate
+  s.rayTracing.rate = ItemRate::Quarter;  // makes the fill's history; each configuration sets its own rate
   s.optimalBound = true;
   s.learnTimeScale = !c.priorTimeScale;
   s.policy = Policy::All;

@@ -44,7 +44,6 @@ struct SweepCommand {
   bool classified = true;  // run `classified` beside all and none
   bool screenSpaceTransmission = true;  // RenderSettings::screenSpaceTransmission
   bool temporalFill = true;             // RayTracingSettings::temporalFill
-  bool learnedKeep = false;             // RayTracingSettings::learnedKeep
   bool reflectionProbes = true;         // RenderSettings::reflectionProbes
   bool screenSpaceReflections = true;   // RenderSettings::screenSpaceReflections
   std::vector<std::string> paths{"orbit", "flythrough"};

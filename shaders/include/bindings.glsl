@@ -146,6 +146,8 @@ Selection selectionOf(uint objectId) { return Selection(objectId == RB_NO_OBJECT
 // Whether the object's item `effect` (RB_ITEM_*) is selected.
 bool itemSelected(Selection sel, uint effect) { return (sel.word & (1u << effect)) != 0u; }
 bool measuringItems() { return (frame.rayTracing.w & RB_RT_MEASURE_ITEMS) != 0u; }
+// Reflections are traced on surfaces up to this roughness (RayTracingSettings::maxRoughness).
+float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
 // The reflected plus the refracted light at a pixel.
 vec3 indirectLight(ivec2 pixel) { return imageLoad(reflectionImage, pixel).rgb + imageLoad(refractionImage, pixel).rgb; }
 

@@ -1,8 +1,11 @@
-// The effects pass's temporal fill (RB_RT_TEMPORAL_FILL, RayTracingSettings::temporalFill): a
-// pixel that a reduced rate skips this frame adds to its fallback what tracing changed against
-// the fallback in the frame where it was last traced, reprojected, before the spatial fill from
-// the tile's traced neighbours (include/tile_fill.glsl) gets the rest. Carrying the change
-// rather than the traced value lets the fallback follow the view, as the spatial fill does.
+// The history of reduced ray rates for reflections and refractions (include/effect_fill.glsl):
+// per pixel what tracing changed against the fallback, traced minus fallback, per path. The
+// effects pass writes it where a path was traced and shown this frame (age 0): compose's
+// spatial fill reads this frame's at the traced neighbours of a pixel a rate skipped. With the
+// temporal fill (RB_RT_TEMPORAL_FILL, RayTracingSettings::temporalFill) a skipped pixel first
+// adds to its fallback the change where it was last traced, reprojected, and compose writes
+// it on with its age, before the spatial fill gets the rest. Carrying the change rather than
+// the traced value lets the fallback follow the view, as the spatial fill does.
 // What the previous frame left at the point is valid only where all of these hold:
 //   - it was written by the previous frame, on the same object;
 //   - its distance from the previous camera matches the point's within RB_HISTORY_DISTANCE
@@ -17,8 +20,10 @@
 //     value is carried only until the rate traces the pixel again.
 // fillHistory holds two layers per frame parity: 2p the changes as half floats, their ages in
 // frames since traced and how far the view turned since (in 255ths of the limit), 2p + 1 the
-// object, the distance and the frame that wrote it. A frame reads its predecessor's parity and
-// writes its own, so the pass never reads what it writes.
+// object, the distance, the frame that wrote it plus 1 (0, as the image starts, is no frame)
+// and the shading normal (octahedral, snorm 2x16): what the fill weighs a source by, without
+// reading the G-buffer there.
+// A frame reads its predecessor's parity and writes its own.
 // The includer includes bindings.glsl and rates.glsl.
 #ifndef RB_FILL_HISTORY_GLSL
 #define RB_FILL_HISTORY_GLSL
@@ -33,7 +38,33 @@ struct History {
   vec3 change[2];  // traced minus fallback: reflection, refraction
   uvec2 age;     // frames since each was traced (RB_HISTORY_NONE: none)
   uvec2 turn;    // how far the view direction turned since, up to this frame (255: the limit)
+  float distance;  // of the point from the camera of the frame that wrote it
+  uint normal;     // its shading normal, packed (octahedral, snorm 2x16)
 };
+
+History noHistory() { return History(vec3[2](vec3(0.0), vec3(0.0)), uvec2(RB_HISTORY_NONE), uvec2(0u), 0.0, 0u); }
+
+// The history at `at` in `layer` (2 * parity), written by frame `tag` - 1 on `objectId`, else
+// ages RB_HISTORY_NONE.
+History storedHistory(ivec2 at, uint layer, uint tag, uint objectId) {
+  History h = noHistory();
+  uvec4 where = imageLoad(fillHistory, ivec3(at, layer + 1u));
+  if (where.x != objectId || where.z != tag) return h;
+  h.distance = uintBitsToFloat(where.y);
+  h.normal = where.w;
+  uvec4 terms = imageLoad(fillHistory, ivec3(at, layer));
+  vec2 a = unpackHalf2x16(terms.x), b = unpackHalf2x16(terms.y), c = unpackHalf2x16(terms.z);
+  h.change[0] = vec3(a, b.x);
+  h.change[1] = vec3(b.y, c);
+  h.age = uvec2(terms.w & 0xFFu, (terms.w >> 8u) & 0xFFu);
+  h.turn = uvec2((terms.w >> 16u) & 0xFFu, terms.w >> 24u);
+  return h;
+}
+
+// What this frame wrote at `pixel` of object `objectId` so far (ages RB_HISTORY_NONE where nothing).
+History currentHistory(ivec2 pixel, uint objectId) {
+  return storedHistory(pixel, (frame.sizeLightsFrame.w & 1u) * 2u, frame.sizeLightsFrame.w + 1u, objectId);
+}
 
 // The frames after which `rate` traces a pixel again.
 uint ratePeriod(uint rate) {
@@ -42,47 +73,37 @@ uint ratePeriod(uint rate) {
 
 // What the previous frame left for the point `p` of object `objectId`, or ages RB_HISTORY_NONE.
 History previousHistory(vec3 p, uint objectId) {
-  History h = History(vec3[2](vec3(0.0), vec3(0.0)), uvec2(RB_HISTORY_NONE), uvec2(0u));
+  History h = noHistory();
   if (frame.previousCamera.w == 0.0) return h;
   vec2 uv;
   if (!previousUv(p, uv)) return h;
   ivec2 size = ivec2(frame.sizeLightsFrame.xy);
   ivec2 at = ivec2(floor(uv * vec2(size)));
   if (any(greaterThanEqual(at, size))) return h;  // (uv just below 1 may round up)
-  uint layer = ((frame.sizeLightsFrame.w - 1u) & 1u) * 2u;
-  uvec4 where = imageLoad(fillHistory, ivec3(at, layer + 1u));
   vec3 toPrevious = frame.previousCamera.xyz - p, toCamera = frame.cameraPositionNear.xyz - p;
   float distance = length(toPrevious);
   float turned = acos(clamp(dot(toPrevious, toCamera) / max(distance * length(toCamera), 1e-30), -1.0, 1.0));
   float pixelAngle = 2.0 * atan(1.0 / abs(frame.proj[1][1])) / float(size.y);  // (the projection may flip y)
-  if (where.x != objectId || where.z != frame.sizeLightsFrame.w - 1u || abs(uintBitsToFloat(where.y) - distance) > RB_HISTORY_DISTANCE * distance ||
-      turned > pixelAngle)
-    return h;
-  uvec4 terms = imageLoad(fillHistory, ivec3(at, layer));
-  vec2 a = unpackHalf2x16(terms.x), b = unpackHalf2x16(terms.y), c = unpackHalf2x16(terms.z);
-  h.change[0] = vec3(a, b.x);
-  h.change[1] = vec3(b.y, c);
-  h.age = uvec2(terms.w & 0xFFu, (terms.w >> 8u) & 0xFFu);
-  uint turn = uint(ceil(turned / pixelAngle * 255.0));
-  h.turn = uvec2((terms.w >> 16u) & 0xFFu, terms.w >> 24u) + turn;
+  if (turned > pixelAngle) return h;  // before any load: a moving view turns most points past it
+  h = storedHistory(at, ((frame.sizeLightsFrame.w - 1u) & 1u) * 2u, frame.sizeLightsFrame.w, objectId);
+  if (abs(h.distance - distance) > RB_HISTORY_DISTANCE * distance) return noHistory();
+  h.turn += uint(ceil(turned / pixelAngle * 255.0));
   return h;
 }
 
 // Whether a change `age` frames old, with the view turned by `turn` since, may stand for a pixel
 // its item's `rate` skips this frame.
 bool historyFits(uint age, uint turn, uint rate) { return age != RB_HISTORY_NONE && age + 1u < ratePeriod(rate) && turn <= 255u; }
-// Whether it would have stood for the pixel had `rate` skipped it this frame too, where the rate
-// traces it (rt_effects.comp's fillMiss: the history a rate period old).
-bool historyPredicts(uint age, uint turn, uint rate) { return age != RB_HISTORY_NONE && age < ratePeriod(rate) && turn <= 255u; }
 
 // This frame's history at `pixel`: the changes, their ages (RB_HISTORY_NONE where neither was
-// traced nor carried) and turns (at most 255), the object and its distance from the camera.
-void writeHistory(ivec2 pixel, vec3 change[2], uvec2 age, uvec2 turn, uint objectId, vec3 p) {
+// traced nor carried) and turns (at most 255), the object, its distance from the camera and
+// its shading normal n.
+void writeHistory(ivec2 pixel, vec3 change[2], uvec2 age, uvec2 turn, uint objectId, vec3 p, vec3 n) {
   uint layer = (frame.sizeLightsFrame.w & 1u) * 2u;
   vec3 r = clamp(change[0], vec3(-65504.0), vec3(65504.0)), t = clamp(change[1], vec3(-65504.0), vec3(65504.0));
   imageStore(fillHistory, ivec3(pixel, layer), uvec4(packHalf2x16(r.xy), packHalf2x16(vec2(r.z, t.x)), packHalf2x16(t.yz), age.x | (age.y << 8u) | (turn.x << 16u) | (turn.y << 24u)));
   imageStore(fillHistory, ivec3(pixel, layer + 1u),
-             uvec4(objectId, floatBitsToUint(length(frame.cameraPositionNear.xyz - p)), frame.sizeLightsFrame.w, 0u));
+             uvec4(objectId, floatBitsToUint(length(frame.cameraPositionNear.xyz - p)), frame.sizeLightsFrame.w + 1u, packSnorm2x16(octEncode(n))));
 }
 
 #endif

@@ -5,14 +5,14 @@
 #define RB_ITEM_STATS_GLSL
 
 // Adds this invocation's work, ticks, error and counted pixels (1 where the probe or a reduced
-// ray rate traced the item here; a full rate's pixels are set at selection), the ticks and
-// count of the pixels its reduced rate skipped, and the fill's error where it traced (rt_effects.comp's fillMiss), per effect (x shadows, y reflections, z
-// refractions) to its object's items: lanes
+// ray rate traced the item here; a full rate's pixels are set at selection), and the ticks and
+// count of the pixels its reduced rate skipped (fill_effects.comp), per effect (x shadows, y
+// reflections, z refractions) to its object's items: lanes
 // of the subgroup on the same object are summed first, then one atomic per item with something
 // to add. The error is summed in float over
 // the lanes and added in 1/RB_ERROR_UNITS units, rounded. The frame's totals of work and
 // ticks (of traced pixels: their exchange rate) take one atomic each per subgroup.
-void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted, uvec3 skippedTicks, uvec3 skipped, vec3 fillError) {
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted, uvec3 skippedTicks, uvec3 skipped) {
   bool pending = objectId != RB_NO_OBJECT;
   uint allWork = subgroupAdd(pending ? work.x + work.y + work.z : 0u);
   uint allTicks = subgroupAdd(pending ? ticks.x + ticks.y + ticks.z : 0u);
@@ -29,7 +29,6 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 cou
     uvec3 p = subgroupAdd(mine ? counted : uvec3(0u));
     uvec3 st = subgroupAdd(mine ? skippedTicks : uvec3(0u));
     uvec3 sp = subgroupAdd(mine ? skipped : uvec3(0u));
-    vec3 fe = subgroupAdd(mine ? fillError : vec3(0.0));
     if (mine && subgroupElect()) {
       for (uint k = 0u; k < RB_ITEMS_PER_OBJECT; ++k) {
         uint item = current * RB_ITEMS_PER_OBJECT + k;
@@ -40,8 +39,6 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 cou
         if (p[k] != 0u) atomicAdd(itemCosts[item].pixels, p[k]);
         if (st[k] != 0u) atomicAdd(itemCosts[item].skippedTicks, st[k]);
         if (sp[k] != 0u) atomicAdd(itemCosts[item].skippedPixels, sp[k]);
-        uint missed = uint(fe[k] * RB_ERROR_UNITS + 0.5);
-        if (missed != 0u) atomicAdd(itemCosts[item].fillError, missed);
       }
     }
     pending = pending && !mine;
@@ -49,7 +46,7 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 cou
 }
 
 void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted) {
-  addItemCounts(objectId, work, ticks, error, counted, uvec3(0u), uvec3(0u), vec3(0.0));
+  addItemCounts(objectId, work, ticks, error, counted, uvec3(0u), uvec3(0u));
 }
 
 // The subgroup clock (VK_KHR_shader_clock): the subgroup's lanes run together, so a span

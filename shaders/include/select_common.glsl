@@ -120,22 +120,13 @@ float tracedPixelCost(uint rate) {
                               : (rate == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0));
 }
 
-// An item's learned fill qualities at 1/16 (x) and 1/4 (y) (0: not learned).
-vec2 itemFillQuality(GpuItemCost c) { return vec2(c.fillQualitySixteenth, c.fillQualityQuarter); }
-
-// The quality of an item's fill at 1/16 (x) and at 1/4 (y) (shared/selection.h): what it learned
-// (itemFillQuality), else the other rate's times RB_SIXTEENTH_QUALITY_* (or over it, at
-// most 1), else the prior (cost_model.cpp's fillQualities).
-vec2 fillQualities(uint effect, vec2 learned) {
+// The quality of an item's fill at 1/16 (x) and at 1/4 (y): the effect's prior
+// (shared/selection.h; cost_model.cpp's fillQualities).
+vec2 fillQualities(uint effect) {
   bool shadows = effect == RB_ITEM_SHADOWS, reflections = effect == RB_ITEM_REFLECTIONS;
-  float sparser = shadows ? RB_SIXTEENTH_QUALITY_SHADOWS : (reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS);
-  precise float fromQuarter = learned.y * sparser;
-  float fromSixteenth = min(exactQuotient(learned.x, sparser), 1.0);
-  float priorSixteenth = shadows ? RB_FILL_QUALITY_SIXTEENTH_SHADOWS
-                                 : (reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
-  float priorQuarter = shadows ? RB_FILL_QUALITY_QUARTER_SHADOWS : (reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
-  float sixteenth = learned.x > 0.0 ? learned.x : (learned.y > 0.0 ? fromQuarter : priorSixteenth);
-  float quarter = learned.y > 0.0 ? learned.y : (learned.x > 0.0 ? fromSixteenth : priorQuarter);
+  float sixteenth = shadows ? RB_FILL_QUALITY_SIXTEENTH_SHADOWS
+                            : (reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
+  float quarter = shadows ? RB_FILL_QUALITY_QUARTER_SHADOWS : (reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
   return vec2(sixteenth, quarter);
 }
 
@@ -156,12 +147,12 @@ bool aboveChord(vec2 a, vec2 b, vec2 c) {
 }
 
 // The reduced rates on the upper convex hull of an item's options skip, 1/16, 1/4, full in
-// (cost share, value share) at fill share `fill` and learned fill qualities `learned`
+// (cost share, value share) at fill share `fill` and the effect's fill qualities
 // (RB_HULL_* bits): a rate below the line between its neighbours on the hull is
 // left out (Funkhouser and Sequin's dominated option), so that the segments' value per cost
 // falls (cost_model.cpp's rateHull).
-uint rateHull(uint effect, float fill, vec2 learned) {
-  vec2 q = fillQualities(effect, learned);
+uint rateHull(uint effect, float fill) {
+  vec2 q = fillQualities(effect);
   vec2 skip = vec2(0.0), full = vec2(1.0);
   vec2 sixteenth = vec2(rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q));
   vec2 quarter = vec2(rateShare(RB_RATE_QUARTER, fill), keepShare(RB_RATE_QUARTER, q));
@@ -197,7 +188,7 @@ float segmentCostShare(uint effect, uint k, float fill, uint hull) {
 uint itemHull(uint item) {
   GpuItemCost c = items[item];
   uint effect = item % RB_ITEMS_PER_OBJECT;
-  return rateHull(effect, fillShare(effect, c.fillPerPixel, c.workPerPixel), itemFillQuality(c));
+  return rateHull(effect, fillShare(effect, c.fillPerPixel, c.workPerPixel));
 }
 
 // Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.

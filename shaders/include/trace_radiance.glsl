@@ -9,8 +9,6 @@
 bool rbFirstHitInside = false;
 float rbFirstHitDistance = 1e30;
 
-float maxTracedRoughness() { return uintBitsToFloat(frame.rayTracing.z); }
-
 // Closest hit along the ray, alpha masks respected.
 bool traceClosest(vec3 origin, vec3 dir, out RayQuery q, inout uint work) {
   ++rbRays;

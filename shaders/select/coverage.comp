@@ -40,7 +40,7 @@ void addCoverage(uvec4 slot, uint classes) {
 // non-metals; unlit pixels neither. 1: reflection, 1 << 16: refraction.
 uint pixelClasses(float roughness, float transmission, float unlit, float metallic) {
   if (unlit > 0.5) return 0u;
-  uint c = roughness <= uintBitsToFloat(frame.rayTracing.z) ? 1u : 0u;
+  uint c = roughness <= maxTracedRoughness() ? 1u : 0u;
   if (transmission * (1.0 - metallic) > 0.0) c |= 1u << 16;
   return c;
 }

@@ -59,9 +59,8 @@ float ticksToWork() {
 }
 
 // Item `effect` of object i: learns from last frame's counters, restarts them, and returns
-// its candidate's cost and value, its fill share and its learned fill qualities (false: not a
-// candidate).
-bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value, out float fill, out vec2 quality) {
+// its candidate's cost and value and its fill share (false: not a candidate).
+bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value, out float fill) {
   uint id = i * RB_ITEMS_PER_OBJECT + effect;
   GpuItemCost c = items[id];
   fill = fillShare(effect, 0.0, 0.0);
@@ -88,13 +87,6 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
       c.measured = 1u;
     }
   }
-  // How well its fill kept the benefit where its reduced rate traced last frame (shared/selection.h).
-  if ((push.items.w & RB_BENEFIT_LEARNED_KEEP) != 0u && c.pixels > 0u && learnBenefit && (rate == RB_RATE_QUARTER || rate == RB_RATE_SIXTEENTH) &&
-      float(c.error) >= RB_FILL_QUALITY_MIN_ERROR * RB_ERROR_UNITS) {
-    float observed = clamp(1.0 - exactQuotient(float(c.fillError), float(c.error)), RB_FILL_QUALITY_MIN, 1.0);
-    if (rate == RB_RATE_SIXTEENTH) c.fillQualitySixteenth = averagedWith(c.fillQualitySixteenth, observed);
-    else c.fillQualityQuarter = averagedWith(c.fillQualityQuarter, observed);
-  }
   // Its cost per pixel its reduced rate skipped (the fill), at the same exchange rate.
   if (c.skippedPixels > 0u && exchange > 0.0 && c.skippedTicks > 0u)
     c.fillPerPixel = averagedWith(c.fillPerPixel, exactQuotient(float(c.skippedTicks), float(c.skippedPixels)) * exchange);
@@ -104,8 +96,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
     float prior = params[i].priors[effect];
     c.benefit = c.measured != 0u ? c.benefit + (prior - c.benefit) * RB_BENEFIT_DRIFT : prior;
   }
-  items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u, c.fillPerPixel, 0u, 0u, 0u, c.fillQualitySixteenth, c.fillQualityQuarter);
-  quality = itemFillQuality(c);
+  items[id] = GpuItemCost(c.workPerPixel, 0u, 0u, 0u, c.benefit, c.measured, c.selectedLast, 0u, c.fillPerPixel, 0u, 0u);
   uint pixels = itemPixels(i, effect);
   if (r.crCandidatePixels.z < 0.5 || pixels == 0u) return false;
   float perPixel = c.workPerPixel > 0.0 ? c.workPerPixel : priorPerPixel;
@@ -139,16 +130,15 @@ void main() {
     float exchange = ticksToWork();
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       float cost = 0.0, value = 0.0, fill = 0.0;
-      vec2 learned = vec2(0.0);
-      bool add = itemCandidate(i, effect, r, exchange, cost, value, fill, learned);
+      bool add = itemCandidate(i, effect, r, exchange, cost, value, fill);
       uint item = i * RB_ITEMS_PER_OBJECT + effect;
       if (!rateSegmentsWalk()) {
         append(add, item, cost, value, r.apdv.z);
         continue;
       }
       // Rates chosen per item: a candidate per segment of the item's hull (shared/selection.h).
-      uint hull = rateHull(effect, fill, learned);
-      vec2 q = fillQualities(effect, learned);
+      uint hull = rateHull(effect, fill);
+      vec2 q = fillQualities(effect);
       for (uint k = 0u; k < 3u; ++k)
         append(add && k < rateSegments(effect, hull), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(effect, k, fill, hull),
                value * segmentValueShare(effect, k, hull, q), r.apdv.z);

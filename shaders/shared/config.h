@@ -40,19 +40,14 @@
 #define RB_RT_MEASURE_ITEMS 2u
 #define RB_RT_SHORTEN_SHADOW_RAYS 4u
 #define RB_RT_RATES 8u  // some items may be traced at a reduced rate (include/tile_pixel.glsl)
-// The effects pass's fill takes a pixel's value from the last frames where it was traced, if it
-// is still valid there (include/fill_history.glsl), before its traced neighbours.
+// The fill of reflections and refractions takes a pixel's value from the last frames where it
+// was traced, if it is still valid there (include/fill_history.glsl), before its traced neighbours.
 #define RB_RT_TEMPORAL_FILL 16u
-// The effects pass predicts, where a reduced rate traced, what its fill would have shown there
-// (rt_effects.comp's fillMiss), for `benefit`'s learned fill quality (RayTracingSettings::learnedKeep).
-#define RB_RT_MEASURE_FILL 32u
 #define RB_FILL_HISTORY_LAYERS 4u  // colour and geometry for each frame parity
-// The trace passes' specialization constant: they fill what reduced rates left (include/tile_fill.glsl).
-#define RB_FILL_CONSTANT_ID 0
 // The effects pass's specialization constant: the paths (RB_RT_REFLECTIONS, RB_RT_REFRACTIONS) its
 // pipeline holds, those the scene can show and the settings switch on; the others' code is
 // compiled out (rt_effects.comp).
-#define RB_PATHS_CONSTANT_ID 1
+#define RB_PATHS_CONSTANT_ID 0
 // Most reflection/refraction bounces a ray may take (the frame's depth is clamped to it).
 #define RB_RT_MAX_DEPTH 4
 

@@ -75,8 +75,6 @@ struct GpuObjectCost {
 #define RB_BENEFIT_WITHOUT_CENTRALITY 1u
 #define RB_BENEFIT_WITHOUT_HYSTERESIS 2u
 #define RB_BENEFIT_PRIOR_ONLY 4u
-// With RayTracingSettings::learnedKeep (beside the ablations): the items learn their fill quality.
-#define RB_BENEFIT_LEARNED_KEEP 8u
 
 // The sparse probe (`benefit`): candidate items the walk left out are traced, measured and
 // not shown, on the 8x8 tiles whose turn it is this frame, one tile in `stride` each frame in
@@ -93,7 +91,7 @@ struct GpuObjectCost {
 
 // Ray rates: the share of a selected item's pixels traced this frame: all, a checkerboard (1/2),
 // one pixel of each 2x2 quad (1/4) or of each 4x4 block (1/16), rotating over frames (shaders/include/rates.glsl); the
-// others are filled from traced neighbours on the same object (shaders/include/tile_fill.glsl). The
+// others are filled from traced neighbours on the same object (shaders/include/fill_weights.glsl). The
 // frame's selection holds an item's rate in 2 bits at RB_RATE_SHIFT + 2 * effect (0: full).
 #define RB_RATE_SHIFT 6u
 #define RB_RATE_FULL 0u
@@ -109,20 +107,17 @@ struct GpuObjectCost {
 // The share of an item's full-rate benefit a rate keeps: its own traced pixels, plus what the fill
 // keeps of the benefit at the pixels it skips, its quality q (1: as if traced, 0: the fallback's):
 //   keep(1/4) = 0.25 + 0.75 q(1/4),  keep(1/16) = 0.0625 + 0.9375 q(1/16).
-// With RayTracingSettings::learnedKeep (RB_BENEFIT_LEARNED_KEEP) each item learns q per rate where
-// that rate traced it (GpuItemCost::fillQualitySixteenth, fillQualityQuarter): at each pixel
-// it traced, the fill's prediction had it skipped the pixel (what the temporal fill carries there,
-// else the weighted mean of the tile's other traced pixels around it, else the fallback: the
-// fill's own order), and q = 1 - (the prediction's display error) / (the fallback's), summed over
-// the traced pixels (rt_effects.comp's fillMiss; off by default: on the benchmark the learned
-// values recovered less, docs/SELECTION.md). A rate not learned yet takes the other's q
-// times RB_SIXTEENTH_QUALITY_* (1/16 fills from sparser and older samples than 1/4), else the
-// prior: the constant shares measured before, the display difference from full rate against the
-// fallback's (mean over the image, tests/rates_test.cpp's metric), the effect alone traced, the
-// median over the court and the plaza from their default camera and 30 degrees either way
-// around, 480x270, with the in-tile fill: reflections kept 0.78 at 1/4 and 0.60 at 1/16,
-// refractions 0.90 and 0.78, q(1/4) 0.7067 and 0.8667, q(1/16) 0.5733 and 0.7653 (literals:
-// glslang folds constant arithmetic in double, C++ in float, and the two must round alike).
+// q is a prior per effect: the display difference from full rate against the fallback's (mean
+// over the image, tests/rates_test.cpp's metric), the effect alone traced, the median over the
+// court and the plaza from their default camera and 30 degrees either way around, 480x270, with
+// a fill inside the tile: reflections kept 0.78 at 1/4 and 0.60 at 1/16, refractions 0.90 and
+// 0.78, q(1/4) 0.7067 and 0.8667, q(1/16) 0.5733 and 0.7653 (literals: glslang folds constant
+// arithmetic in double, C++ in float, and the two must round alike). The fill reading across
+// tiles (include/fill_weights.glsl) keeps 0.01-0.04 more at 1/4 and 0.03-0.08 more at 1/16 on
+// FLIP (bench/rate_keep.py); the priors stay the older, lower figures. Learned per item from
+// a leave-one-out prediction at the traced pixels, q recovered less on the benchmark (0.303 of
+// the error at 25% of full RT's cost against 0.477 with the priors, docs/BENCHMARKS.md) and
+// was dropped.
 // Shadows, their fill correcting the shadow map in the lighting pass (include/shadow_fill.glsl),
 // keep less: their error lies in lines a pixel wide along the maps' shadow edges, which a
 // sparser lattice of traced pixels samples poorly. Measured the same way (`all`, shadows alone,
@@ -132,21 +127,13 @@ struct GpuObjectCost {
 #define RB_FILL_QUALITY_QUARTER_REFRACTIONS 0.8667
 #define RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS 0.5733
 #define RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS 0.7653
-#define RB_SIXTEENTH_QUALITY_REFLECTIONS 0.811  // q(1/16) / q(1/4) of the priors
-#define RB_SIXTEENTH_QUALITY_REFRACTIONS 0.883
 #define RB_FILL_QUALITY_QUARTER_SHADOWS 0.2027
 #define RB_FILL_QUALITY_SIXTEENTH_SHADOWS 0.0368
-#define RB_SIXTEENTH_QUALITY_SHADOWS 0.1815
-// A learned quality is at least this (0: not learned), and an item learns it from a frame whose
-// traced pixels' fallback error sums to at least RB_FILL_QUALITY_MIN_ERROR (display error units
-// per pixel summed: 100 pixels at 0.01), where a few pixels' noise would decide it otherwise.
-#define RB_FILL_QUALITY_MIN 0.0009765625
-#define RB_FILL_QUALITY_MIN_ERROR 1.0
 // The share of an item's full-rate cost a rate costs is not the share of its rays: every pixel
-// of the item still reads its surface, and the skipped ones are filled (include/tile_fill.glsl)
-// and, with the temporal fill, reproject and write their history. Measured on `all` at 640x360
-// on lavapipe, the effects pass at 1/2, 1/4 and 1/16 over full on 12-frame orbits with the
-// temporal fill (the mean of two runs), the shares run from TransmissionTest's 0.63, 0.34, 0.15
+// of the item is still read, and the skipped ones are filled (fill_effects.comp: they read their
+// surface and their neighbours', and with the temporal fill reproject and write their history).
+// Measured on `all` at 640x360 on lavapipe, the effects pass with its fill then inside it at 1/2,
+// 1/4 and 1/16 over full on 12-frame orbits with the temporal fill (the mean of two runs), the shares run from TransmissionTest's 0.63, 0.34, 0.15
 // to the WaterBottle's 1.10, 0.77, 0.50 (the court 0.69, 0.41, 0.21; Suzanne 0.85, 0.57, 0.34),
 // a spread no constant prices. So each item learns it: a pixel its rate traces costs
 // RB_TRACED_PIXEL_COST_* times its full-rate cost per pixel (its clock ticks over its traced
@@ -158,7 +145,7 @@ struct GpuObjectCost {
 // `classified` the items' ticks at 1/4 and 1/16 over full follow the pass's time (the WaterBottle
 // 0.69 and 0.45 against 0.84 and 0.55 ms, TransmissionTest 0.33, 0.14 against 0.34, 0.16).
 // A pixel a reduced rate traces costs more clock time than one of full rate (its neighbours'
-// rays, gathers and shared-memory traffic do not run beside it; 1/16's lie four pixels apart):
+// rays and gathers do not run beside it; 1/16's lie four pixels apart, half a SIMD batch a tile):
 // per traced pixel over full rate's per pixel, `classified` at 640x360 on lavapipe, the median
 // over the items of the court (14) and the plaza (51-53): 1.29 and 1.33 at 1/2, 1.33 and 1.33 at
 // 1/4, 2.24 and 2.24 at 1/16 (Suzanne's 1.31 and 2.10). An item learns its cost per pixel
@@ -203,7 +190,7 @@ struct GpuObjectCost {
 #define RB_NO_PARTIAL 0xFFFFFFFFu
 #define RB_PARTIAL_MIN_SHARE 0.125
 
-// 56 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
+// 44 bytes: what the `benefit` policy knows of an item: its learned cost per traced pixel in
 // work units (0: not learned), the traversal work, time (subgroup clock ticks /
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
@@ -225,9 +212,6 @@ struct GpuItemCost {
   float fillPerPixel;  // learned work units per pixel its reduced rate skips (0: not learned)
   uint skippedTicks;   // this frame's ticks (RB_CLOCK_UNIT) of the pixels its rate skipped
   uint skippedPixels;  // and how many
-  uint fillError;      // this frame's display error of the fill's prediction at its traced pixels (RB_ERROR_UNITS)
-  float fillQualitySixteenth;  // the learned quality of its fill at 1/16 and 1/4 (0: not learned)
-  float fillQualityQuarter;
 };
 // Clock ticks per unit of GpuItemCost::ticks: a 32-bit sum then holds 2^36 ticks a frame.
 #define RB_CLOCK_UNIT 16u

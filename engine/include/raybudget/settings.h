@@ -69,15 +69,10 @@ struct RayTracingSettings {
   // With reduced rates: a reflection or refraction pixel not traced this frame adds to its
   // fallback what tracing changed there when it was last traced (reprojected, while the
   // object, its distance and, within a pixel's angle, the view direction there still match, and
-  // younger than the rate's period), before the spatial fill from traced neighbours. Its
-  // history (64 bytes a pixel) is made when the renderer is made with a reduced `rate`
-  // (restartSelection to one later fills spatially alone).
+  // younger than the rate's period), before the spatial fill from traced neighbours. The fill's
+  // history (64 bytes a pixel) is made when the renderer is made with a reduced `rate`; without
+  // it restartSelection refuses a reduced rate for a scene with reflections or refractions.
   bool temporalFill = true;
-  // `benefit` with reduced rates: each item learns how much of its benefit its fill keeps at
-  // each rate (the effects pass predicts each traced pixel as the fill would have) and its rates
-  // are valued from that, not from the constant shares (docs/SELECTION.md). Off by default: on
-  // the benchmark it recovered less (docs/BENCHMARKS.md).
-  bool learnedKeep = false;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
 };
@@ -152,6 +147,7 @@ enum class Pass : uint32_t {
   BehindGlass,  // the opaque frame lit and mip-mapped for glass to show, then the transmissive draws
   ReflectionProbes,  // cube maps captured from the scene for the reflection fallback
   ScreenSpaceReflections,  // the depth pyramid and each smooth surface's mirror ray marched through it
+  FillEffects,  // reflections and refractions where a reduced ray rate skipped the pixel, from traced neighbours
   Count
 };
 inline constexpr size_t kPassCount = size_t(Pass::Count);
@@ -179,6 +175,7 @@ enum class PassSkip : uint8_t {
   EveryPixelTracesReflections,     // screen-space reflections: `all` at full rate traces every smooth pixel's reflection
   NoSmoothMaterial,                // screen-space reflections: no material smooth enough for them
   BudgetBelowFixedCost,            // coverage, select, trace: T at or below the stage's learned fixed cost
+  FullRate,                        // fill effects: every item traced at full ray rate
 };
 const char* passSkipText(PassSkip skip);
 
@@ -226,7 +223,7 @@ struct FrameTiming {
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   std::array<PassSkip, kPassCount> skipped{};               // why each pass without a time was left out
   double totalMs() const;
-  double traceMs() const;    // the trace passes (shadows, effects), their fill included
+  double traceMs() const;    // the trace passes (shadows, effects) and the fill of reflections and refractions at reduced rates
   double rtStageMs() const;  // the ray-tracing stage T bounds: coverage + select + trace
 };
 
@@ -278,10 +275,6 @@ struct ObjectMetrics {
   std::array<float, 3> itemBenefit{};
   std::array<float, 3> itemCostPerPixel{};  // `benefit`: the learned cost per traced pixel, work units (0: not learned)
   std::array<float, 3> itemFillPerPixel{};  // `benefit`: the learned cost per pixel a reduced rate skipped (0: not learned)
-  // `benefit`: the learned quality of the item's fill at 1/16 and at 1/4, the share of the
-  // benefit it keeps at the pixels those rates skip (0: not learned; docs/SELECTION.md)
-  std::array<float, 3> itemFillQualitySixteenth{};
-  std::array<float, 3> itemFillQualityQuarter{};
   // The share of its 8x8 tiles a selected item is traced on: 1, or below for `benefit`'s
   // partial item (with rates chosen per item: the budget the knapsack left, docs/SELECTION.md)
   std::array<float, 3> itemTileShare{1.0f, 1.0f, 1.0f};

@@ -10,6 +10,7 @@
 
 #include "behind_glass_comp.h"
 #include "compose_comp.h"
+#include "fill_effects_comp.h"
 #include "env_fallback_comp.h"
 #include "lighting_comp.h"
 #include "passes/descriptors.h"
@@ -21,7 +22,7 @@
 #include "passes/screen_pass.h"
 #include "passes/screen_reflections.h"
 #include "passes/shadow_maps.h"
-#include "passes/trace_pass.h"
+#include "passes/tile_list_pass.h"
 #include "raybudget/core.h"
 #include "raybudget/error.h"
 #include "raybudget/testing.h"
@@ -81,8 +82,9 @@ struct Context::Impl {
   passes::ScreenPass envFallback;
   passes::ScreenPass compose;
   passes::ScreenPass behindGlassCopy;
-  passes::TracePass traceShadows;
-  passes::TracePass traceEffects;
+  passes::TileListPass traceShadows;
+  passes::TileListPass traceEffects;
+  passes::TileListPass fillEffects;
   Slot slots[kFramesInFlight];
   uint64_t frameIndex = 0;
   bool environmentReady = false;
@@ -102,7 +104,7 @@ struct Context::Impl {
                                            uint32_t(raybudget::reflectionProbesOf(s).size()),
                                            {.behindGlass = rs.screenSpaceTransmission && passes::GBufferPass::anyTransmissive(scene),
                                             .screenReflections = rs.screenSpaceReflections && ssrUseful,
-                                            .fillHistory = rs.rayTracing.temporalFill && rs.rayTracing.rate != ItemRate::Full &&
+                                            .fillHistory = rs.rayTracing.rate != ItemRate::Full &&
                                                            (effects.reflections || effects.refractions)})),
         samplers(passes::createSamplers(ctx)),
         layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
@@ -118,7 +120,8 @@ struct Context::Impl {
         compose(ctx, layouts, kSpirv_compose_comp),
         behindGlassCopy(ctx, layouts, kSpirv_behind_glass_comp),
         traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows), passes::TileList::Shadows),
-        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects), passes::TileList::Effects, tracedPaths()) {
+        traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects), passes::TileList::Effects, tracedPaths()),
+        fillEffects(ctx, layouts, kSpirv_fill_effects_comp, passes::TileList::Effects) {
     if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows, targets);
     for (Slot& slot : slots) {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
@@ -179,7 +182,7 @@ struct Context::Impl {
                            slot.gbuffer.layers ? 1.0f : 0.0f);
     u.rayTracing = glm::uvec4(tracedEffects(), settings.rayTracing.depth, std::bit_cast<uint32_t>(settings.rayTracing.maxRoughness),
                               itemFlags() | (reducedRates() ? RB_RT_RATES : 0u) |
-                                  (reducedRates() && targets.needs.fillHistory ? RB_RT_TEMPORAL_FILL : 0u));
+                                  (reducedRates() && settings.rayTracing.temporalFill ? RB_RT_TEMPORAL_FILL : 0u));
     probes.writeUniforms(u, settings.reflectionProbes);
     u.previousViewProj = previousViewProj.value_or(u.viewProj);
     u.previousCamera = glm::vec4(previousCamera, previousViewProj ? 1.0f : 0.0f);
@@ -218,9 +221,7 @@ struct Context::Impl {
     if (settings.policy != Policy::Benefit && settings.policy != Policy::Classified) return 0u;
     const RayTracingSettings& rt = settings.rayTracing;
     const bool classify = rt.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
-    const bool measureFill = settings.policy == Policy::Benefit && rt.learnedKeep && reducedRates();
-    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u) |
-           (measureFill ? RB_RT_MEASURE_FILL : 0u);
+    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
   }
 
   // Why the opaque frame behind glass is not lit this frame (PassSkip::None: it is): a host's
@@ -415,9 +416,9 @@ struct Context::Impl {
       selection.recordSelect(fc, s, settings);
     });
     tracedMaskWritten = traced != 0;
-    // Reflections and refractions at a reduced ray rate are filled inside the effects pass
-    // (shaders/include/tile_fill.glsl), shadows in the lighting pass (shaders/include/shadow_fill.glsl).
-    run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc, false); });
+    // Shadows at a reduced ray rate are filled in the lighting pass (shaders/include/shadow_fill.glsl),
+    // reflections and refractions in a pass of their own after the effects pass (fill_effects.comp).
+    run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc); });
     if (traced & RB_RT_SHADOWS) computeToCompute(cmd);
     // The environment fallback first: the lighting pass reads it to measure the display error
     // of the traced shadows (RB_RT_MEASURE_ITEMS).
@@ -426,8 +427,13 @@ struct Context::Impl {
     timed(Pass::Lighting, [&] { lighting.record(fc); });
     const PassSkip effectsSkip = traceSkip(RB_RT_REFLECTIONS | RB_RT_REFRACTIONS, effects.reflections || effects.refractions);
     if (effectsSkip == PassSkip::None) computeToCompute(cmd);
-    run(Pass::TraceEffects, effectsSkip, [&] { traceEffects.recordOverTiles(fc, reducedRates()); });
+    run(Pass::TraceEffects, effectsSkip, [&] { traceEffects.recordOverTiles(fc); });
     computeToCompute(cmd);
+    const PassSkip fillSkip = effectsSkip != PassSkip::None ? effectsSkip : reducedRates() ? PassSkip::None : PassSkip::FullRate;
+    run(Pass::FillEffects, fillSkip, [&] {
+      fillEffects.recordOverTiles(fc);
+      computeToCompute(cmd);
+    });
     timed(Pass::Compose, [&] { compose.record(fc); });
     selection.recordStats(cmd, s);
   }
@@ -482,6 +488,9 @@ struct Context::Impl {
     next.benefitAblation = ablation;
     next.rayTracing.rate = rate;
     validateSettings(next);
+    if (rate != ItemRate::Full && (effects.reflections || effects.refractions) && !targets.needs.fillHistory)
+      throw Error("restartSelection: a reduced ray rate needs the fill's history, which is made only when the renderer is made with a reduced "
+                  "RayTracingSettings::rate");
     collectAll();
     settings = next;
     selection.restart(settings);
@@ -599,13 +608,13 @@ std::vector<std::string> Context::builtPipelines() const {
   if (r.shadowMaps) out.push_back("shadow_maps");
   if (r.probes.built()) out.push_back("reflection_probes");
   if (r.screenReflections.built()) out.push_back("ssr");
-  if (r.traceShadows.builtPlain()) out.push_back("trace_shadows");
+  if (r.traceShadows.built()) out.push_back("trace_shadows");
   // The effects pass's pipelines by the paths they hold: trace_effects(reflections), ...
   const uint32_t paths = r.traceEffects.paths();
   const std::string effects = std::string("trace_effects(") + (paths & RB_RT_REFLECTIONS ? "reflections" : "") +
                               (paths == (RB_RT_REFLECTIONS | RB_RT_REFRACTIONS) ? "," : "") + (paths & RB_RT_REFRACTIONS ? "refractions" : "") + ")";
-  if (r.traceEffects.builtPlain()) out.push_back(effects);
-  if (r.traceEffects.builtFilling()) out.push_back(effects + "+fill");
+  if (r.traceEffects.built()) out.push_back(effects);
+  if (r.fillEffects.built()) out.push_back("fill_effects");
   return out;
 }
 

@@ -67,6 +67,7 @@ const char* passSkipText(PassSkip skip) {
     case PassSkip::None: return "";
     case PassSkip::PolicyTracesNothing: return "the policy traces nothing";
     case PassSkip::BudgetBelowFixedCost: return "the budget is at or below the stage's fixed cost: nothing would be traced";
+    case PassSkip::FullRate: return "every item is traced at full ray rate: nothing to fill";
     case PassSkip::NoEffectInScene: return "the scene has nothing the switched-on effects could trace";
     case PassSkip::EffectsOff: return "its effects are switched off";
     case PassSkip::NoLights: return "no light (with a shadow map) in the scene";
@@ -102,6 +103,7 @@ const char* passName(Pass pass) {
     case Pass::BehindGlass: return "behind_glass";
     case Pass::ReflectionProbes: return "reflection_probes";
     case Pass::ScreenSpaceReflections: return "ssr";
+    case Pass::FillEffects: return "fill_effects";
     case Pass::Count: break;
   }
   return "?";
@@ -115,7 +117,7 @@ double FrameTiming::totalMs() const {
 
 double FrameTiming::traceMs() const {
   double ms = 0.0;
-  for (Pass p : {Pass::TraceShadows, Pass::TraceEffects}) ms += passMs[size_t(p)].value_or(0.0);
+  for (Pass p : {Pass::TraceShadows, Pass::TraceEffects, Pass::FillEffects}) ms += passMs[size_t(p)].value_or(0.0);
   return ms;
 }
 

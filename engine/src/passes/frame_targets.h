@@ -27,7 +27,7 @@ inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
 struct TargetNeeds {
   bool behindGlass = true;            // screen-space transmission: glass in the scene, the fallback on
   bool screenReflections = true;      // a surface smooth enough for screen-space reflections, the fallback on
-  bool fillHistory = false;           // the effects pass's temporal fill (RayTracingSettings::temporalFill)
+  bool fillHistory = false;           // reduced ray rates for reflections or refractions: their fill (shaders/include/fill_history.glsl)
 };
 
 struct FrameTargets {
@@ -39,7 +39,7 @@ struct FrameTargets {
   vk::Image noLayers;  // 1x1, bound where a host's G-buffer has no layers
   // Compute outputs, kept in GENERAL layout.
   vk::Image direct, reflection, refraction, hdr, ldr;
-  vk::Image fillHistory;  // the effects pass's temporal fill: RB_FILL_HISTORY_LAYERS layers (1x1 when it is off)
+  vk::Image fillHistory;  // the reflection and refraction fill's history: RB_FILL_HISTORY_LAYERS layers (1x1 when not needed)
   TargetNeeds needs;      // what the images were made for (the others are 1x1)
   // Raster fallbacks.
   vk::Image shadowMaps;                            // 2D array, one layer per directional/spot light

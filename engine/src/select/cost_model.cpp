@@ -66,21 +66,13 @@ float fillShare(uint32_t effect, float fillPerPixel, float workPerPixel) {
   return float(effect == RB_ITEM_SHADOWS ? RB_FILL_SHARE_PRIOR_SHADOWS : RB_FILL_SHARE_PRIOR);
 }
 
-FillQuality fillQualities(uint32_t effect, FillQuality learned) {
+FillQuality fillQualities(uint32_t effect) {
   const bool shadows = effect == RB_ITEM_SHADOWS, reflections = effect == RB_ITEM_REFLECTIONS;
-  const float sparser =
-      float(shadows ? RB_SIXTEENTH_QUALITY_SHADOWS : reflections ? RB_SIXTEENTH_QUALITY_REFLECTIONS : RB_SIXTEENTH_QUALITY_REFRACTIONS);
-  const float fromQuarter = learned.quarter * sparser;
-  const float fromSixteenth = std::min(exactQuotient(learned.sixteenth, sparser), 1.0f);
-  const float priorSixteenth = float(shadows       ? RB_FILL_QUALITY_SIXTEENTH_SHADOWS
-                                     : reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS
-                                                   : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
-  const float priorQuarter = float(shadows       ? RB_FILL_QUALITY_QUARTER_SHADOWS
-                                   : reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS
-                                                 : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
   FillQuality q;
-  q.sixteenth = learned.sixteenth > 0.0f ? learned.sixteenth : learned.quarter > 0.0f ? fromQuarter : priorSixteenth;
-  q.quarter = learned.quarter > 0.0f ? learned.quarter : learned.sixteenth > 0.0f ? fromSixteenth : priorQuarter;
+  q.sixteenth = float(shadows       ? RB_FILL_QUALITY_SIXTEENTH_SHADOWS
+                      : reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS
+                                    : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
+  q.quarter = float(shadows ? RB_FILL_QUALITY_QUARTER_SHADOWS : reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
   return q;
 }
 
@@ -99,8 +91,8 @@ struct Option {
 bool aboveChord(Option a, Option b, Option c) { return (b.value - a.value) * (c.cost - a.cost) > (c.value - a.value) * (b.cost - a.cost); }
 }  // namespace
 
-uint32_t rateHull(uint32_t effect, float fill, FillQuality learned) {
-  const FillQuality q = fillQualities(effect, learned);
+uint32_t rateHull(uint32_t effect, float fill) {
+  const FillQuality q = fillQualities(effect);
   const Option skip{0.0f, 0.0f}, full{1.0f, 1.0f};
   const Option sixteenth{rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q)};
   const Option quarter{rateShare(RB_RATE_QUARTER, fill), keepShare(RB_RATE_QUARTER, q)};
@@ -110,8 +102,8 @@ uint32_t rateHull(uint32_t effect, float fill, FillQuality learned) {
   return (onSixteenth ? RB_HULL_SIXTEENTH : 0u) | (onQuarter ? RB_HULL_QUARTER : 0u);
 }
 
-uint32_t rateSegments(uint32_t effect, float fill, FillQuality learned) {
-  return 1u + uint32_t(std::popcount(rateHull(effect, fill, learned)));
+uint32_t rateSegments(uint32_t effect, float fill) {
+  return 1u + uint32_t(std::popcount(rateHull(effect, fill)));
 }
 
 namespace {
@@ -125,9 +117,9 @@ uint32_t segmentRate(uint32_t k, uint32_t hull) {
 }
 }  // namespace
 
-RateSegment rateSegment(uint32_t effect, uint32_t k, float fill, FillQuality learned) {
-  const uint32_t hull = rateHull(effect, fill, learned);
-  const FillQuality q = fillQualities(effect, learned);
+RateSegment rateSegment(uint32_t effect, uint32_t k, float fill) {
+  const uint32_t hull = rateHull(effect, fill);
+  const FillQuality q = fillQualities(effect);
   const uint32_t rate = segmentRate(k, hull), from = k == 0 ? 0u : segmentRate(k - 1, hull);
   const float costFrom = k == 0 ? 0.0f : rateShare(from, fill), valueFrom = k == 0 ? 0.0f : keepShare(from, q);
   return {rateShare(rate, fill) - costFrom, keepShare(rate, q) - valueFrom, rate};
@@ -164,14 +156,6 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
       after.benefit = before.measured ? 0.5f * (before.benefit + removed) : removed;
       after.measured = true;
     }
-  }
-  // How well its fill kept the benefit where its reduced rate traced.
-  if ((ablation & RB_BENEFIT_LEARNED_KEEP) && pixels > 0 && learnBenefit && !counts.probed && (counts.rate == RB_RATE_QUARTER || counts.rate == RB_RATE_SIXTEENTH) &&
-      float(counts.error) >= float(RB_FILL_QUALITY_MIN_ERROR * RB_ERROR_UNITS)) {
-    const float observed =
-        std::clamp(1.0f - exactQuotient(float(counts.fillError), float(counts.error)), float(RB_FILL_QUALITY_MIN), 1.0f);
-    float& q = counts.rate == RB_RATE_SIXTEENTH ? after.fillQuality.sixteenth : after.fillQuality.quarter;
-    q = averagedWith(q, observed);
   }
   if (counts.skippedPixels > 0 && exchange > 0.0f && counts.skippedTicks > 0)
     after.fillPerPixel = averagedWith(before.fillPerPixel, exactQuotient(float(counts.skippedTicks), float(counts.skippedPixels)) * exchange);

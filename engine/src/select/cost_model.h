@@ -32,28 +32,27 @@ float fillShare(uint32_t effect, float fillPerPixel, float workPerPixel);
 // a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
 float exactQuotient(float a, float b);
 
-// How well an item's fill keeps its benefit at 1/16 and at 1/4 (shared/selection.h's q; 0: not
-// learned), and the qualities its rates are valued at: the learned ones, else the other rate's
-// scaled by RB_SIXTEENTH_QUALITY_*, else the prior (select_common.glsl's fillQualities).
+// How well an effect's fill keeps its benefit at 1/16 and at 1/4: shared/selection.h's prior q
+// (select_common.glsl's fillQualities).
 struct FillQuality {
   float sixteenth = 0.0f, quarter = 0.0f;
 };
-FillQuality fillQualities(uint32_t effect, FillQuality learned);
+FillQuality fillQualities(uint32_t effect);
 // The share of an item's full-rate value `rate` keeps at the qualities q (1 at full rate).
 float keepShare(uint32_t rate, FillQuality q);
 
 // RB_RATE_AUTO's segments of an item (shared/selection.h; select_common.glsl's rateHull,
 // segmentRate, segmentCostShare, segmentValueShare): the reduced rates on the upper convex hull
 // of its options (RB_HULL_* bits), how many segments it offers, and segment k's share of the
-// item's full-rate cost (at fill share `fill`) and value (at its fill's learned qualities) and
+// item's full-rate cost (at fill share `fill`) and value (at its effect's fill qualities) and
 // the rate (RB_RATE_*) taking it reaches.
 struct RateSegment {
   float costShare = 1.0f, valueShare = 1.0f;
   uint32_t rate = 0;
 };
-uint32_t rateHull(uint32_t effect, float fill, FillQuality learned = {});
-uint32_t rateSegments(uint32_t effect, float fill = float(RB_FILL_SHARE_PRIOR), FillQuality learned = {});
-RateSegment rateSegment(uint32_t effect, uint32_t k, float fill = float(RB_FILL_SHARE_PRIOR), FillQuality learned = {});
+uint32_t rateHull(uint32_t effect, float fill);
+uint32_t rateSegments(uint32_t effect, float fill = float(RB_FILL_SHARE_PRIOR));
+RateSegment rateSegment(uint32_t effect, uint32_t k, float fill = float(RB_FILL_SHARE_PRIOR));
 
 // An object's work per traced pixel after a frame that counted `work` over `pixels`: the
 // mean of what it knew and the observation (the observation alone when it knew nothing,
@@ -79,7 +78,6 @@ struct ItemLearned {
   float benefit = 0.0f;
   bool measured = false;
   float fillPerPixel = 0.0f;  // per pixel its reduced rate skipped (0: not learned)
-  FillQuality fillQuality;    // learned where a reduced rate traced it
 };
 // What an item knows after a frame that counted `work` and `error` (in 1/RB_ERROR_UNITS) over
 // the `pixels` it was traced on (0: not traced; its benefit drifts to `prior`, the item's
@@ -90,14 +88,13 @@ struct ItemLearned {
 // `probed`: the item was left out, so its counts are the probe's few tiles, which move the
 // work per pixel (or, before that was learned, `priorWorkPerPixel`) by a share growing with
 // the pixels probed (RB_PROBE_TRUSTED_PIXELS), not to their mean. Its cost per pixel a reduced
-// rate skipped (fillPerPixel) is learned from those pixels' ticks at the same exchange rate, and
-// its fill's quality at that rate from `fillError` against `error` (select_candidates.comp).
+// rate skipped (fillPerPixel) is learned from those pixels' ticks at the same exchange rate
+// (select_candidates.comp).
 struct ItemCounts {
   uint32_t work = 0, ticks = 0, error = 0, pixels = 0;
   bool probed = false;
   uint32_t rate = RB_RATE_FULL;  // the rate it was traced at (its ticks' pixels: tracedPixelCost)
   uint32_t skippedTicks = 0, skippedPixels = 0;  // of the pixels that rate skipped (their fill)
-  uint32_t fillError = 0;  // the fill's predicted error at its traced pixels (1/RB_ERROR_UNITS)
 };
 // The clock time of a pixel `rate` traces over full rate's per pixel (shared/selection.h's
 // RB_TRACED_PIXEL_COST_*; 1 at full rate).

@@ -41,20 +41,18 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget)
   if (s.benefitAblation == BenefitAblation::NoCentrality) ablation = RB_BENEFIT_WITHOUT_CENTRALITY;
   if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
   if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
-  if (rt.learnedKeep) ablation |= RB_BENEFIT_LEARNED_KEEP;
   return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate)};
 }
 
 // An item's rate (RB_RATE_*) in an object's word of the frame's selection (rates.glsl's itemRate).
 uint32_t selectedRate(uint32_t word, uint32_t effect) { return (word >> (RB_RATE_SHIFT + 2 * effect)) & 3u; }
 
-// An item's fill share and learned fill qualities as the candidate pass left them (its segments: rateSegment).
+// An item's fill share as the candidate pass left it (its segments: rateSegment).
 float itemFill(uint32_t effect, const gpu::GpuItemCost& item) { return fillShare(effect, item.fillPerPixel, item.workPerPixel); }
-FillQuality itemFillQuality(const gpu::GpuItemCost& item) { return {item.fillQualitySixteenth, item.fillQualityQuarter}; }
 
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each), or
 // with rates chosen per item each selected item's segments up to the one its rate ends on
-// (`learned`: the items as the candidate pass left them, whose fill shares and qualities set their segments).
+// (`learned`: the items as the candidate pass left them, whose fill shares set their segments).
 std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments, const gpu::GpuItemCost* learned) {
   std::vector<uint32_t> ids;
   for (uint32_t i = 0; i < objects; ++i)
@@ -68,8 +66,7 @@ std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool 
       const uint32_t rate = selectedRate(flags[i], e);
       uint32_t last = 0;
       const float fill = itemFill(e, learned[id]);
-      const FillQuality quality = itemFillQuality(learned[id]);
-      while (last + 1 < rateSegments(e, fill, quality) && rateSegment(e, last, fill, quality).rate != rate) ++last;
+      while (last + 1 < rateSegments(e, fill) && rateSegment(e, last, fill).rate != rate) ++last;
       for (uint32_t k = 0; k <= last; ++k) ids.push_back(id * RB_SEGMENT_SLOTS + k);
     }
   return ids;
@@ -304,9 +301,9 @@ struct SelectionStage::Impl {
     for (uint32_t id = 0; id < items; ++id) {
       const uint32_t i = id / RB_ITEMS_PER_OBJECT, e = id % RB_ITEMS_PER_OBJECT;
       const gpu::GpuItemCost& b = before[id];
-      learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0, b.fillPerPixel, itemFillQuality(b)},
+      learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0, b.fillPerPixel},
                               {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0, b.selectedLast == 0 ? RB_RATE_FULL : b.selectedLast - 1,
-                               b.skippedTicks, b.skippedPixels, b.fillError},
+                               b.skippedTicks, b.skippedPixels},
                               exchange, frame.ablation,
                               priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
       fill[id] = fillShare(e, learned[id].fillPerPixel, learned[id].workPerPixel);
@@ -316,16 +313,14 @@ struct SelectionStage::Impl {
       const uint32_t rate = selectedRate(selected[i], e);
       if (std::bit_cast<uint32_t>(a.workPerPixel) != std::bit_cast<uint32_t>(learned[id].workPerPixel) ||
           std::bit_cast<uint32_t>(a.benefit) != std::bit_cast<uint32_t>(learned[id].benefit) || (a.measured != 0) != learned[id].measured ||
-          std::bit_cast<uint32_t>(a.fillPerPixel) != std::bit_cast<uint32_t>(learned[id].fillPerPixel) ||
-          std::bit_cast<uint32_t>(a.fillQualitySixteenth) != std::bit_cast<uint32_t>(learned[id].fillQuality.sixteenth) ||
-          std::bit_cast<uint32_t>(a.fillQualityQuarter) != std::bit_cast<uint32_t>(learned[id].fillQuality.quarter) || a.fillError != 0 || a.skippedTicks != 0 ||
+          std::bit_cast<uint32_t>(a.fillPerPixel) != std::bit_cast<uint32_t>(learned[id].fillPerPixel) || a.skippedTicks != 0 ||
           a.skippedPixels != 0 || a.work != 0 || a.ticks != 0 || a.error != 0 || a.selectedLast != (on ? 1u + rate : 0u) ||
           a.pixels != (on && rate == RB_RATE_FULL ? pixelsOf(i, e) : 0u))
         return false;
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
-      if (candidate) expected += segments ? rateSegments(e, fill[id], learned[id].fillQuality) : 1u;
+      if (candidate) expected += segments ? rateSegments(e, fill[id]) : 1u;
       const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
       if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
     }
@@ -341,8 +336,8 @@ struct SelectionStage::Impl {
       float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
       if (segments) {
         const uint32_t k = c.id % RB_SEGMENT_SLOTS;
-        if (k >= rateSegments(e, fill[item], learned[item].fillQuality)) return false;
-        const RateSegment s = rateSegment(e, k, fill[item], learned[item].fillQuality);
+        if (k >= rateSegments(e, fill[item])) return false;
+        const RateSegment s = rateSegment(e, k, fill[item]);
         cost *= s.costShare;
         value *= s.valueShare;
       }
@@ -465,8 +460,6 @@ struct SelectionStage::Impl {
         out[i].itemBenefit[e] = item.benefit;
         out[i].itemCostPerPixel[e] = item.workPerPixel;
         out[i].itemFillPerPixel[e] = item.fillPerPixel;
-        out[i].itemFillQualitySixteenth[e] = item.fillQualitySixteenth;
-        out[i].itemFillQualityQuarter[e] = item.fillQualityQuarter;
         if (totals.selectedLast == i * RB_ITEMS_PER_OBJECT + e + 1 && ((selected[i] >> e) & 1u)) out[i].itemTileShare[e] = totals.benefit;
       }
     }

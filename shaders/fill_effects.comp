@@ -1,0 +1,36 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_ARB_shader_clock : require
+#include "include/bindings.glsl"
+#include "include/gbuffer.glsl"
+#include "include/item_stats.glsl"
+#include "include/probe.glsl"
+#include "include/rates.glsl"
+#include "include/tile_pixel.glsl"
+#include "include/effect_fill.glsl"
+
+// The fill of the reflections and refractions that reduced ray rates skipped this frame
+// (include/effect_fill.glsl), over the effects pass's tiles, in the ray-tracing stage. With
+// RB_RT_MEASURE_ITEMS each filled pixel's time is charged to its items (their cost per pixel
+// a reduced rate skips, GpuItemCost::fillPerPixel): the subgroup's span shared among the lanes
+// that filled, each one's split over the paths it filled. Where the effects pass filled inside
+// itself (shared memory behind a barrier, which lavapipe runs as coroutines) a skipped pixel
+// cost it nearly as much as here, and the pass at 1/16 traced at 0.32 of full rate's time on
+// the court (640x360) where its rays alone took 0.16.
+layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+
+void main() {
+  ivec2 pixel = tilePixel(RB_EFFECT_TILES);
+  uint start = clockNow();
+  uint objectId;
+  bvec2 filled = fillEffects(pixel, objectId);
+  if (!measuringItems()) return;
+  bool filling = any(filled);
+  uint share = clockShare(start, clockNow(), subgroupAdd(filling ? 1u : 0u));
+  uvec2 paths = uvec2(filled);
+  uint each = share / max(paths.x + paths.y, 1u);
+  addItemCounts(filling ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(0u, paths * each), uvec3(0u, paths));
+}

@@ -1,0 +1,114 @@
+// The fill of the reflections and refractions a reduced ray rate skipped (include/rates.glsl),
+// a pass of its own after the effects pass (fill_effects.comp): at a pixel its reflection (refraction) item's rate skipped this frame,
+// first, with the temporal fill, what tracing changed there when last traced, reprojected
+// (include/fill_history.glsl); else the weighted mean (include/fill_weights.glsl) of what tracing
+// changed against the fallback at the pixels around it that the rate traced on the same object
+// this frame (their history, age 0), added to this pixel's fallback in reflectionImage
+// (refractionImage). Filling the change rather than the radiance keeps this pixel's own
+// environment where the neighbours' rays escaped to it. It reads across tiles. Where no
+// neighbour qualifies the fallback stays.
+// The includer includes bindings.glsl, gbuffer.glsl, rates.glsl and probe.glsl.
+#ifndef RB_EFFECT_FILL_GLSL
+#define RB_EFFECT_FILL_GLSL
+#include "include/fill_history.glsl"
+#include "include/fill_weights.glsl"
+
+// Whether the frame traces the surface's reflection (x) and transmission (y) path where its
+// item is traced: `paths` (RB_RT_* bits) hold it, the effect is on, and the surface is smooth
+// enough (transmissive).
+bvec2 surfacePaths(Surface s, uint paths) {
+  uint effects = frame.rayTracing.x & paths;
+  return bvec2((effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness(),
+               (effects & RB_RT_REFRACTIONS) != 0u && s.transmission * (1.0 - s.metallic) > 0.0);
+}
+
+// The weighted mean change, shrunk towards none (the fallback) by its spread: m |m|^2 / (|m|^2 +
+// variance), so neighbours that agree are filled in whole and ones that disagree (a small
+// curved mirror, whose neighbours a few pixels away reflect other directions) leave the
+// fallback nearly as it is, where their mean would add noise.
+vec3 shrunkMean(vec3 sum, vec3 squares, float weight) {
+  vec3 mean = sum / weight;
+  vec3 variance = max(squares / weight - mean * mean, vec3(0.0));
+  float signal = dot(mean, mean), spread = variance.x + variance.y + variance.z;
+  return signal > 0.0 ? mean * (signal / (signal + spread)) : vec3(0.0);
+}
+
+// Adds to the sums of the paths in `want` (0 reflection, 1 refraction) what tracing changed at
+// the pixels around `pixel` that `rate` traced this frame on c's object. Their history holds
+// all the fill reads there: the object, whether the path was traced (age 0), the change, and
+// the point's distance and normal for its weight (the position on the pixel's view ray at that
+// distance), so a source costs two image loads and no G-buffer read.
+void gatherChanges(ivec2 pixel, FillCentre c, uint rate, bool want[2], inout vec3 sum[2], inout vec3 squares[2], inout float total[2]) {
+  ivec2 at[4];
+  float near[4];
+  fillLattice(pixel, rate, at, near);
+  for (int k = 0; k < 4; ++k) {
+    if (near[k] <= 0.0) continue;
+    History h = currentHistory(at[k], c.objectId);
+    bool use[2] = bool[2](want[0] && h.age[0] == 0u, want[1] && h.age[1] == 0u);
+    if (!use[0] && !use[1]) continue;
+    vec3 position = frame.cameraPositionNear.xyz + viewDirection(at[k]) * h.distance;
+    float w = near[k] * fillSimilarity(c, position, octDecode(unpackSnorm2x16(h.normal)));
+    for (int path = 0; path < 2; ++path)
+      if (use[path]) {
+        sum[path] += w * h.change[path];
+        squares[path] += w * h.change[path] * h.change[path];
+        total[path] += w;
+      }
+  }
+}
+
+void addToPath(ivec2 pixel, int path, vec3 change) {
+  if (path == 0) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + change, 1.0));
+  else imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + change, 1.0));
+}
+
+// Fills the pixel's paths (x reflection, y refraction) that their items' reduced rates skipped
+// this frame; returns them, and the pixel's object.
+bvec2 fillEffects(ivec2 pixel, out uint objectId) {
+  objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
+  if (objectId == RB_NO_OBJECT) return bvec2(false);
+  Selection sel = selectionAt(objectId, pixel);
+  uint rates[2] = uint[2](itemRate(sel, RB_ITEM_REFLECTIONS), itemRate(sel, RB_ITEM_REFRACTIONS));
+  bool skipped[2] = bool[2](itemSelected(sel, RB_ITEM_REFLECTIONS) && !rateTraces(rates[0], pixel),
+                            itemSelected(sel, RB_ITEM_REFRACTIONS) && !rateTraces(rates[1], pixel));
+  if (!skipped[0] && !skipped[1]) return bvec2(false);
+  Surface s;
+  if (!readFillSurface(pixel, objectId, s)) return bvec2(false);
+  bvec2 paths = surfacePaths(s, RB_RT_REFLECTIONS | RB_RT_REFRACTIONS);
+  bool pending[2] = bool[2](skipped[0] && paths.x, skipped[1] && paths.y);
+  bvec2 filled = bvec2(pending[0], pending[1]);
+  if (!any(filled)) return filled;
+  History now = noHistory();
+  bool carried = false;
+  if (temporalFill()) {
+    History h = previousHistory(s.position, objectId);
+    for (int path = 0; path < 2; ++path)
+      if (pending[path] && historyFits(h.age[path], h.turn[path], rates[path])) {
+        // The other path, where its item's rate traced it here, is kept where the history is written.
+        if (!carried && itemSelected(sel, path == 0 ? RB_ITEM_REFRACTIONS : RB_ITEM_REFLECTIONS) && !skipped[1 - path])
+          now = currentHistory(pixel, objectId);
+        addToPath(pixel, path, h.change[path]);
+        now.change[path] = h.change[path];
+        now.age[path] = h.age[path] + 1u;
+        now.turn[path] = h.turn[path];
+        pending[path] = false;
+        carried = true;
+      }
+  }
+  if (pending[0] || pending[1]) {
+    FillCentre c = fillCentre(objectId, s.position, s.normal);
+    vec3 sum[2] = vec3[2](vec3(0.0), vec3(0.0)), squares[2] = vec3[2](vec3(0.0), vec3(0.0));
+    float total[2] = float[2](0.0, 0.0);
+    // Both paths from one gather where their rates agree.
+    bool both = pending[0] && pending[1] && rates[0] == rates[1];
+    if (pending[0]) gatherChanges(pixel, c, rates[0], bool[2](true, both), sum, squares, total);
+    if (pending[1] && !both) gatherChanges(pixel, c, rates[1], bool[2](false, true), sum, squares, total);
+    for (int path = 0; path < 2; ++path)
+      if (pending[path] && total[path] >= RB_FILL_MIN_WEIGHT) addToPath(pixel, path, shrunkMean(sum[path], squares[path], total[path]));
+  }
+  if (carried) writeHistory(pixel, now.change, now.age, now.turn, objectId, s.position, s.normal);
+  return filled;
+}
+
+#endif
