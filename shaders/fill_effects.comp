@@ -16,10 +16,10 @@
 // (include/effect_fill.glsl), over the effects pass's tiles, in the ray-tracing stage. With
 // RB_RT_MEASURE_ITEMS each filled pixel's time is charged to its items (their cost per pixel
 // a reduced rate skips, GpuItemCost::fillPerPixel): the subgroup's span shared among the lanes
-// that filled, each one's split over the paths it filled. Where the effects pass filled inside
-// itself (shared memory behind a barrier, which lavapipe runs as coroutines) a skipped pixel
-// cost it nearly as much as here, and the pass at 1/16 traced at 0.32 of full rate's time on
-// the court (640x360) where its rays alone took 0.16.
+// that filled, each one's split over the paths it filled. The fill ran inside the effects pass
+// before, from the tile's traced pixels in shared memory behind a barrier (which lavapipe runs
+// as coroutines): as a pass of its own it costs about the same and reads across tiles
+// (docs/SELECTION.md, "Ray rates").
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
 
 void main() {
