@@ -96,19 +96,27 @@ TEST(Items, ItemsLearnTheTimeOfTheRaysTheirPriorCounts) {
       for (const FrameTiming& t : renderer.render(itemCamera())) timings.push_back(t);
     for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
   };
-  run(4);
-  // A budget everything fits in three times over: frames that use a quarter of their budget
-  // teach the time scale (cost_model.cpp).
-  ASSERT_GT(timings.back().rtStageMs(), 0.0);
-  renderer.setBudget(float(3.0 * timings.back().rtStageMs()));
+  run(6);
+  // A budget everything fits in twice over: frames that use a quarter of their budget teach
+  // the time scale (cost_model.cpp). From the median warm frame, not the last one: set from one
+  // frame slowed by a busy machine, the budget let no frame teach it.
+  std::vector<double> warm;
+  for (size_t f = 2; f < timings.size(); ++f) warm.push_back(timings[f].rtStageMs());
+  std::sort(warm.begin(), warm.end());
+  ASSERT_FALSE(warm.empty());
+  ASSERT_GT(warm[warm.size() / 2], 0.0);
+  renderer.setBudget(float(2.0 * warm[warm.size() / 2]));
   timings.clear();
-  run(12);
+  run(16);  // more than the time scale's window (RecentMedian::kSize), so that it holds these frames alone
   const CostModel model = renderer.costModel();
   test::expectValidationClean(renderer.validationMessages());
   std::vector<double> perTracedRay;
   for (const FrameTiming& t : timings)
     if (t.raysTraced > 0 && t.measuredTraceMs > model.traceFixedMs) perTracedRay.push_back((t.measuredTraceMs - model.traceFixedMs) / t.raysTraced);
-  ASSERT_GE(perTracedRay.size(), 6u);
+  ASSERT_GE(perTracedRay.size(), 7u);
+  // The last 7 frames, the time scale's window: a machine whose load changes during the run
+  // (the other tests beside this one) times the earlier frames otherwise.
+  perTracedRay.erase(perTracedRay.begin(), perTracedRay.end() - 7);
   std::sort(perTracedRay.begin(), perTracedRay.end());
   const double median = perTracedRay[perTracedRay.size() / 2];
   EXPECT_EQ(model.msPerRay, 0.0) << "no object's ray was timed";
