@@ -70,14 +70,14 @@ bool transmittedRay(vec3 p, vec3 ng, vec3 V, vec3 n, float ior, uint materialId,
 // refraction, one without smooth surfaces no reflection.
 layout(constant_id = RB_PATHS_CONSTANT_ID) const uint rbPaths = RB_RT_REFLECTIONS | RB_RT_REFRACTIONS;
 
-void traceEffects(ivec2 pixel, Surface s, Selection sel) {
+// `here`: the paths its items trace at this pixel this frame (pathsHere).
+void traceEffects(ivec2 pixel, Surface s, Selection sel, bvec2 here) {
   // Per path: whether its item is probed here rather than selected.
   bool probed[2] = bool[2](!itemSelected(sel, RB_ITEM_REFLECTIONS) && itemProbed(sel, RB_ITEM_REFLECTIONS, pixel),
                            !itemSelected(sel, RB_ITEM_REFRACTIONS) && itemProbed(sel, RB_ITEM_REFRACTIONS, pixel));
   uint rates[2] = uint[2](itemRate(sel, RB_ITEM_REFLECTIONS), itemRate(sel, RB_ITEM_REFRACTIONS));
   bvec2 paths = surfacePaths(s, rbPaths);
-  bool reflects = paths.x && ((itemSelected(sel, RB_ITEM_REFLECTIONS) && rateTraces(rates[0], pixel)) || probed[0]);
-  bool refracts = paths.y && ((itemSelected(sel, RB_ITEM_REFRACTIONS) && rateTraces(rates[1], pixel)) || probed[1]);
+  bool reflects = paths.x && here.x, refracts = paths.y && here.y;
   if (!reflects && !refracts) return;  // the environment fallback stands
   rbPriorRays = (reflects ? priorRays(RB_ITEM_REFLECTIONS) : 0u) + (refracts ? priorRays(RB_ITEM_REFRACTIONS) : 0u);
   uint start = clockNow();
@@ -147,7 +147,8 @@ void main() {
   uint objectId = texelFetch(gObjectId, pixel, 0).r;
   if (objectId == RB_NO_OBJECT) return;
   Selection sel = selectionAt(objectId, pixel);
-  if (!any(pathsHere(sel, pixel))) return;  // fill_effects.comp fills what a reduced rate skipped here
+  bvec2 here = pathsHere(sel, pixel);
+  if (!any(here)) return;  // fill_effects.comp fills what a reduced rate skipped here
   Surface s;
-  if (readSurface(pixel, s) && !s.unlit) traceEffects(pixel, s, sel);
+  if (readSurface(pixel, s) && !s.unlit) traceEffects(pixel, s, sel, here);
 }

@@ -4,9 +4,9 @@
 // changed there when last traced, reprojected (include/fill_history.glsl); else the weighted
 // mean (include/fill_weights.glsl) of what tracing changed against the fallback at the pixels
 // around it that the rate traced on the same object this frame (their history, age 0); added
-// to this pixel's fallback in reflectionImage (refractionImage). Filling the change rather than the radiance keeps this pixel's own
-// environment where the neighbours' rays escaped to it. It reads across tiles. Where no
-// neighbour qualifies the fallback stays.
+// to this pixel's fallback in reflectionImage (refractionImage). Filling the change rather
+// than the radiance keeps this pixel's own environment where the neighbours' rays escaped to
+// it. It reads across tiles. Where no neighbour qualifies the fallback stays.
 // The includer includes bindings.glsl, gbuffer.glsl, rates.glsl and probe.glsl.
 #ifndef RB_EFFECT_FILL_GLSL
 #define RB_EFFECT_FILL_GLSL

@@ -1,10 +1,10 @@
 // The history of reduced ray rates for reflections and refractions (include/effect_fill.glsl):
 // per pixel what tracing changed against the fallback, traced minus fallback, per path. The
-// effects pass writes it where a path was traced and shown this frame (age 0): compose's
-// spatial fill reads this frame's at the traced neighbours of a pixel a rate skipped. With the
-// temporal fill (RB_RT_TEMPORAL_FILL, RayTracingSettings::temporalFill) a skipped pixel first
-// adds to its fallback the change where it was last traced, reprojected, and compose writes
-// it on with its age, before the spatial fill gets the rest. Carrying the change rather than
+// effects pass writes it where a path was traced and shown this frame (age 0): the fill pass
+// (fill_effects.comp) reads this frame's at the traced neighbours of a pixel a rate skipped.
+// With the temporal fill (RB_RT_TEMPORAL_FILL, RayTracingSettings::temporalFill) a skipped
+// pixel first adds to its fallback the change where it was last traced, reprojected, and the
+// fill pass writes it on with its age, before the spatial fill gets the rest. Carrying the change rather than
 // the traced value lets the fallback follow the view, as the spatial fill does.
 // What the previous frame left at the point is valid only where all of these hold:
 //   - it was written by the previous frame, on the same object;

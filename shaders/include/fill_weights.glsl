@@ -1,9 +1,10 @@
 // The sources and weights of a reduced ray rate's fill (include/shadow_fill.glsl in the
-// lighting pass, include/effect_fill.glsl in compose): a pixel its item skipped this frame
-// takes the weighted mean of what was traced around it on the same object (never another
-// object's, nor an unlit pixel), across tiles: at 1/2 the four pixels beside it; at 1/4 the
-// lattice points its rate traced among the 3x3 pixels around it (one to four); at 1/16 the
-// four nearest, one per 4x4 block around it. Each traced neighbour is weighted by
+// lighting pass, include/effect_fill.glsl in the fill pass after the effects pass): a pixel
+// its item skipped this frame takes the weighted mean of what was traced around it on the
+// same object (never another object's, nor an unlit pixel), across tiles: at 1/2 the four
+// pixels beside it; at 1/4 the lattice points its rate traced among the 3x3 pixels around it
+// (one to four); at 1/16 the four nearest, one per 4x4 block around it. Each traced neighbour
+// is weighted by
 //   distance  exp(-d^2 / 2), d in pixels (exp(-d^2 / 8) for 1/16's sparser samples);
 //   depth     max(0, 1 - h / (RB_FILL_PLANE * r)), h the neighbour's distance from the
 //             pixel's tangent plane, r the pixel's distance from the camera;

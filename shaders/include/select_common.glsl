@@ -162,11 +162,11 @@ uint rateHull(uint effect, float fill) {
   return (onSixteenth ? RB_HULL_SIXTEENTH : 0u) | (onQuarter ? RB_HULL_QUARTER : 0u);
 }
 
-// RB_RATE_AUTO's segments of an item of `effect` with the rates `hull` (rateHull): how many, the
+// RB_RATE_AUTO's segments of an item with the rates `hull` (rateHull): how many, the
 // rate segment k reaches, and its shares of the item's full-rate value (at fill qualities q)
 // and cost (at fill share `fill`) (cost_model.cpp's rateSegment is the CPU reference).
-uint rateSegments(uint effect, uint hull) { return 1u + bitCount(hull); }
-uint segmentRate(uint effect, uint k, uint hull) {
+uint rateSegments(uint hull) { return 1u + bitCount(hull); }
+uint segmentRate(uint k, uint hull) {
   uint step = k;
   if ((hull & RB_HULL_SIXTEENTH) != 0u) {
     if (step == 0u) return RB_RATE_SIXTEENTH;
@@ -175,12 +175,12 @@ uint segmentRate(uint effect, uint k, uint hull) {
   if ((hull & RB_HULL_QUARTER) != 0u && step == 0u) return RB_RATE_QUARTER;
   return RB_RATE_FULL;
 }
-float segmentValueShare(uint effect, uint k, uint hull, vec2 q) {
-  precise float gain = keepShare(segmentRate(effect, k, hull), q) - (k == 0u ? 0.0 : keepShare(segmentRate(effect, k - 1u, hull), q));
+float segmentValueShare(uint k, uint hull, vec2 q) {
+  precise float gain = keepShare(segmentRate(k, hull), q) - (k == 0u ? 0.0 : keepShare(segmentRate(k - 1u, hull), q));
   return gain;
 }
-float segmentCostShare(uint effect, uint k, float fill, uint hull) {
-  precise float cost = rateShare(segmentRate(effect, k, hull), fill) - (k == 0u ? 0.0 : rateShare(segmentRate(effect, k - 1u, hull), fill));
+float segmentCostShare(uint k, float fill, uint hull) {
+  precise float cost = rateShare(segmentRate(k, hull), fill) - (k == 0u ? 0.0 : rateShare(segmentRate(k - 1u, hull), fill));
   return cost;
 }
 // The rates on item `item`'s hull this frame, from what the candidate pass learned (the walk

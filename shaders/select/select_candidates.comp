@@ -140,8 +140,8 @@ void main() {
       uint hull = rateHull(effect, fill);
       vec2 q = fillQualities(effect);
       for (uint k = 0u; k < 3u; ++k)
-        append(add && k < rateSegments(effect, hull), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(effect, k, fill, hull),
-               value * segmentValueShare(effect, k, hull, q), r.apdv.z);
+        append(add && k < rateSegments(hull), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(k, fill, hull),
+               value * segmentValueShare(k, hull, q), r.apdv.z);
     }
     return;
   }

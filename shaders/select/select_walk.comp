@@ -62,7 +62,7 @@ void markLevels() {
   for (uint item = gl_SubgroupInvocationID; item < segmentGroups(); item += gl_SubgroupSize) {
     uint effect = item % RB_ITEMS_PER_OBJECT, level = scratch[item];
     if (level == 0u) continue;
-    uint rate = segmentRate(effect, level - 1u, itemHull(item));
+    uint rate = segmentRate(level - 1u, itemHull(item));
     atomicOr(selected[item / RB_ITEMS_PER_OBJECT], (1u << effect) | (rate << (RB_RATE_SHIFT + 2u * effect)));
   }
 }

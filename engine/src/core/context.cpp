@@ -39,6 +39,10 @@ namespace {
 
 constexpr uint32_t kFramesInFlight = 2;
 
+// Whether reflections and refractions at `rate` need the fill's history (64 bytes a pixel):
+// a reduced rate on a scene that shows either.
+bool needsFillHistory(ItemRate rate, const SceneEffects& effects) { return rate != ItemRate::Full && (effects.reflections || effects.refractions); }
+
 }  // namespace
 
 struct Context::Impl {
@@ -104,8 +108,7 @@ struct Context::Impl {
                                            uint32_t(raybudget::reflectionProbesOf(s).size()),
                                            {.behindGlass = rs.screenSpaceTransmission && passes::GBufferPass::anyTransmissive(scene),
                                             .screenReflections = rs.screenSpaceReflections && ssrUseful,
-                                            .fillHistory = rs.rayTracing.rate != ItemRate::Full &&
-                                                           (effects.reflections || effects.refractions)})),
+                                            .fillHistory = needsFillHistory(rs.rayTracing.rate, effects)})),
         samplers(passes::createSamplers(ctx)),
         layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
         timestamps(ctx, kFramesInFlight, kPassCount),
@@ -488,7 +491,7 @@ struct Context::Impl {
     next.benefitAblation = ablation;
     next.rayTracing.rate = rate;
     validateSettings(next);
-    if (rate != ItemRate::Full && (effects.reflections || effects.refractions) && !targets.needs.fillHistory)
+    if (needsFillHistory(rate, effects) && !targets.needs.fillHistory)
       throw Error("restartSelection: a reduced ray rate needs the fill's history, which is made only when the renderer is made with a reduced "
                   "RayTracingSettings::rate");
     collectAll();
