@@ -8,6 +8,7 @@ what an earlier run into OUT measured is kept but for the scenes measured again.
 
 usage: bench/fallbacks.py [--out DIR] [--scenes FILE...] [--size WxH] [--timing-size WxH]
                           [--frames N] [--warmup N] [--timing-frames N] [--only flip|timings]
+                          [--configs NAME...] [--extra 'OPTIONS']
 
 `none` renders no rays and `all` no budget, so their images, and the FLIP between them, do
 not depend on the machine's speed; the timings do. Needs flip-evaluator (.venv-bench).
@@ -43,7 +44,7 @@ def sweep(a, scene, config, out):
     w, h = a.size.split("x")
     cmd = [a.raybudget, "sweep", str(scene), "--out", str(out), "--width", w, "--height", h, "--frames", str(a.frames),
            "--warmup", str(a.warmup), "--repeats", "1", "--policies", "benefit", "--budget-list", "1", "--no-classified",
-           "--order-seed", "0"] + flags(config)
+           "--order-seed", "0"] + flags(config) + a.extra.split()
     proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if proc.returncode != 0:
         print(proc.stdout[-2000:], file=sys.stderr)
@@ -57,7 +58,7 @@ def pass_timings(a, scene, out):
     """Median ms per pass of `none` with every fallback, from --explain."""
     w, h = a.timing_size.split("x")
     cmd = [a.raybudget, "render", str(scene), "--policy", "none", "--camera", "orbit", "--frames", str(a.timing_frames),
-           "--width", w, "--height", h, "--explain", "--out", str(out)]
+           "--width", w, "--height", h, "--explain", "--out", str(out)] + a.extra.split()
     proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     found = {}
     for line in proc.stdout.splitlines():
@@ -77,6 +78,8 @@ def main(argv):
     p.add_argument("--warmup", type=int, default=6)
     p.add_argument("--timing-frames", type=int, default=8)
     p.add_argument("--only", choices=["flip", "timings"], help="one half (the other's files are kept)")
+    p.add_argument("--configs", nargs="*", choices=list(CONFIGS), help="measure only these configurations (default all)")
+    p.add_argument("--extra", default="", help="more options for every render, e.g. --extra='--shadow-normal-offset 3'")
     p.add_argument("--raybudget", default=str(run.ROOT / "build" / "tools" / "raybudget"))
     a = p.parse_args(argv)
     out = pathlib.Path(a.out)
@@ -93,7 +96,7 @@ def main(argv):
                for r in earlier("timings.csv", a.only != "flip")]
     for scene in scenes:
         name = scene.stem
-        for config in CONFIGS if a.only != "timings" else []:
+        for config in (a.configs or CONFIGS) if a.only != "timings" else []:
             rows = sweep(a, scene, config, out / "raw" / name / config.lstrip("+"))
             if rows is None:
                 print(f"fallbacks.py: {name} {config}: the sweep failed", file=sys.stderr)

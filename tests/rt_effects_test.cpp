@@ -289,6 +289,34 @@ TEST(RtRefractions, FallbackShowsTheObjectBehindAGlassBall) {
   test::expectValidationClean(renderer.validationMessages());
 }
 
+// Thin-walled tinted glass (no volume) over a white emitter: through a closed ball the view ray
+// crosses the near and the far wall, and the tracer tints by the base colour at each; the
+// raster fallback, told the shell is closed, tints twice too, and through an open sheet of the
+// same glass once, as the tracer does.
+TEST(RtRefractions, FallbackTintsAsOftenAsTheTracerThroughThinGlass) {
+  Material thin = test::tintedGlass();
+  thin.thickness = 0.0f;
+  thin.attenuationDistance = 0.0f;
+  thin.doubleSided = true;
+  thin.baseColorFactor = glm::vec4(1.0f, 0.5f, 0.5f, 1.0f);
+  Mesh ball = test::subdividedCube(8);
+  for (Vertex& v : ball.vertices) v.position = v.normal = glm::normalize(v.position);
+  for (const bool closed : {true, false}) {
+    Scene scene;
+    test::addObject(scene, closed ? ball : test::quad(1.0f), glm::mat4(1.0f), thin);
+    test::addObject(scene, test::quad(30.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, -4, 0)), emitter(glm::vec3(2.0f)));
+    const Camera cam = lookingDownFrom(5.0f);
+    const glm::vec3 traced = hdr(renderScene(scene, Policy::All, cam, 64, 64, false, 0.0f), 32, 32);
+    const glm::vec3 raster = hdr(renderScene(scene, Policy::None, cam, 64, 64, false, 0.0f), 32, 32);
+    const float walls = closed ? 2.0f : 1.0f;
+    ASSERT_GT(traced.r, 1.5f) << "light passes through the glass";
+    EXPECT_NEAR(traced.g / traced.r, std::pow(0.5f, walls), 0.03f) << "the tracer tints once per wall";
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(raster[c] / traced[c], 1.0f, 0.06f) << (closed ? "ball" : "sheet") << ", channel " << c << ": raster " << raster[c]
+                                                      << ", traced " << traced[c];
+  }
+}
+
 TEST(RtPolicy, NoneTracesNothingAndAllWithoutEffectsEqualsNone) {
   const Scene scene = loadScene(test::defaultScenePath());
   const Camera cam = defaultCamera(scene, 1.5f);

@@ -2,7 +2,10 @@
 // darkens exactly the ground point the geometry says is occluded, and leaves lit ground
 // smooth (no acne); alpha-masked casters mask as the G-buffer and the rays do. The sky is
 // off, so a shadowed point receives no light at all.
+#include <cmath>
 #include <cstring>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -49,10 +52,10 @@ struct GroundView {
   glm::mat4 viewProj;
 };
 
-GroundView renderGround(Scene scene, const Light& light, Policy policy = Policy::None) {
+GroundView renderGround(Scene scene, const Light& light, Policy policy = Policy::None, const RenderSettings& base = {}) {
   scene.lights = {light};
   scene.usesDefaultSun = false;
-  RenderSettings settings;
+  RenderSettings settings = base;
   settings.width = kW;
   settings.height = kH;
   settings.validation = true;
@@ -89,8 +92,8 @@ float meanLuminance(const GroundView& v, const glm::vec3& world, int r) {
   return float(sum / double((2 * r + 1) * (2 * r + 1)));
 }
 
-ShadowProbe probe(Scene scene, const Light& light, const glm::vec3& occluded, const glm::vec3& open) {
-  const GroundView v = renderGround(std::move(scene), light);
+ShadowProbe probe(Scene scene, const Light& light, const glm::vec3& occluded, const glm::vec3& open, const RenderSettings& base = {}) {
+  const GroundView v = renderGround(std::move(scene), light, Policy::None, base);
   ShadowProbe r{luminanceAt(v, occluded, 0, 0), luminanceAt(v, open, 0, 0), 0.0f};
   // Acne is high-frequency: a second difference, which ignores the smooth falloff of light.
   for (int dy = -2; dy <= 2; ++dy)
@@ -141,6 +144,36 @@ TEST(ShadowMaps, PointLightShadowsTheGroundUnderTheBox) {
   // Off-axis: the light beside the box throws its shadow along +x, through the +x cube face.
   point.position = {-2.0f, 2.5f, 0.0f};
   expectShadow(probe(groundAndBox("point2"), point, {2.0f, 0.0f, 0.0f}, {-2.0f, 0.0f, 3.0f}));
+}
+
+// The biases against acne are settings that reach the shadow pass and the lookups: under a
+// low sun the ground stays smooth with the defaults, and acne covers it with both at zero.
+TEST(ShadowMaps, WithoutItsBiasesALowSunAcnesTheGround) {
+  Light low = overheadSun();
+  low.direction = glm::normalize(glm::vec3(-0.8f, -0.6f, 0.0f));
+  const glm::vec3 occluded(-2.0f, 0.0f, 0.0f), open(3.0f, 0.0f, -3.0f);  // the box's shadow lies along -x
+  expectShadow(probe(groundAndBox("low"), low, occluded, open));
+  RenderSettings unbiased;
+  unbiased.shadowNormalOffset = 0.0f;
+  unbiased.shadowSlopeBias = 0.0f;
+  EXPECT_GT(probe(groundAndBox("low0"), low, occluded, open, unbiased).litRoughness, 0.1f) << "no acne without the biases";
+}
+
+TEST(ShadowMaps, AbsurdBiasesAreRefusedNamingTheSetting) {
+  const Scene scene = groundAndBox("bad-bias");
+  for (float v : {-1.0f, 17.0f, NAN, INFINITY}) {
+    RenderSettings offset, slope;
+    offset.shadowNormalOffset = v;
+    slope.shadowSlopeBias = v;
+    for (const auto& [settings, name] : {std::pair{offset, "shadowNormalOffset"}, std::pair{slope, "shadowSlopeBias"}}) {
+      try {
+        Renderer renderer(scene, settings);
+        ADD_FAILURE() << name << " = " << v << " accepted";
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+      }
+    }
+  }
 }
 
 // A diffuse ground 20x20 at y = 0 and a 2x2 caster 1.5 above its centre.

@@ -103,6 +103,11 @@ render options:
   --no-rt-shadows, --no-rt-reflections, --no-rt-refractions
                         keep that effect on its raster fallback even where traced
   --shadow-map-size S   shadow map resolution (default 1024; point-light cubes get S/2)
+  --shadow-normal-offset X
+                        a shadow-map lookup moves X of the map's texels along the surface
+                        normal, against acne, 0..16 (default 1.5)
+  --shadow-slope-bias X the shadow pass moves a caster's depth back X times its depth slope
+                        per texel, against acne, 0..16 (default 1.75)
   --full-size-shadow-maps
                         every shadow map at --shadow-map-size (default: spot and point
                         lights' maps sized from the screen coverage of their reach)
@@ -263,6 +268,8 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--no-reflection-probes") c.settings.reflectionProbes = false;
     else if (a == "--no-screen-space-reflections") c.settings.screenSpaceReflections = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
+    else if (a == "--shadow-normal-offset") c.settings.shadowNormalOffset = parseWithin(a, value(), 0.0f, 16.0f);
+    else if (a == "--shadow-slope-bias") c.settings.shadowSlopeBias = parseWithin(a, value(), 0.0f, 16.0f);
     else if (a == "--full-size-shadow-maps") c.settings.shadowMapsFitScreen = false;
     else sceneArgument(a, c.scene, " (see raybudget --help)");
   }

@@ -38,9 +38,10 @@ double median(std::vector<double> values);
 // the command's usage) or a second scene throws raybudget::Error.
 void sceneArgument(const std::string& arg, std::string& scene, const std::string& hint);
 
-// `option`'s value as a whole number in lo..hi, or a positive finite number; throws
-// raybudget::Error naming the option otherwise.
+// `option`'s value as a whole number in lo..hi, a finite number in lo..hi, or a positive finite
+// number; throws raybudget::Error naming the option otherwise.
 uint32_t parseUint(const std::string& option, const std::string& value, uint32_t lo, uint32_t hi);
+float parseWithin(const std::string& option, const std::string& value, float lo, float hi);
 float parsePositive(const std::string& option, const std::string& value);
 
 // The value after the option at args[i], moving i onto it; throws raybudget::Error naming the

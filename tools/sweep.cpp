@@ -41,6 +41,9 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
                         no screen-space reflections (the fallbacks' ablation)
   --no-temporal-fill    reduced rates fill from traced neighbours alone
                         (RayTracingSettings::temporalFill off)
+  --shadow-normal-offset X
+                        shadow-map lookups' normal offset in texels (RenderSettings::shadowNormalOffset)
+  --shadow-slope-bias X the shadow pass's slope-scaled depth bias (RenderSettings::shadowSlopeBias)
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -283,6 +286,10 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       c.reflectionProbes = false;
     } else if (a == "--no-screen-space-reflections") {
       c.screenSpaceReflections = false;
+    } else if (a == "--shadow-normal-offset") {
+      c.shadowNormalOffset = parseWithin(a, value(), 0.0f, 16.0f);
+    } else if (a == "--shadow-slope-bias") {
+      c.shadowSlopeBias = parseWithin(a, value(), 0.0f, 16.0f);
     } else if (a == "--policies") {
       c.policies.clear();
       for (const std::string& p : splitList(value())) {
@@ -306,6 +313,8 @@ int runSweep(const SweepCommand& c) {
   s.screenSpaceTransmission = c.screenSpaceTransmission;
   s.reflectionProbes = c.reflectionProbes;
   s.screenSpaceReflections = c.screenSpaceReflections;
+  s.shadowNormalOffset = c.shadowNormalOffset;
+  s.shadowSlopeBias = c.shadowSlopeBias;
   s.rayTracing.temporalFill = c.temporalFill;
   s.rayTracing.rate = ItemRate::Quarter;  // makes the fill's history; each configuration sets its own rate
   s.optimalBound = true;

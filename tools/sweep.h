@@ -46,6 +46,8 @@ struct SweepCommand {
   bool temporalFill = true;             // RayTracingSettings::temporalFill
   bool reflectionProbes = true;         // RenderSettings::reflectionProbes
   bool screenSpaceReflections = true;   // RenderSettings::screenSpaceReflections
+  float shadowNormalOffset = RenderSettings{}.shadowNormalOffset;
+  float shadowSlopeBias = RenderSettings{}.shadowSlopeBias;
   std::vector<std::string> paths{"orbit", "flythrough"};
 };
 

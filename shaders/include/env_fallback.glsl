@@ -64,8 +64,9 @@ vec3 envTransmission(Surface s, vec3 V) {
   vec3 T = refract(-V, N, 1.0 / max(s.ior, 1.0));
   float thickness = worldThickness(s, m.normalScaleThicknessFlags.y);
   // Thick volumes bend the ray back on exit through a parallel surface: the exit direction
-  // equals -V, offset; thin walls keep the refracted direction (glTF thin-walled model).
-  vec3 dir = thickness > 0.0 ? -V : (dot(T, T) > 0.0 ? T : reflect(-V, N));
+  // equals -V, offset; thin walls let the view ray through unbent (glTF's thin-walled model,
+  // as the tracer does).
+  vec3 dir = -V;
   if (thickness > 0.0 && dot(T, T) > 0.0) dir = normalize(mix(-V, T, 0.5));
   // The refracted ray crosses the volume's thickness at its angle to the inward normal; a thin
   // wall lets the view ray through.
@@ -76,6 +77,14 @@ vec3 envTransmission(Surface s, vec3 V) {
     transmitted *= pow(m.attenuationColorDistance.rgb, vec3(distanceInside / m.attenuationColorDistance.w));
   vec3 reflectWeight, transmitWeight;
   envWeights(s, s.normal, V, reflectWeight, transmitWeight);
+  if (thickness <= 0.0 && (objects[s.objectId].ids.w & RB_OBJECT_CLOSED_THIN_GLASS) != 0u) {
+    // A closed thin shell (a glass bubble): the view ray leaves through its far wall, which
+    // tints what passes once more and reflects the surroundings, as the tracer's ray does. The
+    // far wall is taken as a sphere's: the chord's ends mirror each other across the plane
+    // normal to the ray, so the ray meets it at the same angle (the same weights).
+    vec3 farNormal = N - 2.0 * dot(N, V) * V;
+    transmitted = transmitted * transmitWeight + surroundings(s.position, reflect(-V, farNormal), s.roughness) * reflectWeight;
+  }
   return transmitted * transmitWeight;  // the base colour, the transmitted share, through the layers
 }
 

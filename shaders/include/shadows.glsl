@@ -53,7 +53,7 @@ float shadowFromMap(GpuLight light, vec3 position, vec3 normal, float spread) {
   if (layer < 0.0) return 1.0;
   bool spot = uint(light.directionType.w) == RB_LIGHT_SPOT;
   float texelWorld = light.shadowParams.x * (spot ? max(length(position - light.positionRange.xyz), 1e-3) : 1.0);
-  vec4 p = light.shadowViewProj * vec4(position + normal * texelWorld * 1.5, 1.0);
+  vec4 p = light.shadowViewProj * vec4(position + normal * texelWorld * light.shadowParams.w, 1.0);
   if (p.w <= 0.0) return 1.0;
   p.xyz /= p.w;
   vec2 uv = p.xy * 0.5 + 0.5;
@@ -70,7 +70,7 @@ float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spread) {
   float cube = light.spotShadow.z;
   if (cube < 0.0) return 1.0;
   float distanceToLight = length(position - light.positionRange.xyz);
-  vec3 v = position + normal * light.shadowParams.x * distanceToLight * 1.5 - light.positionRange.xyz;
+  vec3 v = position + normal * light.shadowParams.x * distanceToLight * light.shadowParams.w - light.positionRange.xyz;
   float n = light.shadowParams.y, f = light.shadowParams.z;
   float d = max(abs(v.x), max(abs(v.y), abs(v.z)));
   if (d >= f || d <= n) return 1.0;

@@ -28,6 +28,9 @@
 #define RB_MATERIAL_LAYERS 8u        // clearcoat, sheen or specular other than glTF's defaults
 #define RB_MATERIAL_UV_TRANSFORM 16u  // a texture slot with a KHR_texture_transform
 
+// Object flags (GpuObject.ids.w).
+#define RB_OBJECT_CLOSED_THIN_GLASS 1u  // its thin-walled transmissive triangles close a shell
+
 // Ray-traced effects (FrameUniforms.rayTracing.x bits).
 #define RB_RT_SHADOWS 1u
 #define RB_RT_REFLECTIONS 2u

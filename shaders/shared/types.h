@@ -28,7 +28,7 @@ struct GpuObject {
   mat4 model;
   mat4 normalMatrix;        // inverse-transpose of model (upper 3x3 used)
   vec4 boundsCenterRadius;  // world-space bounding sphere
-  uvec4 ids;                // x object ID, y first index of its mesh, z its vertex offset, w unused
+  uvec4 ids;                // x object ID, y first index of its mesh, z its vertex offset, w RB_OBJECT_* flags
 };
 
 // 176 bytes: glTF metallic-roughness material with the transmission/volume extensions and
@@ -62,7 +62,7 @@ struct GpuLight {
   vec4 spotShadow;      // x cos(inner), y cos(outer), z shadow layer or cube (-1 none),
                         //   w share of the layer's side the map uses (sized from screen coverage)
   vec4 shadowParams;    // x texel size at the used size (world units; per unit distance for
-                        //   spot/point), y near, z far
+                        //   spot/point), y near, z far, w normal offset in texels
   mat4 shadowViewProj;  // directional / spot: world -> shadow clip space
 };
 

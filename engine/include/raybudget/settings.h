@@ -87,6 +87,13 @@ struct RenderSettings {
   std::string device;              // substring of the Vulkan device name; empty: best available
   bool validation = false;         // Khronos validation + synchronization validation
   uint32_t shadowMapSize = 1024;   // directional/spot layers; point-light cube faces get half
+  // A shadow-map lookup's point moves this many of the map's texels (their world size there)
+  // along the surface's normal, against acne (with the shadow pass's slope-scaled bias).
+  float shadowNormalOffset = 1.5f;
+  // The shadow pass's slope-scaled depth bias: a caster's depth moves back this many times its
+  // depth slope per texel. Above 2, shadow rays run to the light (shortenShadowRays ends them
+  // past the map's nearest blocker, which covers two texels' slope).
+  float shadowSlopeBias = 1.75f;
   // Each spot and point light's map takes the power-of-two size its reach covers on screen
   // (at most shadowMapSize; a shadow texel about a pixel there), rendered again when that
   // changes; off: every map at full size.

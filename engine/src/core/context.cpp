@@ -224,7 +224,10 @@ struct Context::Impl {
     if (settings.policy != Policy::Benefit && settings.policy != Policy::Classified) return 0u;
     const RayTracingSettings& rt = settings.rayTracing;
     const bool classify = rt.classifyShadows && settings.benefitAblation != BenefitAblation::NoClassifier;
-    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (rt.shortenShadowRays ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
+    // The nearest depth a shortened ray ends past covers a blocker's slope-scaled bias up to two
+    // texels' slope (shadows.glsl, shadowRayEnd): with more, the rays run to the light.
+    const bool shorten = rt.shortenShadowRays && settings.shadowSlopeBias <= 2.0f;
+    return (classify ? RB_RT_CLASSIFY_SHADOWS : 0u) | RB_RT_MEASURE_ITEMS | (shorten ? RB_RT_SHORTEN_SHADOW_RAYS : 0u);
   }
 
   // Why the opaque frame behind glass is not lit this frame (PassSkip::None: it is): a host's

@@ -129,6 +129,10 @@ void validateSettings(const RenderSettings& s) {
   if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
     throw Error("render size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1..16384");
   if (s.shadowMapSize < 16 || s.shadowMapSize > 8192) throw Error("shadow map size must be within 16..8192");
+  if (!std::isfinite(s.shadowNormalOffset) || s.shadowNormalOffset < 0.0f || s.shadowNormalOffset > 16.0f)
+    throw Error("the shadow maps' normal offset (shadowNormalOffset) must be within 0..16 texels, got " + std::to_string(s.shadowNormalOffset));
+  if (!std::isfinite(s.shadowSlopeBias) || s.shadowSlopeBias < 0.0f || s.shadowSlopeBias > 16.0f)
+    throw Error("the shadow pass's slope-scaled bias (shadowSlopeBias) must be within 0..16, got " + std::to_string(s.shadowSlopeBias));
   if (!std::isfinite(s.exposure) || s.exposure <= 0.0f) throw Error("exposure must be a positive finite number");
   if (!std::isfinite(s.skyIntensity) || s.skyIntensity < 0.0f) throw Error("sky intensity must be a non-negative finite number");
   if (isBudgeted(s.policy) && (!std::isfinite(s.budgetMs) || s.budgetMs <= 0.0f || s.budgetMs > 1e6f))

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raybudget/error.h"
+#include "scene/triangles.h"
 #include "shared/config.h"
 
 namespace raybudget::passes {
@@ -74,6 +75,8 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
   const float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-3f);
   const float mapSize = float(settings.shadowMapSize);
   const float cubeSize = float(std::max(settings.shadowMapSize / 2, 16u));
+  const float offset = settings.shadowNormalOffset;
+  views.slopeBias = settings.shadowSlopeBias;
   std::vector<ShadowFit> cubeFits;  // listed after every layer's
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -83,7 +86,7 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
       const glm::mat4 view = glm::lookAt(center - l.direction * radius * 2.0f, center, anyPerpendicular(l.direction));
       const glm::mat4 proj = glm::orthoRH_ZO(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
       g.shadowViewProj = proj * view;
-      g.shadowParams = glm::vec4(2.0f * radius / mapSize, radius * 0.5f, radius * 3.5f, 0.0f);
+      g.shadowParams = glm::vec4(2.0f * radius / mapSize, radius * 0.5f, radius * 3.5f, offset);
       g.spotShadow.z = float(views.mapLayers++);
       views.mapViewProj.push_back(g.shadowViewProj);
       views.fit.push_back({uint32_t(i), glm::vec4(center, -1.0f), g.shadowParams.x});
@@ -94,7 +97,7 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
         const float fov = std::min(2.0f * l.outerConeAngle + 0.05f, 3.0f);
         const glm::mat4 view = glm::lookAt(l.position, l.position + l.direction, anyPerpendicular(l.direction));
         g.shadowViewProj = glm::perspectiveRH_ZO(fov, 1.0f, near, far) * view;
-        g.shadowParams = glm::vec4(2.0f * std::tan(0.5f * fov) / mapSize, near, far, 0.0f);
+        g.shadowParams = glm::vec4(2.0f * std::tan(0.5f * fov) / mapSize, near, far, offset);
         g.spotShadow.z = float(views.mapLayers++);
         views.mapViewProj.push_back(g.shadowViewProj);
         views.fit.push_back({uint32_t(i), glm::vec4(l.position, far), g.shadowParams.x});
@@ -105,13 +108,31 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
         static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
         const glm::mat4 proj = glm::perspectiveRH_ZO(glm::half_pi<float>(), 1.0f, near, far);
         for (int f = 0; f < 6; ++f) views.cubeFaceViewProj.push_back(proj * glm::lookAt(l.position, l.position + dirs[f], ups[f]));
-        g.shadowParams = glm::vec4(2.0f / cubeSize, near, far, 0.0f);
+        g.shadowParams = glm::vec4(2.0f / cubeSize, near, far, offset);
         g.spotShadow.z = float(views.pointCubes++);
         cubeFits.push_back({uint32_t(i), glm::vec4(l.position, far), g.shadowParams.x});
       }
     }
   }
   views.fit.insert(views.fit.end(), cubeFits.begin(), cubeFits.end());
+}
+
+// Whether the mesh's thin-walled transmissive triangles close a shell: a view ray through one
+// of them leaves through another, as the tracer's does (env_fallback.glsl's far wall). An
+// alpha-masked shell has holes where its far wall may be cut away: not closed.
+bool closedThinGlass(const Scene& scene, const Mesh& m) {
+  std::vector<uint32_t> glass;
+  for (const Primitive& p : m.primitives) {
+    const Material mat = p.material >= 0 ? scene.materials[size_t(p.material)] : Material{};
+    if (mat.alphaMode == AlphaMode::Mask) return false;
+    if (mat.transmission > 0.0f && mat.thickness <= 0.0f)
+      glass.insert(glass.end(), m.indices.begin() + p.firstIndex, m.indices.begin() + p.firstIndex + p.indexCount);
+  }
+  if (glass.empty()) return false;
+  std::vector<glm::vec3> positions;
+  positions.reserve(m.vertices.size());
+  for (const Vertex& v : m.vertices) positions.push_back(v.position);
+  return closedSurface(positions, glass);
 }
 
 }  // namespace
@@ -122,7 +143,8 @@ gpu::GpuObject gpuObject(const SceneGpu& scene, const Object& o) {
   g.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(o.transform)));
   const glm::vec3 c = 0.5f * (o.boundsMin + o.boundsMax);
   g.boundsCenterRadius = glm::vec4(c, 0.5f * glm::length(o.boundsMax - o.boundsMin));
-  g.ids = glm::uvec4(o.id, scene.meshFirstIndex[o.mesh], scene.meshVertexOffset[o.mesh], 0);
+  g.ids = glm::uvec4(o.id, scene.meshFirstIndex[o.mesh], scene.meshVertexOffset[o.mesh],
+                     scene.meshClosedThinGlass[o.mesh] ? RB_OBJECT_CLOSED_THIN_GLASS : 0u);
   return g;
 }
 
@@ -140,6 +162,7 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
     for (const Vertex& v : m.vertices)
       vertices.push_back({glm::vec4(v.position, v.uv.x), glm::vec4(v.normal, v.uv.y), v.color});
     indices.insert(indices.end(), m.indices.begin(), m.indices.end());
+    gpu.meshClosedThinGlass.push_back(closedThinGlass(scene, m));
   }
   gpu.vertices = vk::createDeviceBuffer(ctx, vertices, kStorage);
   gpu.indices = vk::createDeviceBuffer(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kStorage);

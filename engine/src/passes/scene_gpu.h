@@ -42,6 +42,7 @@ struct ShadowViews {
   std::vector<glm::mat4> mapViewProj;     // per layer
   std::vector<glm::mat4> cubeFaceViewProj;  // per cube face (6 per point light)
   std::vector<ShadowFit> fit;  // per layer, then per cube
+  float slopeBias = 0.0f;      // RenderSettings::shadowSlopeBias
 };
 
 struct SceneGpu {
@@ -49,6 +50,7 @@ struct SceneGpu {
   // each mesh starts in the shared index and vertex buffers.
   Scene shell;
   std::vector<uint32_t> meshFirstIndex, meshVertexOffset;
+  std::vector<bool> meshClosedThinGlass;  // per mesh: RB_OBJECT_CLOSED_THIN_GLASS
   std::unique_ptr<SceneTracer> tracer;  // the trace passes' acceleration structure
   vk::Buffer vertices;
   vk::Buffer indices;

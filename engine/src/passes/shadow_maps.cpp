@@ -21,7 +21,8 @@ constexpr VkAccessFlags2 kDepthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_REA
 ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views, const FrameTargets& targets)
     : layout_(layouts.create({kSpirv_shadow_vert, kSpirv_shadow_frag})),
       stale_(views.mapLayers + 6 * views.pointCubes, true),
-      resized_(views.mapLayers + views.pointCubes, false) {
+      resized_(views.mapLayers + views.pointCubes, false),
+      slopeBias_(views.slopeBias) {
   for (uint32_t v = 0; v < views.mapLayers + views.pointCubes; ++v) full_.push_back(v < views.mapLayers ? targets.shadowMapSize : targets.cubeSize);
   size_ = full_;
   vk::GraphicsPipelineDesc d;
@@ -126,7 +127,7 @@ uint32_t ShadowMapPass::renderView(const FrameContext& fc, VkImageView view, uin
       vkCmdSetViewport(fc.cmd, 0, 1, &viewport);
       vkCmdSetScissor(fc.cmd, 0, 1, &scissor);
       // Slope-scaled bias against acne on surfaces at grazing angles to the light.
-      vkCmdSetDepthBias(fc.cmd, 1.25f, 0.0f, 1.75f);
+      vkCmdSetDepthBias(fc.cmd, 1.25f, 0.0f, slopeBias_);
       bound = want;
     }
     gpu::DrawPush push{};

@@ -50,6 +50,7 @@ class ShadowMapPass {
   std::vector<uint32_t> size_;  // per layer, then per cube: the side it uses
   std::vector<uint32_t> full_;  // per layer, then per cube: the side it has
   std::vector<bool> resized_;   // per layer, then per cube: its light's record is out of date
+  float slopeBias_;             // RenderSettings::shadowSlopeBias
   bool fitted_ = false;         // the first fit takes the needed sizes as they are
   vk::Owned<VkPipeline> opaque_;  // depth only
   vk::Owned<VkPipeline> masked_;  // alpha-tested fragment stage
