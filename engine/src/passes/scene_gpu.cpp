@@ -76,7 +76,6 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
   const float mapSize = float(settings.shadowMapSize);
   const float cubeSize = float(std::max(settings.shadowMapSize / 2, 16u));
   const float offset = settings.shadowNormalOffset;
-  views.slopeBias = settings.shadowSlopeBias;
   std::vector<ShadowFit> cubeFits;  // listed after every layer's
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -123,7 +122,7 @@ void placeShadows(const Scene& scene, const RenderSettings& settings, std::vecto
 bool closedThinGlass(const Scene& scene, const Mesh& m) {
   std::vector<uint32_t> glass;
   for (const Primitive& p : m.primitives) {
-    const Material mat = p.material >= 0 ? scene.materials[size_t(p.material)] : Material{};
+    const Material& mat = scene.materials[size_t(p.material)];
     if (mat.alphaMode == AlphaMode::Mask) return false;
     if (mat.transmission > 0.0f && mat.thickness <= 0.0f)
       glass.insert(glass.end(), m.indices.begin() + p.firstIndex, m.indices.begin() + p.firstIndex + p.indexCount);

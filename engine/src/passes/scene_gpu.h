@@ -42,7 +42,6 @@ struct ShadowViews {
   std::vector<glm::mat4> mapViewProj;     // per layer
   std::vector<glm::mat4> cubeFaceViewProj;  // per cube face (6 per point light)
   std::vector<ShadowFit> fit;  // per layer, then per cube
-  float slopeBias = 0.0f;      // RenderSettings::shadowSlopeBias
 };
 
 struct SceneGpu {

@@ -18,11 +18,12 @@ constexpr VkAccessFlags2 kDepthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_REA
 
 }  // namespace
 
-ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views, const FrameTargets& targets)
+ShadowMapPass::ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views, const FrameTargets& targets,
+                             float slopeBias)
     : layout_(layouts.create({kSpirv_shadow_vert, kSpirv_shadow_frag})),
       stale_(views.mapLayers + 6 * views.pointCubes, true),
       resized_(views.mapLayers + views.pointCubes, false),
-      slopeBias_(views.slopeBias) {
+      slopeBias_(slopeBias) {
   for (uint32_t v = 0; v < views.mapLayers + views.pointCubes; ++v) full_.push_back(v < views.mapLayers ? targets.shadowMapSize : targets.cubeSize);
   size_ = full_;
   vk::GraphicsPipelineDesc d;

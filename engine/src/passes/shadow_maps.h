@@ -14,7 +14,8 @@ namespace raybudget::passes {
 
 class ShadowMapPass {
  public:
-  ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views, const FrameTargets& targets);
+  // `slopeBias`: RenderSettings::shadowSlopeBias.
+  ShadowMapPass(const vk::Context& ctx, PassLayouts& layouts, const ShadowViews& views, const FrameTargets& targets, float slopeBias);
   // False when the scene has no light with a shadow map (nothing recorded).
   static bool needed(const SceneGpu& scene) { return scene.shadows.mapLayers + scene.shadows.pointCubes > 0; }
   // Marks the views that see an object's bounding sphere before or after it moved.
