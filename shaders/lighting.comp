@@ -15,6 +15,7 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/probe.glsl"
 #include "include/rates.glsl"
 #include "include/shadow_fill.glsl"
+#include "include/shadow_history.glsl"
 #include "include/screen_pixel.glsl"
 
 // Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
@@ -60,10 +61,18 @@ void main() {
   // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.
   bool traced = probed || (rtShadows && itemTracedHere(sel, RB_ITEM_SHADOWS, pixel));
   bool measure = traced && measuringItems();
-  // Where the item's reduced rate skipped the pixel, its traced neighbours correct the maps.
+  // Where the item's reduced rate skipped the pixel, the maps are corrected by their error
+  // where the point was last traced, else by their traced neighbours'.
+  uint rate = itemRate(sel, RB_ITEM_SHADOWS);
+  bool keepHistory = rtShadows && rate != RB_RATE_FULL && temporalFill();
+  ShadowHistory past = noShadowHistory();
+  if (keepHistory && !traced) past = previousShadowHistory(pixel, s.position, s.objectId, rate);
+  bool carried = past.age != RB_HISTORY_NONE;
   FillSources fill;
   fill.total = 0.0;
-  if (rtShadows && !traced) fill = fillSources(pixel, fillCentre(s.objectId, s.position, N), itemRate(sel, RB_ITEM_SHADOWS));
+  if (rtShadows && !traced && (!carried || frame.sizeLightsFrame.z > RB_SHADOW_HISTORY_LIGHTS))
+    fill = fillSources(pixel, fillCentre(s.objectId, s.position, N), rate);
+  vec4 mapErrors[RB_SHADOW_HISTORY_LIGHTS / 4u] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0));  // traced minus mapped, where traced
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
@@ -90,10 +99,19 @@ void main() {
     // corrected where the fill found traced neighbours.
     float masked = traced ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
     float mapped = rtShadows && traced && !measure ? 1.0 : shadowFromLight(light, s.position, N);
-    float visibility = traced ? masked : (fill.total > 0.0 ? clamp(mapped + shadowFillCorrection(fill, i, mapped), 0.0, 1.0) : mapped);
+    bool remembered = i < RB_SHADOW_HISTORY_LIGHTS;
+    if (keepHistory && traced && remembered) mapErrors[i >> 2u][i & 3u] = masked - imageLoad(shadowMask, ivec3(pixel, mappedLayer(i))).r;
+    float correction = carried && remembered ? shadowHistoryError(past, i) : (fill.total > 0.0 ? shadowFillCorrection(fill, i, mapped) : 0.0);
+    float visibility = traced ? masked : clamp(mapped + correction, 0.0, 1.0);
     vec3 unshadowed = shadeLayered(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.layers) * light.colorIntensity.rgb * attenuation;
     color += unshadowed * visibility;
     fallbackColor += unshadowed * mapped;
+  }
+  if (keepHistory && (traced || carried)) {
+    if (traced)
+      past = ShadowHistory(uvec3(packSnorm4x8(mapErrors[0]), packSnorm4x8(mapErrors[1]), packSnorm4x8(mapErrors[2])), 0u, s.position);
+    else past.age += 1u;
+    writeShadowHistory(pixel, past, s.objectId);
   }
   // Diffuse ambient: the roughest prefiltered level approximates irradiance / pi. The layers'
   // ambient (sheen, and the coat's reflection of its surroundings) is the same whether the

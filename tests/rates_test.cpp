@@ -175,6 +175,7 @@ TEST(Rates, ShadowsAtReducedRatesStayCloserToFullRateThanShadowMaps) {
       s.rayTracing.reflections = false;
       s.rayTracing.refractions = false;
       s.shadowMapSize = mapSize;
+      s.rayTracing.temporalFill = false;  // the spatial fill alone (temporal_fill_test.cpp has the history)
       return test::renderFrames(scene, s, frames);
     };
     const test::RenderedFrames full = render(Policy::All, ItemRate::Full), half = render(Policy::All, ItemRate::Half),

@@ -40,6 +40,9 @@ layout(set = 0, binding = 53, rgba16f) uniform image2D refractionImage;
 // against the fallback where its reflection and refraction were last traced, two layers per
 // frame parity.
 layout(set = 0, binding = 54, rgba32ui) uniform uimage2DArray fillHistory;
+// The lighting pass's temporal shadow fill (include/shadow_history.glsl): per pixel the shadow
+// maps' error where its shadows were last traced, two layers per frame parity.
+layout(set = 0, binding = 55, rgba32ui) uniform uimage2DArray shadowHistory;
 layout(set = 0, binding = 19, rgba16f) uniform writeonly image2D hdrImage;
 layout(set = 0, binding = 20, rgba8) uniform writeonly image2D ldrImage;
 layout(set = 0, binding = 21, rgba16f) uniform writeonly imageCube skyStorage;

@@ -30,7 +30,6 @@
 #include "include/reproject.glsl"
 
 #define RB_HISTORY_NONE 255u        // the age of a path with nothing to carry
-#define RB_HISTORY_DISTANCE 0.01    // relative
 
 bool temporalFill() { return (frame.rayTracing.w & RB_RT_TEMPORAL_FILL) != 0u; }
 
@@ -66,28 +65,19 @@ History currentHistory(ivec2 pixel, uint objectId) {
   return storedHistory(pixel, (frame.sizeLightsFrame.w & 1u) * 2u, frame.sizeLightsFrame.w + 1u, objectId);
 }
 
-// The frames after which `rate` traces a pixel again.
-uint ratePeriod(uint rate) {
-  return rate == RB_RATE_HALF ? 2u : (rate == RB_RATE_QUARTER ? 4u : (rate == RB_RATE_SIXTEENTH ? 16u : 1u));
-}
-
 // What the previous frame left for the point `p` of object `objectId`, or ages RB_HISTORY_NONE.
 History previousHistory(vec3 p, uint objectId) {
   History h = noHistory();
-  if (frame.previousCamera.w == 0.0) return h;
-  vec2 uv;
-  if (!previousUv(p, uv)) return h;
-  ivec2 size = ivec2(frame.sizeLightsFrame.xy);
-  ivec2 at = ivec2(floor(uv * vec2(size)));
-  if (any(greaterThanEqual(at, size))) return h;  // (uv just below 1 may round up)
+  ivec2 at;
+  float distance;
+  if (!previousPixel(p, at, distance)) return h;
   vec3 toPrevious = frame.previousCamera.xyz - p, toCamera = frame.cameraPositionNear.xyz - p;
-  float distance = length(toPrevious);
   float turned = acos(clamp(dot(toPrevious, toCamera) / max(distance * length(toCamera), 1e-30), -1.0, 1.0));
-  float pixelAngle = 2.0 * atan(1.0 / abs(frame.proj[1][1])) / float(size.y);  // (the projection may flip y)
-  if (turned > pixelAngle) return h;  // before any load: a moving view turns most points past it
+  float limit = pixelAngle();
+  if (turned > limit) return h;  // before any load: a moving view turns most points past it
   h = storedHistory(at, ((frame.sizeLightsFrame.w - 1u) & 1u) * 2u, frame.sizeLightsFrame.w, objectId);
-  if (abs(h.distance - distance) > RB_HISTORY_DISTANCE * distance) return noHistory();
-  h.turn += uint(ceil(turned / pixelAngle * 255.0));
+  if (!sameDistance(h.distance, distance)) return noHistory();
+  h.turn += uint(ceil(turned / limit * 255.0));
   return h;
 }
 

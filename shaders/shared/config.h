@@ -47,6 +47,10 @@
 // was traced, if it is still valid there (include/fill_history.glsl), before its traced neighbours.
 #define RB_RT_TEMPORAL_FILL 16u
 #define RB_FILL_HISTORY_LAYERS 4u  // colour and geometry for each frame parity
+// The shadow fill's history (include/shadow_history.glsl): per frame parity a layer of where,
+// and one of when and the first RB_SHADOW_HISTORY_LIGHTS lights' visibility (8 bits each).
+#define RB_SHADOW_HISTORY_LAYERS 4u
+#define RB_SHADOW_HISTORY_LIGHTS 12u
 // The effects pass's specialization constant: the paths (RB_RT_REFLECTIONS, RB_RT_REFRACTIONS) its
 // pipeline holds, those the scene can show and the settings switch on; the others' code is
 // compiled out (rt_effects.comp).

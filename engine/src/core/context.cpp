@@ -43,6 +43,12 @@ constexpr uint32_t kFramesInFlight = 2;
 // a reduced rate on a scene that shows either.
 bool needsFillHistory(ItemRate rate, const SceneEffects& effects) { return rate != ItemRate::Full && (effects.reflections || effects.refractions); }
 
+// Whether shadows at `rate` need the shadow fill's history (32 bytes a pixel): a reduced rate,
+// ray-traced shadows and a light.
+bool needsShadowHistory(ItemRate rate, const RayTracingSettings& rt, uint32_t lightCount) {
+  return rate != ItemRate::Full && rt.shadows && lightCount > 0;
+}
+
 }  // namespace
 
 struct Context::Impl {
@@ -108,7 +114,8 @@ struct Context::Impl {
                                            uint32_t(raybudget::reflectionProbesOf(s).size()),
                                            {.behindGlass = rs.screenSpaceTransmission && passes::GBufferPass::anyTransmissive(scene),
                                             .screenReflections = rs.screenSpaceReflections && ssrUseful,
-                                            .fillHistory = needsFillHistory(rs.rayTracing.rate, effects)})),
+                                            .fillHistory = needsFillHistory(rs.rayTracing.rate, effects),
+                                            .shadowHistory = needsShadowHistory(rs.rayTracing.rate, rs.rayTracing, scene.lightCount)})),
         samplers(passes::createSamplers(ctx)),
         layouts(ctx, uint32_t(scene.textures.size()), native(), kFramesInFlight),
         timestamps(ctx, kFramesInFlight, kPassCount),
@@ -136,7 +143,7 @@ struct Context::Impl {
     // Storage images live in GENERAL; shadow maps start readable so that unused layers are valid.
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       for (const vk::Image* img : {&targets.direct, &targets.reflection, &targets.refraction, &targets.hdr, &targets.ldr, &targets.shadowMask,
-                                   &targets.tracedMask, &targets.fillHistory})
+                                   &targets.tracedMask, &targets.fillHistory, &targets.shadowHistory})
         vk::imageBarrier(cmd, *img, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       passes::ShadowMapPass::initialize(cmd, targets);
@@ -497,6 +504,9 @@ struct Context::Impl {
     if (needsFillHistory(rate, effects) && !targets.needs.fillHistory)
       throw Error("restartSelection: a reduced ray rate needs the fill's history, which is made only when the renderer is made with a reduced "
                   "RayTracingSettings::rate");
+    if (needsShadowHistory(rate, next.rayTracing, scene.lightCount) && !targets.needs.shadowHistory)
+      throw Error("restartSelection: a reduced ray rate needs the shadow fill's history, which is made only when the renderer is made with a "
+                  "reduced RayTracingSettings::rate");
     collectAll();
     settings = next;
     selection.restart(settings);

@@ -61,7 +61,8 @@ enum Binding : uint32_t {
   kGLayers = 52,
   kRefractionImage = 53,
   kFillHistory = 54,
-  kBindingCount = 55,
+  kShadowHistory = 55,
+  kBindingCount = 56,
 };
 
 }  // namespace raybudget::passes

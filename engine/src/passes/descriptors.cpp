@@ -156,6 +156,8 @@ void writeSet(const vk::Context& ctx, VkDescriptorSet set, std::span<const uint3
   write(kRefractionImage, 1, nullptr, &refraction);
   const VkDescriptorImageInfo history{VK_NULL_HANDLE, t.fillHistory.view, g};
   write(kFillHistory, 1, nullptr, &history);
+  const VkDescriptorImageInfo shadowHistory{VK_NULL_HANDLE, t.shadowHistory.view, g};
+  write(kShadowHistory, 1, nullptr, &shadowHistory);
   const VkDescriptorBufferInfo heuristic[] = {{selection.coverage.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectParams.buffer, 0, VK_WHOLE_SIZE},
                                               {selection.objectRecords.buffer, 0, VK_WHOLE_SIZE},

@@ -74,6 +74,9 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   // Colour and geometry, per frame parity (include/fill_history.glsl).
   t.fillHistory = image2d(ctx, VK_FORMAT_R32G32B32A32_UINT, needs.fillHistory ? width : 1, needs.fillHistory ? height : 1,
                           VK_IMAGE_USAGE_STORAGE_BIT, RB_FILL_HISTORY_LAYERS);
+  // Shadow-map corrections and geometry, per frame parity (include/shadow_history.glsl).
+  t.shadowHistory = image2d(ctx, VK_FORMAT_R32G32B32A32_UINT, needs.shadowHistory ? width : 1, needs.shadowHistory ? height : 1,
+                            VK_IMAGE_USAGE_STORAGE_BIT, RB_SHADOW_HISTORY_LAYERS);
   // Half the frame's resolution: glass shows it refracted and blurred.
   const uint32_t behindW = needs.behindGlass ? (width + 1) / 2 : 1, behindH = needs.behindGlass ? (height + 1) / 2 : 1;
   const uint32_t behindMips = uint32_t(std::floor(std::log2(double(std::max(behindW, behindH))))) + 1;

@@ -28,6 +28,7 @@ struct TargetNeeds {
   bool behindGlass = true;            // screen-space transmission: glass in the scene, the fallback on
   bool screenReflections = true;      // a surface smooth enough for screen-space reflections, the fallback on
   bool fillHistory = false;           // reduced ray rates for reflections or refractions: their fill (shaders/include/fill_history.glsl)
+  bool shadowHistory = false;         // reduced ray rates for shadows: their fill (shaders/include/shadow_history.glsl)
 };
 
 struct FrameTargets {
@@ -40,6 +41,7 @@ struct FrameTargets {
   // Compute outputs, kept in GENERAL layout.
   vk::Image direct, reflection, refraction, hdr, ldr;
   vk::Image fillHistory;  // the reflection and refraction fill's history: RB_FILL_HISTORY_LAYERS layers (1x1 when not needed)
+  vk::Image shadowHistory;  // the shadow fill's history: RB_SHADOW_HISTORY_LAYERS layers (1x1 when not needed)
   TargetNeeds needs;      // what the images were made for (the others are 1x1)
   // Raster fallbacks.
   vk::Image shadowMaps;                            // 2D array, one layer per directional/spot light
