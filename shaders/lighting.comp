@@ -72,7 +72,7 @@ void main() {
   fill.total = 0.0;
   if (rtShadows && !traced && (!carried || frame.sizeLightsFrame.z > RB_SHADOW_HISTORY_LIGHTS))
     fill = fillSources(pixel, fillCentre(s.objectId, s.position, N), rate);
-  vec4 mapErrors[RB_SHADOW_HISTORY_LIGHTS / 4u] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0));  // traced minus mapped, where traced
+  uvec3 mapErrors = uvec3(0u);  // traced minus mapped where traced, packSnorm4x8's bytes, four lights to a word
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
@@ -100,7 +100,13 @@ void main() {
     float masked = traced ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
     float mapped = rtShadows && traced && !measure ? 1.0 : shadowFromLight(light, s.position, N);
     bool remembered = i < RB_SHADOW_HISTORY_LIGHTS;
-    if (keepHistory && traced && remembered) mapErrors[i >> 2u][i & 3u] = masked - imageLoad(shadowMask, ivec3(pixel, mappedLayer(i))).r;
+    if (keepHistory && traced && remembered) {
+      uint byte = packSnorm4x8(vec4(masked - imageLoad(shadowMask, ivec3(pixel, mappedLayer(i))).r, 0.0, 0.0, 0.0)) << (8u * (i & 3u));
+      uint word = i >> 2u;
+      mapErrors.x |= word == 0u ? byte : 0u;
+      mapErrors.y |= word == 1u ? byte : 0u;
+      mapErrors.z |= word == 2u ? byte : 0u;
+    }
     float correction = carried && remembered ? shadowHistoryError(past, i) : (fill.total > 0.0 ? shadowFillCorrection(fill, i, mapped) : 0.0);
     float visibility = traced ? masked : clamp(mapped + correction, 0.0, 1.0);
     vec3 unshadowed = shadeLayered(N, V, L, s.baseColor, s.metallic, s.roughness, s.transmission, s.layers) * light.colorIntensity.rgb * attenuation;
@@ -109,7 +115,7 @@ void main() {
   }
   if (keepHistory && (traced || carried)) {
     if (traced)
-      past = ShadowHistory(uvec3(packSnorm4x8(mapErrors[0]), packSnorm4x8(mapErrors[1]), packSnorm4x8(mapErrors[2])), 0u, s.position);
+      past = ShadowHistory(mapErrors, 0u, s.position);
     else past.age += 1u;
     writeShadowHistory(pixel, past, s.objectId);
   }

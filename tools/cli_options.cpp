@@ -69,11 +69,11 @@ render options:
                         (default full); auto: benefit chooses a rate per item (at the priors
                         1/16, 1/4 or full for reflections and refractions, 1/4 or full for
                         shadows)
-  --no-temporal-fill    with reduced rates, fill the reflection and refraction pixels not traced
-                        this frame from traced neighbours alone (default: first from what
-                        tracing changed there when last traced, reprojected, while its
-                        object, distance and view direction still match, until the rate
-                        traces it again)
+  --no-temporal-fill    with reduced rates, fill the pixels not traced this frame from traced
+                        neighbours alone (default: first from what tracing changed there when
+                        last traced, reprojected, while its object and distance and, for
+                        reflections and refractions, the view direction still match, until
+                        the rate traces it again)
   --explain[=frames]    print the pass plan: per pass the frames it ran in and its median
                         time, the frames it was left out of and why; the effects the scene can
                         show, the pipelines built, the pixels per effect that could take rays

@@ -69,9 +69,11 @@ struct RayTracingSettings {
   // With reduced rates: a reflection or refraction pixel not traced this frame adds to its
   // fallback what tracing changed there when it was last traced (reprojected, while the
   // object, its distance and, within a pixel's angle, the view direction there still match, and
-  // younger than the rate's period), before the spatial fill from traced neighbours. The fill's
-  // history (64 bytes a pixel) is made when the renderer is made with a reduced `rate`; without
-  // it restartSelection refuses a reduced rate for a scene with reflections or refractions.
+  // younger than the rate's period), and a shadow pixel corrects its shadow maps by their error
+  // where its point was last traced (while that point shows within half a pixel), before the
+  // spatial fill from traced neighbours. The fills' histories (64 bytes a pixel for reflections
+  // and refractions, 32 for shadows) are made when the renderer is made with a reduced `rate`;
+  // without them restartSelection refuses a reduced rate for a scene that needs them.
   bool temporalFill = true;
   Tracer tracer = Tracer::Compute;
   SpatialSplits spatialSplits = SpatialSplits::Auto;  // the compute tracer's BVH build
