@@ -19,8 +19,8 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/screen_pixel.glsl"
 
 // Deferred direct lighting: every punctual light (GGX/Smith) with its visibility (the
-// ray-traced shadow mask where traced, else the shadow maps), emissive, and diffuse ambient
-// from the environment. Background pixels get
+// ray-traced shadow mask where traced, else the shadow maps, corrected where a reduced rate
+// skipped the pixel), emissive, and diffuse ambient from the environment. Background pixels get
 // the sky. Writes directImage. With RB_RT_MEASURE_ITEMS, where shadows were traced it also
 // lights the pixel with the shadow maps and adds the display-space difference (with the
 // environment fallback's indirect term, written before) to the object's shadow item.
@@ -96,7 +96,9 @@ void main() {
       }
     }
     // The mask where traced (the rays' or the certain map's visibility), else the map's,
-    // corrected where the fill found traced neighbours.
+    // corrected by its error where the point was last traced (include/shadow_history.glsl),
+    // else where the fill found traced neighbours (include/shadow_fill.glsl). A reduced rate's
+    // traced pixel keeps the map's error for the history (its second mask layer holds the map's).
     float masked = traced ? imageLoad(shadowMask, ivec3(pixel, int(i))).r : -1.0;
     float mapped = rtShadows && traced && !measure ? 1.0 : shadowFromLight(light, s.position, N);
     bool remembered = i < RB_SHADOW_HISTORY_LIGHTS;
