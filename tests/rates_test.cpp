@@ -376,5 +376,26 @@ TEST(Rates, ARendererMadeAtFullRateRefusesToRestartAtAReducedOne) {
   EXPECT_EQ(reduced.render(cam).size() + reduced.finish().size(), 1u);
 }
 
+// The same mirrors made rough: nothing reflects or refracts, so a reduced rate needs only the
+// shadows' history (include/shadow_history.glsl), which a renderer made at full rate lacks; with
+// ray-traced shadows off it needs none.
+TEST(Rates, AShadowsOnlyRendererMadeAtFullRateRefusesAReducedRateForItsShadows) {
+  auto [scene, s, cam] = mirrorsUnderSun();
+  for (Material& m : scene.materials) m.roughness = 1.0f;
+  s.rayTracing.rate = ItemRate::Full;
+  Renderer full(scene, s);
+  try {
+    full.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Quarter);
+    FAIL() << "restarted at a reduced rate without the shadows' history";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("shadow fill's history"), std::string::npos) << e.what();
+  }
+  s.rayTracing.shadows = false;
+  Renderer unshadowed(scene, s);
+  unshadowed.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Quarter);
+  EXPECT_EQ(unshadowed.render(cam).size() + unshadowed.finish().size(), 1u);
+  test::expectValidationClean(unshadowed.validationMessages());
+}
+
 }  // namespace
 }  // namespace raybudget
