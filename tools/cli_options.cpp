@@ -183,11 +183,15 @@ bool RenderTarget::parse(const std::vector<std::string>& args, size_t& i) {
 
 RenderSettings RenderTarget::settings() const {
   RenderSettings s;
+  applyTo(s);
+  return s;
+}
+
+void RenderTarget::applyTo(RenderSettings& s) const {
   s.width = width;
   s.height = height;
   s.device = device;
   s.validation = validation;
-  return s;
 }
 
 double median(std::vector<double> v) {
@@ -208,11 +212,24 @@ Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame
   return start;
 }
 
+bool parseImageOption(const std::vector<std::string>& args, size_t& i, RenderSettings& s) {
+  const std::string& a = args[i];
+  if (a == "--no-screen-space-transmission") s.screenSpaceTransmission = false;
+  else if (a == "--no-reflection-probes") s.reflectionProbes = false;
+  else if (a == "--no-screen-space-reflections") s.screenSpaceReflections = false;
+  else if (a == "--no-temporal-fill") s.rayTracing.temporalFill = false;
+  else if (a == "--shadow-normal-offset") s.shadowNormalOffset = parseWithin(a, optionValue(args, i), 0.0f, 16.0f);
+  else if (a == "--shadow-slope-bias") s.shadowSlopeBias = parseWithin(a, optionValue(args, i), 0.0f, 16.0f);
+  else return false;
+  return true;
+}
+
 RenderCommand parseRender(const std::vector<std::string>& args) {
   RenderCommand c;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& { return optionValue(args, i); };
+    if (parseImageOption(args, i, c.settings)) continue;
     if (a == "--frames") c.frames = parseUint(a, value(), 1, 1000000);
     else if (a == "--width") c.settings.width = parseUint(a, value(), 1, 16384);
     else if (a == "--height") c.settings.height = parseUint(a, value(), 1, 16384);
@@ -256,7 +273,6 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     } else if (a == "--no-shadow-classifier") c.settings.rayTracing.classifyShadows = false;
     else if (a == "--full-shadow-rays") c.settings.rayTracing.shortenShadowRays = false;
     else if (a == "--rate") c.settings.rayTracing.rate = parseItemRate(value());
-    else if (a == "--no-temporal-fill") c.settings.rayTracing.temporalFill = false;
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
     else if (a == "--budget-confidence") c.settings.budgetConfidence = parseWithin(a, value(), 0.5f, 0.99f);
     else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);
@@ -264,12 +280,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--strict") c.load.strict = true;
     else if (a == "--no-rt-reflections") c.settings.rayTracing.reflections = false;
     else if (a == "--no-rt-refractions") c.settings.rayTracing.refractions = false;
-    else if (a == "--no-screen-space-transmission") c.settings.screenSpaceTransmission = false;
-    else if (a == "--no-reflection-probes") c.settings.reflectionProbes = false;
-    else if (a == "--no-screen-space-reflections") c.settings.screenSpaceReflections = false;
     else if (a == "--shadow-map-size") c.settings.shadowMapSize = parseUint(a, value(), 16, 8192);
-    else if (a == "--shadow-normal-offset") c.settings.shadowNormalOffset = parseWithin(a, value(), 0.0f, 16.0f);
-    else if (a == "--shadow-slope-bias") c.settings.shadowSlopeBias = parseWithin(a, value(), 0.0f, 16.0f);
     else if (a == "--full-size-shadow-maps") c.settings.shadowMapsFitScreen = false;
     else sceneArgument(a, c.scene, " (see raybudget --help)");
   }

@@ -57,7 +57,15 @@ struct RenderTarget {
   // Takes --width, --height (16..16384), --device or --validation at args[i]; false for any
   // other argument.
   bool parse(const std::vector<std::string>& args, size_t& i);
-  RenderSettings settings() const;  // size, device and validation; the rest default
+  RenderSettings settings() const;      // size, device and validation; the rest default
+  void applyTo(RenderSettings& s) const;  // sets size, device and validation in `s`
 };
+
+// The options `render` and `sweep` share that change what a frame shows (the fallbacks, the
+// shadow maps' biases, the temporal fill): takes --no-screen-space-transmission,
+// --no-reflection-probes, --no-screen-space-reflections, --no-temporal-fill,
+// --shadow-normal-offset X or --shadow-slope-bias X (0..16) at args[i] into `s`; false for any
+// other argument.
+bool parseImageOption(const std::vector<std::string>& args, size_t& i, RenderSettings& s);
 
 }  // namespace raybudget::cli

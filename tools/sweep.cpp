@@ -264,7 +264,7 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& { return optionValue(args, i); };
-    if (c.target.parse(args, i)) continue;
+    if (c.target.parse(args, i) || parseImageOption(args, i, c.image)) continue;
     if (a == "--out") c.out = value();
     else if (a == "--frames") c.frames = parseUint(a, value(), 1, 100000);
     else if (a == "--warmup") c.warmup = parseUint(a, value(), 0, 1000);
@@ -278,18 +278,6 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       if (c.budgetList.empty()) throw Error("--budget-list needs at least one budget");
     } else if (a == "--no-classified") {
       c.classified = false;
-    } else if (a == "--no-screen-space-transmission") {
-      c.screenSpaceTransmission = false;
-    } else if (a == "--no-temporal-fill") {
-      c.temporalFill = false;
-    } else if (a == "--no-reflection-probes") {
-      c.reflectionProbes = false;
-    } else if (a == "--no-screen-space-reflections") {
-      c.screenSpaceReflections = false;
-    } else if (a == "--shadow-normal-offset") {
-      c.shadowNormalOffset = parseWithin(a, value(), 0.0f, 16.0f);
-    } else if (a == "--shadow-slope-bias") {
-      c.shadowSlopeBias = parseWithin(a, value(), 0.0f, 16.0f);
     } else if (a == "--policies") {
       c.policies.clear();
       for (const std::string& p : splitList(value())) {
@@ -309,13 +297,8 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
 
 int runSweep(const SweepCommand& c) {
   const Scene scene = loadScene(c.scene);
-  RenderSettings s = c.target.settings();
-  s.screenSpaceTransmission = c.screenSpaceTransmission;
-  s.reflectionProbes = c.reflectionProbes;
-  s.screenSpaceReflections = c.screenSpaceReflections;
-  s.shadowNormalOffset = c.shadowNormalOffset;
-  s.shadowSlopeBias = c.shadowSlopeBias;
-  s.rayTracing.temporalFill = c.temporalFill;
+  RenderSettings s = c.image;
+  c.target.applyTo(s);
   s.rayTracing.rate = ItemRate::Quarter;  // makes the fill's history; each configuration sets its own rate
   s.optimalBound = true;
   s.learnTimeScale = !c.priorTimeScale;

@@ -42,12 +42,7 @@ struct SweepCommand {
   bool priorTimeScale = false;    // never learn the time scale: selections independent of timing (tests)
   std::vector<SweepPolicy> policies{{Policy::Paper}, {Policy::Density}, {Policy::Nearest}, {Policy::Random}, {Policy::Benefit}};
   bool classified = true;  // run `classified` beside all and none
-  bool screenSpaceTransmission = true;  // RenderSettings::screenSpaceTransmission
-  bool temporalFill = true;             // RayTracingSettings::temporalFill
-  bool reflectionProbes = true;         // RenderSettings::reflectionProbes
-  bool screenSpaceReflections = true;   // RenderSettings::screenSpaceReflections
-  float shadowNormalOffset = RenderSettings{}.shadowNormalOffset;
-  float shadowSlopeBias = RenderSettings{}.shadowSlopeBias;
+  RenderSettings image;  // the options shared with render (cli::parseImageOption); the rest default
   std::vector<std::string> paths{"orbit", "flythrough"};
 };
 
