@@ -27,9 +27,7 @@
 #define RB_SHADOW_HISTORY_GLSL
 #include "include/fill_history.glsl"
 
-#ifndef RB_SHADOW_HISTORY_REACH
 #define RB_SHADOW_HISTORY_REACH 0.5  // pixels: how far from this pixel's centre the point traced may show
-#endif
 
 struct ShadowHistory {
   uvec3 errors;      // the lights' map errors, four to a word (packSnorm4x8)
