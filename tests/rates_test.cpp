@@ -355,6 +355,16 @@ TEST(Rates, UnknownRateNamesAreRefusedNamingTheChoices) {
   }
 }
 
+// Restarting `renderer` at `rate` is refused with a raybudget::Error whose text holds `naming`.
+void expectRestartRefusedNaming(Renderer& renderer, ItemRate rate, const std::string& naming) {
+  try {
+    renderer.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, rate);
+    ADD_FAILURE() << "restarted at " << itemRateName(rate) << " without the history it needs";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(naming), std::string::npos) << e.what();
+  }
+}
+
 // The reflection and refraction fill reads the history of the pixels traced this frame, made
 // only for a renderer made with a reduced rate: restarting one made at full rate with a reduced
 // rate is refused with a clear error, not filled from an image that is not there; one made
@@ -363,12 +373,7 @@ TEST(Rates, ARendererMadeAtFullRateRefusesToRestartAtAReducedOne) {
   auto [scene, s, cam] = mirrorsUnderSun();
   s.rayTracing.rate = ItemRate::Full;
   Renderer full(scene, s);
-  try {
-    full.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Auto);
-    FAIL() << "restarted at a reduced rate without the fill's history";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("RayTracingSettings::rate"), std::string::npos) << e.what();
-  }
+  expectRestartRefusedNaming(full, ItemRate::Auto, "RayTracingSettings::rate");
   full.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Full);
   s.rayTracing.rate = ItemRate::Quarter;
   Renderer reduced(scene, s);
@@ -384,12 +389,7 @@ TEST(Rates, AShadowsOnlyRendererMadeAtFullRateRefusesAReducedRateForItsShadows) 
   for (Material& m : scene.materials) m.roughness = 1.0f;
   s.rayTracing.rate = ItemRate::Full;
   Renderer full(scene, s);
-  try {
-    full.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Quarter);
-    FAIL() << "restarted at a reduced rate without the shadows' history";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("shadow fill's history"), std::string::npos) << e.what();
-  }
+  expectRestartRefusedNaming(full, ItemRate::Quarter, "shadow fill's history");
   s.rayTracing.shadows = false;
   Renderer unshadowed(scene, s);
   unshadowed.restartSelection(Policy::Benefit, 4.0f, BenefitAblation::None, ItemRate::Quarter);
