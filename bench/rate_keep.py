@@ -9,7 +9,10 @@ a share of full rate's (RB_KEEP_* in shaders/shared/selection.h); this says what
 the fill buys, scene by scene.
 
     .venv-bench/bin/python bench/rate_keep.py [--scenes ...] [--size 480x270]
-        [--extra "--no-rt-shadows"] [--out results/rate-keep]
+        [--extra "--no-rt-shadows"] [--views static:1,orbit:2,orbit:3] [--out results/rate-keep]
+
+`--views static:20` measures a still camera whose temporal fill has had every rate's period
+(1/16: 16 frames) to cover the image: what a rate keeps on a still view.
 """
 import argparse
 import pathlib
@@ -21,7 +24,7 @@ import flip_evaluator as flip
 
 import run  # the benchmark's paths and scene list
 
-VIEWS = [("static", 1), ("orbit", 2), ("orbit", 3)]
+VIEWS = "static:1,orbit:2,orbit:3"  # camera:frames, the last frame scored
 RATES = ["quarter", "sixteenth"]
 
 
@@ -40,6 +43,7 @@ def main(argv):
     p.add_argument("--scenes", nargs="+", help="scene files (default: the generated scenes and every bench scene)")
     p.add_argument("--size", default="480x270")
     p.add_argument("--extra", default="", help="more raybudget render options for every run (e.g. --no-rt-shadows)")
+    p.add_argument("--views", default=VIEWS, help="camera:frames views, comma-separated (default %(default)s)")
     p.add_argument("--out", default="results/rate-keep")
     p.add_argument("--raybudget", default=str(run.ROOT / "build" / "tools" / "raybudget"))
     a = p.parse_args(argv)
@@ -51,7 +55,7 @@ def main(argv):
     print("| scene | view | none FLIP | keep at 1/4 | keep at 1/16 |")
     print("|---|---|---|---|---|")
     for scene in scenes:
-        for camera, frames in VIEWS:
+        for camera, frames in [(v.split(":")[0], int(v.split(":")[1])) for v in a.views.split(",")]:
             common = ["--width", w, "--height", h, "--frames", str(frames), "--camera", camera] + a.extra.split()
             base = out / f"{scene.stem}-{camera}{frames}"
             reference = render(a.raybudget, scene, base.with_name(base.name + "-full"), common + ["--policy", "all"])
