@@ -156,18 +156,21 @@ TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
     EXPECT_LT(select::rateShare(RB_RATE_SIXTEENTH, fill), select::rateShare(RB_RATE_QUARTER, fill));
 }
 
-// The segments are the upper convex hull of an item's options at every fill share: they add
-// up to full rate, each worth less per cost than the one before, and no option left out lies
-// above the line between its neighbours on the hull.
+// The segments are the upper convex hull of an item's options at every fill share and fill
+// quality (the priors, and a still view's after 0-100 frames): they add up to full rate, each
+// worth less per cost than the one before, and no option left out lies above the line between
+// its neighbours on the hull.
 TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
+  const uint32_t everyEffect = (1u << RB_ITEM_SHADOWS) | (1u << RB_ITEM_REFLECTIONS) | (1u << RB_ITEM_REFRACTIONS);
   for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR_SHADOWS), float(RB_FILL_SHARE_PRIOR), 0.3f, 0.4f, 0.55f, float(RB_FILL_SHARE_MAX)})
-    for (uint32_t effect : {RB_ITEM_SHADOWS, RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS}) {
-      const select::FillQuality q = select::fillQualities(effect);
+    for (uint32_t effect : {RB_ITEM_SHADOWS, RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS})
+    for (uint32_t still : {0u, 1u, 2u, 5u, 15u, 100u}) {
+      const select::FillQuality q = select::frameFillQualities(still, everyEffect)[effect];
       float cost = 0.0f, value = 0.0f, density = INFINITY;
-      const uint32_t n = select::rateSegments(effect, fill);
+      const uint32_t n = select::rateSegments(fill, q);
       std::vector<uint32_t> rates;
       for (uint32_t k = 0; k < n; ++k) {
-        const select::RateSegment s = select::rateSegment(effect, k, fill);
+        const select::RateSegment s = select::rateSegment(k, fill, q);
         EXPECT_GT(s.costShare, 0.0f) << "fill " << fill << " segment " << k;
         EXPECT_GE(s.valueShare, 0.0f);
         EXPECT_LE(s.valueShare / s.costShare, density) << "fill " << fill << " effect " << effect << " segment " << k;
@@ -194,20 +197,53 @@ TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
     }
   // At the prior qualities: all three rates at the prior fill share; from a dear fill (0.4 for
   // reflections) 1/4 first.
-  EXPECT_EQ(select::rateSegments(RB_ITEM_REFLECTIONS, float(RB_FILL_SHARE_PRIOR)), 3u);
-  EXPECT_EQ(select::rateSegments(RB_ITEM_REFRACTIONS, float(RB_FILL_SHARE_PRIOR)), 3u);
+  EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::fillQualities(RB_ITEM_REFLECTIONS)), 3u);
+  EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::fillQualities(RB_ITEM_REFRACTIONS)), 3u);
   // Shadows, whose fill keeps less (shared/selection.h): at their prior fill share 1/4 and full
   // rate, 1/16 under the line from skipping to 1/4; at a fill as dear as reflections' prior,
   // full rate alone.
-  EXPECT_EQ(select::rateSegments(RB_ITEM_SHADOWS, float(RB_FILL_SHARE_PRIOR_SHADOWS)), 2u);
-  EXPECT_EQ(select::rateSegment(RB_ITEM_SHADOWS, 0, float(RB_FILL_SHARE_PRIOR_SHADOWS)).rate, RB_RATE_QUARTER);
-  EXPECT_EQ(select::rateSegments(RB_ITEM_SHADOWS, float(RB_FILL_SHARE_PRIOR)), 1u);
-  const select::RateSegment quarterFirst = select::rateSegment(RB_ITEM_REFLECTIONS, 0, 0.4f);
+  EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR_SHADOWS), select::fillQualities(RB_ITEM_SHADOWS)), 2u);
+  EXPECT_EQ(select::rateSegment(0, float(RB_FILL_SHARE_PRIOR_SHADOWS), select::fillQualities(RB_ITEM_SHADOWS)).rate, RB_RATE_QUARTER);
+  EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::fillQualities(RB_ITEM_SHADOWS)), 1u);
+  const select::RateSegment quarterFirst = select::rateSegment(0, 0.4f, select::fillQualities(RB_ITEM_REFLECTIONS));
   EXPECT_EQ(quarterFirst.rate, RB_RATE_QUARTER);
   EXPECT_EQ(quarterFirst.costShare, select::rateShare(RB_RATE_QUARTER, 0.4f));
   EXPECT_NEAR(quarterFirst.valueShare, 0.78f, 1e-4f) << "the prior keep of 1/4";
-  EXPECT_EQ(select::rateSegments(RB_ITEM_REFRACTIONS, 0.4f), 3u);
-  EXPECT_EQ(select::rateSegments(RB_ITEM_REFRACTIONS, 0.55f), 2u);
+  EXPECT_EQ(select::rateSegments(0.4f, select::fillQualities(RB_ITEM_REFRACTIONS)), 3u);
+  EXPECT_EQ(select::rateSegments(0.55f, select::fillQualities(RB_ITEM_REFRACTIONS)), 2u);
+}
+
+// A still view's temporal fill carries every traced pixel until its rate traces it again: the
+// frame's qualities start at the priors (a jump, a moving view, an effect without a history)
+// and rise with each still frame to RB_FILL_QUALITY_STILL once the frames before covered the
+// rate's pattern (1/4: 3 frames, 1/16: 15).
+TEST(CostModel, AStillViewsFillQualitiesRiseFromThePriorsAsItsFramesCoverTheRatesPattern) {
+  const uint32_t everyEffect = (1u << RB_ITEM_SHADOWS) | (1u << RB_ITEM_REFLECTIONS) | (1u << RB_ITEM_REFRACTIONS);
+  for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
+    const select::FillQuality prior = select::fillQualities(e);
+    EXPECT_EQ(select::priorFillQualities()[e].quarter, prior.quarter);
+    EXPECT_EQ(select::frameFillQualities(0, everyEffect)[e].quarter, prior.quarter) << "a jump keeps the prior";
+    EXPECT_EQ(select::frameFillQualities(0, everyEffect)[e].sixteenth, prior.sixteenth);
+    EXPECT_EQ(select::frameFillQualities(50, everyEffect & ~(1u << e))[e].quarter, prior.quarter) << "no history, no carry";
+    EXPECT_EQ(select::frameFillQualities(50, everyEffect & ~(1u << e))[e].sixteenth, prior.sixteenth);
+    float quarter = prior.quarter, sixteenth = prior.sixteenth;
+    for (uint32_t n = 1; n <= 20; ++n) {
+      const select::FillQuality q = select::frameFillQualities(n, everyEffect)[e];
+      EXPECT_GE(q.quarter, quarter) << "effect " << e << " after " << n;
+      EXPECT_GT(q.sixteenth, n <= 15 ? sixteenth : sixteenth - 1e-7f) << "effect " << e << " after " << n;
+      quarter = q.quarter, sixteenth = q.sixteenth;
+      if (n == 1) {
+        EXPECT_NEAR(q.quarter, prior.quarter + (float(RB_FILL_QUALITY_STILL) - prior.quarter) / 3.0f, 1e-6f);
+      }
+    }
+    EXPECT_FLOAT_EQ(select::frameFillQualities(3, everyEffect)[e].quarter, float(RB_FILL_QUALITY_STILL));
+    EXPECT_LT(select::frameFillQualities(14, everyEffect)[e].sixteenth, float(RB_FILL_QUALITY_STILL));
+    EXPECT_FLOAT_EQ(select::frameFillQualities(15, everyEffect)[e].sixteenth, float(RB_FILL_QUALITY_STILL));
+  }
+  // Where the fill keeps nearly all, the cheapest rate is worth the most per cost: 1/16 first.
+  const select::FrameFillQualities still = select::frameFillQualities(15, everyEffect);
+  for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e)
+    EXPECT_EQ(select::rateSegment(0, float(RB_FILL_SHARE_PRIOR), still[e]).rate, RB_RATE_SIXTEENTH) << "effect " << e;
 }
 
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {

@@ -253,6 +253,60 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   EXPECT_GT(learnedFill, 0u) << "a mirror traced at a reduced rate learns what its skipped pixels cost";
 }
 
+// The selected items' rates in a frame's metrics: how many at 1/16, 1/4 and full.
+std::map<ItemRate, uint32_t> selectedRates(const std::vector<ObjectMetrics>& metrics) {
+  std::map<ItemRate, uint32_t> n;
+  for (const ObjectMetrics& m : metrics)
+    for (size_t e = 0; e < 3; ++e)
+      if ((m.selectedItems >> e) & 1u) ++n[m.itemRate[e]];
+  return n;
+}
+
+// `cameras` rendered after the items' costs were learned without a budget (the first four),
+// at a third of what they cost then; every frame's selection and costs the CPU reference's.
+std::map<ItemRate, uint32_t> ratesAtAThirdOfTheCost(const Scene& scene, RenderSettings s, const std::vector<Camera>& cameras) {
+  s.objectMetrics = true;
+  Renderer r(scene, s, test::kCheckSelection);
+  std::vector<FrameTiming> timings;
+  for (size_t f = 0; f < cameras.size(); ++f) {
+    if (f == 4) {
+      for (const FrameTiming& t : r.finish()) timings.push_back(t);
+      r.setBudget(float(timings.back().candidatesMs / 3.0));
+    }
+    for (const FrameTiming& t : r.render(cameras[f])) timings.push_back(t);
+  }
+  for (const FrameTiming& t : r.finish()) timings.push_back(t);
+  for (const FrameTiming& t : timings) {
+    EXPECT_TRUE(t.selectionMatchesCpu.value_or(false)) << "frame " << t.frame;
+    EXPECT_TRUE(t.costsMatchCpu.value_or(false)) << "frame " << t.frame;
+  }
+  test::expectValidationClean(r.validationMessages());
+  return selectedRates(r.objectMetrics());
+}
+
+// On a still view the temporal fill carries each pixel a rate traced until the rate traces it
+// again, so a reduced rate keeps nearly all of full rate once the view has stayed still for its
+// period (shared/selection.h's RB_FILL_QUALITY_STILL): on a moving view `benefit` prices the
+// rates at the priors; after 15 still frames it trades full rate and 1/4 (no longer on the
+// hull) for 1/16 on more items (the court at 192x112: 43-48 items, 36-40 at 1/16,
+// against 15-20 and 0-2).
+TEST(Rates, AStillViewTradesDearRatesForTheCheapestOnMoreItems) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s = test::settingsFor(Policy::Benefit, 192, 112);
+  s.rayTracing.rate = ItemRate::Auto;
+  s.learnTimeScale = false;
+  s.optimalBound = true;  // (the candidates' summed cost in the stats)
+  s.budgetMs = 1e6f;
+  const std::vector<Camera> still(20, defaultCamera(scene, 192.0f / 112.0f));
+  std::vector<Camera> moving = still;  // a view never still two frames in a row: the priors
+  for (size_t f = 1; f < moving.size(); f += 2) moving[f].position.x += 1e-3f;
+  std::map<ItemRate, uint32_t> moved = ratesAtAThirdOfTheCost(scene, s, moving), stayed = ratesAtAThirdOfTheCost(scene, s, still);
+  for (auto [rate, n] : moved) std::printf("a moving view: %u at %s\n", n, itemRateName(rate));
+  for (auto [rate, n] : stayed) std::printf("a still view: %u at %s\n", n, itemRateName(rate));
+  EXPECT_EQ(stayed[ItemRate::Quarter], 0u) << "1/4 lies under the line from 1/16 to full on a still view";
+  EXPECT_GT(stayed[ItemRate::Sixteenth], moved[ItemRate::Sixteenth]);
+}
+
 // The partial item (docs/SELECTION.md): where the walk leaves budget that pays for a share of the
 // next item's 1/16, that item is traced on the 8x8 tiles whose hash falls below the share and
 // on no other, and the GPU's choice (item and share) is the CPU reference's. The hash is

@@ -120,15 +120,10 @@ float tracedPixelCost(uint rate) {
                               : (rate == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0));
 }
 
-// The quality of an item's fill at 1/16 (x) and at 1/4 (y): the effect's prior
-// (shared/selection.h; cost_model.cpp's fillQualities).
-vec2 fillQualities(uint effect) {
-  bool shadows = effect == RB_ITEM_SHADOWS, reflections = effect == RB_ITEM_REFLECTIONS;
-  float sixteenth = shadows ? RB_FILL_QUALITY_SIXTEENTH_SHADOWS
-                            : (reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS);
-  float quarter = shadows ? RB_FILL_QUALITY_QUARTER_SHADOWS : (reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS);
-  return vec2(sixteenth, quarter);
-}
+// The quality of an item's fill at 1/16 (x) and at 1/4 (y) this frame: the effect's prior, or
+// toward RB_FILL_QUALITY_STILL on a still view (shared/selection.h; cost_model.cpp's
+// frameFillQualities fills the push constants).
+vec2 fillQualities(uint effect) { return vec2(push.sixteenthQuality[effect], push.quarterQuality[effect]); }
 
 // The share of an item's full-rate value that `rate` keeps at fill qualities q (fillQualities):
 // its traced pixels' and the filled ones' (cost_model.cpp's keepShare).

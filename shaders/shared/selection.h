@@ -129,6 +129,18 @@ struct GpuObjectCost {
 #define RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS 0.7653
 #define RB_FILL_QUALITY_QUARTER_SHADOWS 0.2027
 #define RB_FILL_QUALITY_SIXTEENTH_SHADOWS 0.0368
+// On a still view (the camera and every object where they were the frame before) the temporal
+// fills (include/fill_history.glsl, shadow_history.glsl) carry each skipped pixel's traced
+// change until its rate traces it again, so a rate keeps nearly what full rate shows once
+// every pixel of its pattern was traced since the view stopped: measured like the priors
+// after 20 still frames (bench/rate_keep.py --views static:20, every effect, 480x270, the
+// court, the plaza and six bench scenes), keep 0.971-0.996 at 1/4 and 0.947-0.996 at 1/16,
+// medians 0.986 and 0.979, q 0.98 at both. The frame's q moves from the prior toward
+// RB_FILL_QUALITY_STILL by the share of the pattern's skipped pixels the still frames before
+// it traced, min(1, n / (period - 1)) after n of them (exact for an item traced at that rate
+// all along; cost_model.cpp's frameFillQualities): after a camera jump or on a moving view
+// the prior stands. Shadows beyond RB_SHADOW_HISTORY_LIGHTS lights keep the prior.
+#define RB_FILL_QUALITY_STILL 0.98
 // The share of an item's full-rate cost a rate costs is not the share of its rays: every pixel
 // of the item is still read, and the skipped ones are filled (fill_effects.comp: they read their
 // surface and their neighbours', and with the temporal fill reproject and write their history).
@@ -250,6 +262,8 @@ struct SelectPush {
                  // w frame mode: the work a ray costs (what was never traced is priced at)
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects, w `benefit`'s rate (RB_RATE_*)
   uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_WITHOUT_* bits
+  vec4 quarterQuality;    // `benefit` with rates: the fill's quality q(1/4) per effect (RB_ITEM_*) this frame
+  vec4 sixteenthQuality;  // and q(1/16) (cost_model.cpp's frameFillQualities)
 };
 
 // Frame mode with up to RB_APPLY_IN_WALK_OBJECTS objects: the walk applies the selection to

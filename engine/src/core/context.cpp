@@ -100,6 +100,7 @@ struct Context::Impl {
   bool environmentReady = false;
   bool tracedMaskWritten = true;  // the traced mask may hold marks (at first: undefined contents)
   bool objectsMoved = false;
+  uint32_t stillFrames = 0;  // the frames before this one in a row with its view and objects
   std::vector<FrameTiming> completed;  // collected, not yet returned
   glm::vec3 origin{0.0f};  // the render space's origin in world space (raybudget::renderOrigin)
 
@@ -426,7 +427,7 @@ struct Context::Impl {
     if (!traced && tracedMaskWritten) clearTracedMask(cmd);
     run(Pass::Select, traced ? PassSkip::None : nothingTraced, [&] {
       clearTracedMask(cmd);
-      selection.recordSelect(fc, s, settings);
+      selection.recordSelect(fc, s, settings, stillFrames);
     });
     tracedMaskWritten = traced != 0;
     // Shadows at a reduced ray rate are filled in the lighting pass (shaders/include/shadow_fill.glsl),
@@ -467,6 +468,7 @@ struct Context::Impl {
     bindGBuffer(slot, host ? *host : targets.gbufferViews());
     const float aspect = float(settings.width) / float(settings.height);
     const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
+    stillFrames = previousViewProj == viewProj && !objectsMoved ? stillFrames + 1 : 0;
     if (shadowMaps && settings.shadowMapsFitScreen)
       shadowMaps->fit(scene.shadows, viewProj, camera.position, 0.5f * float(settings.height) / std::tan(0.5f * camera.yfov));
     // A budget the stage's fixed cost alone exceeds buys nothing: the whole stage is left out.

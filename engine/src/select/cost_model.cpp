@@ -76,6 +76,24 @@ FillQuality fillQualities(uint32_t effect) {
   return q;
 }
 
+FrameFillQualities frameFillQualities(uint32_t stillFrames, uint32_t history) {
+  FrameFillQualities q;
+  for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
+    q[e] = fillQualities(e);
+    if (!((history >> e) & 1u)) continue;
+    // The share of a pattern's skipped pixels the still frames before this one traced.
+    auto toward = [&](float& prior, uint32_t period) {
+      const float traced = std::min(1.0f, float(stillFrames) / float(period - 1));
+      prior += (float(RB_FILL_QUALITY_STILL) - prior) * traced;
+    };
+    toward(q[e].quarter, 4);
+    toward(q[e].sixteenth, 16);
+  }
+  return q;
+}
+
+FrameFillQualities priorFillQualities() { return frameFillQualities(0, 0); }
+
 float keepShare(uint32_t rate, FillQuality q) {
   if (rate != RB_RATE_QUARTER && rate != RB_RATE_SIXTEENTH) return 1.0f;
   // Two roundings, as the GPU's precise product and sum.
@@ -91,8 +109,7 @@ struct Option {
 bool aboveChord(Option a, Option b, Option c) { return (b.value - a.value) * (c.cost - a.cost) > (c.value - a.value) * (b.cost - a.cost); }
 }  // namespace
 
-uint32_t rateHull(uint32_t effect, float fill) {
-  const FillQuality q = fillQualities(effect);
+uint32_t rateHull(float fill, FillQuality q) {
   const Option skip{0.0f, 0.0f}, full{1.0f, 1.0f};
   const Option sixteenth{rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q)};
   const Option quarter{rateShare(RB_RATE_QUARTER, fill), keepShare(RB_RATE_QUARTER, q)};
@@ -102,9 +119,7 @@ uint32_t rateHull(uint32_t effect, float fill) {
   return (onSixteenth ? RB_HULL_SIXTEENTH : 0u) | (onQuarter ? RB_HULL_QUARTER : 0u);
 }
 
-uint32_t rateSegments(uint32_t effect, float fill) {
-  return 1u + uint32_t(std::popcount(rateHull(effect, fill)));
-}
+uint32_t rateSegments(float fill, FillQuality q) { return 1u + uint32_t(std::popcount(rateHull(fill, q))); }
 
 namespace {
 // The rate segment k of an item with the rates `hull` reaches (select_common.glsl's segmentRate).
@@ -117,9 +132,8 @@ uint32_t segmentRate(uint32_t k, uint32_t hull) {
 }
 }  // namespace
 
-RateSegment rateSegment(uint32_t effect, uint32_t k, float fill) {
-  const uint32_t hull = rateHull(effect, fill);
-  const FillQuality q = fillQualities(effect);
+RateSegment rateSegment(uint32_t k, float fill, FillQuality q) {
+  const uint32_t hull = rateHull(fill, q);
   const uint32_t rate = segmentRate(k, hull), from = k == 0 ? 0u : segmentRate(k - 1, hull);
   const float costFrom = k == 0 ? 0.0f : rateShare(from, fill), valueFrom = k == 0 ? 0.0f : keepShare(from, q);
   return {rateShare(rate, fill) - costFrom, keepShare(rate, q) - valueFrom, rate};

@@ -32,12 +32,18 @@ float fillShare(uint32_t effect, float fillPerPixel, float workPerPixel);
 // a / b correctly rounded, as the GPU divides (select_common.glsl's exactQuotient).
 float exactQuotient(float a, float b);
 
-// How well an effect's fill keeps its benefit at 1/16 and at 1/4: shared/selection.h's prior q
-// (select_common.glsl's fillQualities).
+// How well an effect's fill keeps its benefit at 1/16 and at 1/4: shared/selection.h's q.
 struct FillQuality {
   float sixteenth = 0.0f, quarter = 0.0f;
 };
-FillQuality fillQualities(uint32_t effect);
+FillQuality fillQualities(uint32_t effect);  // the effect's prior
+// A frame's qualities per effect (RB_ITEM_*; SelectPush's quarterQuality and sixteenthQuality,
+// which select_common.glsl's fillQualities reads): the priors, moved toward
+// RB_FILL_QUALITY_STILL after `stillFrames` frames of a still view for the effects whose
+// temporal fill carries the traced values (`history`, 1 << RB_ITEM_* bits).
+using FrameFillQualities = std::array<FillQuality, RB_ITEMS_PER_OBJECT>;
+FrameFillQualities frameFillQualities(uint32_t stillFrames, uint32_t history);
+FrameFillQualities priorFillQualities();  // frameFillQualities(0, 0)
 // The share of an item's full-rate value `rate` keeps at the qualities q (1 at full rate).
 float keepShare(uint32_t rate, FillQuality q);
 
@@ -50,9 +56,9 @@ struct RateSegment {
   float costShare = 1.0f, valueShare = 1.0f;
   uint32_t rate = 0;
 };
-uint32_t rateHull(uint32_t effect, float fill);
-uint32_t rateSegments(uint32_t effect, float fill = float(RB_FILL_SHARE_PRIOR));
-RateSegment rateSegment(uint32_t effect, uint32_t k, float fill = float(RB_FILL_SHARE_PRIOR));
+uint32_t rateHull(float fill, FillQuality q);
+uint32_t rateSegments(float fill, FillQuality q);
+RateSegment rateSegment(uint32_t k, float fill, FillQuality q);
 
 // An object's work per traced pixel after a frame that counted `work` over `pixels`: the
 // mean of what it knew and the observation (the observation alone when it knew nothing,

@@ -24,6 +24,12 @@ namespace raybudget::select {
 namespace {
 
 using gpu::SelectPush;
+
+// The frame's fill quality at one rate per effect (x, y, z: RB_ITEM_*), as SelectPush holds it.
+glm::vec4 qualities(const ItemFrame& frame, float FillQuality::*rate) {
+  static_assert(RB_ITEMS_PER_OBJECT == 3);
+  return {frame.qualities[0].*rate, frame.qualities[1].*rate, frame.qualities[2].*rate, 0.0f};
+}
 static_assert(uint32_t(Policy::Paper) == RB_SELECT_PAPER && uint32_t(Policy::Density) == RB_SELECT_DENSITY &&
               uint32_t(Policy::Nearest) == RB_SELECT_NEAREST && uint32_t(Policy::Random) == RB_SELECT_RANDOM && uint32_t(Policy::Benefit) == RB_SELECT_BENEFIT);
 
@@ -117,7 +123,8 @@ struct GpuSelector::Impl {
       throw Error(std::string("frame selection runs the budgeted policies, not ") + policyName(policy));
     SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
                     glm::vec4(budget, scale.kappa, items.probeBudget, scale.workPerRay), glm::uvec4(options.paperHops, 1, objects, items.rate),
-                    glm::uvec4(items.effects, items.lights, items.pixels, items.ablation)};
+                    glm::uvec4(items.effects, items.lights, items.pixels, items.ablation), qualities(items, &FillQuality::quarter),
+                    qualities(items, &FillQuality::sixteenth)};
     vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);  // the candidate count
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -215,7 +222,8 @@ struct GpuSelector::Impl {
       throw Error("GPU selection: rate segment IDs up to " + std::to_string(groups * RB_SEGMENT_SLOTS) + " exceed the capacity's " +
                   std::to_string(capacity) + " item groups");
     SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, segments ? groups : options.graphPointers),
-                    glm::vec4(budget, 0, 0, 0), glm::uvec4(options.paperHops, 0, 0, segments ? RB_RATE_AUTO : RB_RATE_FULL), glm::uvec4(0)};
+                    glm::vec4(budget, 0, 0, 0), glm::uvec4(options.paperHops, 0, 0, segments ? RB_RATE_AUTO : RB_RATE_FULL), glm::uvec4(0),
+                    qualities(ItemFrame{}, &FillQuality::quarter), qualities(ItemFrame{}, &FillQuality::sixteenth)};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
       if (n > 0) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 
+#include "select/cost_model.h"
 #include "select/policies.h"
 #include "shared/selection.h"
 #include "vk/context.h"
@@ -25,6 +26,7 @@ struct ItemFrame {
   uint32_t effects = 0, lights = 0, pixels = 0, ablation = 0;
   float probeBudget = 0.0f;  // the sparse probe's share of the budget (shared/selection.h)
   uint32_t rate = RB_RATE_FULL;
+  FrameFillQualities qualities = priorFillQualities();  // how well each effect's fill keeps a rate's value
 };
 
 class GpuSelector {

@@ -8,6 +8,7 @@
 #include "select/coverage_pass.h"
 #include "select/gpu_selector.h"
 #include "select/select_pass.h"
+#include "shared/config.h"
 #include "vk/check.h"
 #include "vk/resources.h"
 
@@ -34,14 +35,23 @@ PolicyOptions policyOptions(const RenderSettings& s) {
   return {s.graphPointers, s.seed, 1, 4096, segments, segments};
 }
 
-ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget) {
+// The effects (1 << RB_ITEM_* bits) whose reduced rates the temporal fill carries on a still
+// view: reflections and refractions (include/fill_history.glsl), and shadows when every light
+// has a place in the shadow history (include/shadow_history.glsl).
+uint32_t historyEffects(const RenderSettings& s, uint32_t lights) {
+  if (!s.rayTracing.temporalFill) return 0u;
+  const uint32_t paths = (1u << RB_ITEM_REFLECTIONS) | (1u << RB_ITEM_REFRACTIONS);
+  return lights <= RB_SHADOW_HISTORY_LIGHTS ? paths | (1u << RB_ITEM_SHADOWS) : paths;
+}
+
+ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget, uint32_t stillFrames) {
   const RayTracingSettings& rt = s.rayTracing;
   const uint32_t effects = (rt.shadows ? RB_RT_SHADOWS : 0u) | (rt.reflections ? RB_RT_REFLECTIONS : 0u) | (rt.refractions ? RB_RT_REFRACTIONS : 0u);
   uint32_t ablation = 0;
   if (s.benefitAblation == BenefitAblation::NoCentrality) ablation = RB_BENEFIT_WITHOUT_CENTRALITY;
   if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
   if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
-  return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate)};
+  return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate), frameFillQualities(stillFrames, historyEffects(s, lights))};
 }
 
 // An item's rate (RB_RATE_*) in an object's word of the frame's selection (rates.glsl's itemRate).
@@ -53,7 +63,8 @@ float itemFill(uint32_t effect, const gpu::GpuItemCost& item) { return fillShare
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each), or
 // with rates chosen per item each selected item's segments up to the one its rate ends on
 // (`learned`: the items as the candidate pass left them, whose fill shares set their segments).
-std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments, const gpu::GpuItemCost* learned) {
+std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments, const gpu::GpuItemCost* learned,
+                                  const FrameFillQualities& qualities) {
   std::vector<uint32_t> ids;
   for (uint32_t i = 0; i < objects; ++i)
     for (uint32_t e = 0; e < (items ? RB_ITEMS_PER_OBJECT : 1u); ++e) {
@@ -66,7 +77,7 @@ std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool 
       const uint32_t rate = selectedRate(flags[i], e);
       uint32_t last = 0;
       const float fill = itemFill(e, learned[id]);
-      while (last + 1 < rateSegments(e, fill) && rateSegment(e, last, fill).rate != rate) ++last;
+      while (last + 1 < rateSegments(fill, qualities[e]) && rateSegment(last, fill, qualities[e]).rate != rate) ++last;
       for (uint32_t k = 0; k <= last; ++k) ids.push_back(id * RB_SEGMENT_SLOTS + k);
     }
   return ids;
@@ -165,7 +176,7 @@ struct SelectionStage::Impl {
   // T at or below the stage's learned fixed cost: nothing can be traced.
   bool belowFixedCost(const RenderSettings& s) const { return double(s.budgetMs) <= timeScale.fixedMs(); }
 
-  void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s) {
+  void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s, uint32_t stillFrames) {
     const VkCommandBuffer cmd = fc.cmd;
     const Policy policy = toSelectPolicy(s.policy);
     slot.selected = true;
@@ -181,7 +192,7 @@ struct SelectionStage::Impl {
     const bool probe = policy == Policy::Benefit && s.benefitAblation != BenefitAblation::NoProbe;
     const float probeBudgetMs = probe ? slot.traceBudgetMs * s.probeShare : 0.0f;
     slot.selectBudgetMs = slot.traceBudgetMs - probeBudgetMs;
-    slot.items = itemFrame(s, lights, probeBudgetMs);
+    slot.items = itemFrame(s, lights, probeBudgetMs, stillFrames);
     if (slot.budgeted) {
       const bool check = checkCpu;
       if (check) {  // what the cost model starts from
@@ -287,7 +298,7 @@ struct SelectionStage::Impl {
     const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
     double left = 0.0, prior = 0.0;
     // The candidates taken (items, or their rate segments), in ascending order.
-    const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments, after);
+    const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments, after, frame.qualities);
     for (const gpu::GpuCandidate& c : candidates) {
       const uint32_t item = itemOf(c.id);
       if (item < items && !((selected[item / RB_ITEMS_PER_OBJECT] >> (item % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
@@ -320,7 +331,7 @@ struct SelectionStage::Impl {
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
-      if (candidate) expected += segments ? rateSegments(e, fill[id]) : 1u;
+      if (candidate) expected += segments ? rateSegments(fill[id], frame.qualities[e]) : 1u;
       const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
       if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
     }
@@ -336,8 +347,8 @@ struct SelectionStage::Impl {
       float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
       if (segments) {
         const uint32_t k = c.id % RB_SEGMENT_SLOTS;
-        if (k >= rateSegments(e, fill[item])) return false;
-        const RateSegment s = rateSegment(e, k, fill[item]);
+        if (k >= rateSegments(fill[item], frame.qualities[e])) return false;
+        const RateSegment s = rateSegment(k, fill[item], frame.qualities[e]);
         cost *= s.costShare;
         value *= s.valueShare;
       }
@@ -386,7 +397,7 @@ struct SelectionStage::Impl {
       if (checkCpu) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
         const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO,
-                                                         static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped));
+                                                         static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped), slot.items.qualities);
         const Selection cpu = selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s));
         t.selectionMatchesCpu = gpuIds == cpu.ids && (policy != Policy::Benefit || partialMatches(slot, cpu.partial));
         t.costsMatchCpu = costsMatchCpu(slot, policy, g);
@@ -496,8 +507,8 @@ void SelectionStage::setObjectParams(uint32_t object, float K, float Q, float I)
 
 void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classify) const { impl_->coverage.record(fc, classify); }
 
-void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings) {
-  impl_->recordSelect(fc, impl_->slots[slot], settings);
+void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames) {
+  impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames);
 }
 
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {

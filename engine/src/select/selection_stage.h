@@ -45,8 +45,10 @@ class SelectionStage {
   void recordCoverage(const passes::FrameContext& fc, bool classify) const;
   // The select pass for `slot`: with a budgeted policy the GPU selection within T less the
   // learned overhead (and the copies its stats need), else none / all; then the tile list,
-  // ready for the trace passes' indirect dispatch.
-  void recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings);
+  // ready for the trace passes' indirect dispatch. `stillFrames`: the frames before this one in
+  // a row whose camera and objects were where they are now (rates priced for a still view's
+  // temporal fill, shared/selection.h's RB_FILL_QUALITY_STILL).
+  void recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames);
   // After the trace passes: the copy of the tile list's header (tiles and rays traced).
   void recordStats(VkCommandBuffer cmd, uint32_t slot) const;
   // After the slot's fence: the frame's selection stats into `t` (its pass times read), and
