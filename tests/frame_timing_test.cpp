@@ -1,6 +1,7 @@
 // Per-pass timestamps: every executed pass reports a time, the static environment and the
 // shadow maps of a static scene only on the first frame, and results arrive for every frame
 // without the caller waiting on each.
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -52,6 +53,32 @@ TEST(FrameTiming, RenderReturnsEarlierFramesWithoutWaitingForTheCurrentOne) {
   ASSERT_EQ(rest.size(), 2u);
   EXPECT_EQ(rest[0].frame, 1u);
   EXPECT_EQ(rest[1].frame, 2u);
+  test::expectValidationClean(renderer.validationMessages());
+}
+
+// stillFrames counts the frames before each one with its camera and objects: it restarts at a
+// camera move and at a moved object (whose history the temporal fill can no longer carry).
+TEST(FrameTiming, StillFramesCountTheFramesSinceTheViewOrAnObjectLastChanged) {
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 64;
+  settings.validation = true;
+  const Scene scene = twoTriangles();
+  Renderer renderer(scene, settings);
+  const Camera cam = defaultCamera(scene, 1.0f);
+  Camera moved = cam;
+  moved.position.x += 1e-3f;
+  std::vector<FrameTiming> timings;
+  auto render = [&](const Camera& c) {
+    for (const FrameTiming& t : renderer.render(c)) timings.push_back(t);
+  };
+  render(cam), render(cam), render(cam), render(moved), render(moved);
+  renderer.setObjectTransform(0, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.1f, 0.0f)));
+  render(moved), render(moved);
+  for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
+  ASSERT_EQ(timings.size(), 7u);
+  const uint32_t expected[] = {0, 1, 2, 0, 1, 0, 1};
+  for (size_t i = 0; i < timings.size(); ++i) EXPECT_EQ(timings[i].stillFrames, expected[i]) << "frame " << i;
   test::expectValidationClean(renderer.validationMessages());
 }
 

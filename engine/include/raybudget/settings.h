@@ -215,6 +215,10 @@ struct FrameTiming {
   // `benefit` with rates chosen per item: the share of its tiles the partial item (the first
   // left out, its cheapest rate on what the budget left) is traced on; 0: none
   double partialShare = 0.0;
+  // The frames before this one in a row with its camera and objects (0 after any change): on a
+  // still view the temporal fill carries what a reduced rate traced, and `benefit` with rates
+  // chosen per item values the rates for it (docs/SELECTION.md).
+  uint32_t stillFrames = 0;
   // false when every candidate fit the budget for certain (their summed cost at most 31/32
   // of T), so the select pass skipped the sort and selected them all
   bool selectionSorted = false;

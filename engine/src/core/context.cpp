@@ -61,6 +61,7 @@ struct Context::Impl {
     double tlasRebuildMs = 0.0;
     passes::ShadowMapPass::Recorded shadowMapsRecorded;
     uint32_t probesCaptured = 0;
+    uint32_t stillFrames = 0;  // FrameTiming::stillFrames
     PassSkip ssr = PassSkip::NoPreviousFrame;  // None: smooth surfaces reflect what is on screen
     PassSkip behindGlass = PassSkip::NoTransmissionInView;  // None: glass shows the opaque frame lit behind it
     glm::uvec4 behindGlassRect{0};                          // the pixels lit for it
@@ -171,6 +172,7 @@ struct Context::Impl {
     t.shadowMapDraws = slot.shadowMapsRecorded.draws;
     t.shadowMapTexels = slot.shadowMapsRecorded.texels;
     t.probesCaptured = slot.probesCaptured;
+    t.stillFrames = slot.stillFrames;
     t.skipped = slot.skipped;
     const uint32_t s = uint32_t(&slot - slots);
     const auto ms = timestamps.read(s);
@@ -469,6 +471,7 @@ struct Context::Impl {
     const float aspect = float(settings.width) / float(settings.height);
     const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
     stillFrames = previousViewProj == viewProj && !objectsMoved ? stillFrames + 1 : 0;
+    slot.stillFrames = stillFrames;
     if (shadowMaps && settings.shadowMapsFitScreen)
       shadowMaps->fit(scene.shadows, viewProj, camera.position, 0.5f * float(settings.height) / std::tan(0.5f * camera.yfov));
     // A budget the stage's fixed cost alone exceeds buys nothing: the whole stage is left out.
