@@ -77,7 +77,7 @@ render options:
   --explain[=frames]    print the pass plan: per pass the frames it ran in and its median
                         time, the frames it was left out of and why; the effects the scene can
                         show, the pipelines built, the pixels per effect that could take rays
-                        and those traced; =frames also prints each frame's selected items
+                        and those traced, whether the view was still; =frames also prints each frame's selected items
                         (adds the per-object metrics pass to coverage)
   --item-stats          write items.csv: per object and effect (item) in the last frame, its
                         pixels, whether traced, and with benefit or classified the display

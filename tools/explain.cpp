@@ -66,6 +66,12 @@ void printPassPlan(std::ostream& out, const Renderer& renderer, const std::vecto
   const FrameTiming last = frames.empty() ? FrameTiming{} : frames.back();
   out << formatted("  rays traced: %u in %u tiles (%u for shadows, %u for reflections and refractions)\n", last.raysTraced, last.tracedTiles,
                    last.shadowTiles, last.effectTiles);
+  // What `benefit` with rates chosen per item valued the reduced rates at (docs/SELECTION.md).
+  if (last.stillFrames > 0)
+    out << formatted("  the view: still for the %u frame%s before it (reduced rates valued for the temporal fill)\n", last.stillFrames,
+                     last.stillFrames == 1 ? "" : "s");
+  else
+    out << "  the view: moved since the frame before (reduced rates valued at the moving-view priors)\n";
 }
 
 void printFrameSelection(std::ostream& out, uint64_t frame, const std::vector<ObjectMetrics>& metrics) {
