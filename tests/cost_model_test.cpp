@@ -156,16 +156,17 @@ TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
     EXPECT_LT(select::rateShare(RB_RATE_SIXTEENTH, fill), select::rateShare(RB_RATE_QUARTER, fill));
 }
 
+constexpr uint32_t kEveryEffect = RB_RT_SHADOWS | RB_RT_REFLECTIONS | RB_RT_REFRACTIONS;  // frameFillQualities' history
+
 // The segments are the upper convex hull of an item's options at every fill share and fill
 // quality (the priors, and a still view's after 0-100 frames): they add up to full rate, each
 // worth less per cost than the one before, and no option left out lies above the line between
 // its neighbours on the hull.
 TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
-  const uint32_t everyEffect = (1u << RB_ITEM_SHADOWS) | (1u << RB_ITEM_REFLECTIONS) | (1u << RB_ITEM_REFRACTIONS);
   for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR_SHADOWS), float(RB_FILL_SHARE_PRIOR), 0.3f, 0.4f, 0.55f, float(RB_FILL_SHARE_MAX)})
     for (uint32_t effect : {RB_ITEM_SHADOWS, RB_ITEM_REFLECTIONS, RB_ITEM_REFRACTIONS})
     for (uint32_t still : {0u, 1u, 2u, 5u, 15u, 100u}) {
-      const select::FillQuality q = select::frameFillQualities(still, everyEffect)[effect];
+      const select::FillQuality q = select::frameFillQualities(still, kEveryEffect)[effect];
       float cost = 0.0f, value = 0.0f, density = INFINITY;
       const uint32_t n = select::rateSegments(fill, q);
       std::vector<uint32_t> rates;
@@ -218,17 +219,16 @@ TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
 // and rise with each still frame to RB_FILL_QUALITY_STILL once the frames before covered the
 // rate's pattern (1/4: 3 frames, 1/16: 15).
 TEST(CostModel, AStillViewsFillQualitiesRiseFromThePriorsAsItsFramesCoverTheRatesPattern) {
-  const uint32_t everyEffect = (1u << RB_ITEM_SHADOWS) | (1u << RB_ITEM_REFLECTIONS) | (1u << RB_ITEM_REFRACTIONS);
   for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
     const select::FillQuality prior = select::fillQualities(e);
     EXPECT_EQ(select::priorFillQualities()[e].quarter, prior.quarter);
-    EXPECT_EQ(select::frameFillQualities(0, everyEffect)[e].quarter, prior.quarter) << "a jump keeps the prior";
-    EXPECT_EQ(select::frameFillQualities(0, everyEffect)[e].sixteenth, prior.sixteenth);
-    EXPECT_EQ(select::frameFillQualities(50, everyEffect & ~(1u << e))[e].quarter, prior.quarter) << "no history, no carry";
-    EXPECT_EQ(select::frameFillQualities(50, everyEffect & ~(1u << e))[e].sixteenth, prior.sixteenth);
+    EXPECT_EQ(select::frameFillQualities(0, kEveryEffect)[e].quarter, prior.quarter) << "a jump keeps the prior";
+    EXPECT_EQ(select::frameFillQualities(0, kEveryEffect)[e].sixteenth, prior.sixteenth);
+    EXPECT_EQ(select::frameFillQualities(50, kEveryEffect & ~(1u << e))[e].quarter, prior.quarter) << "no history, no carry";
+    EXPECT_EQ(select::frameFillQualities(50, kEveryEffect & ~(1u << e))[e].sixteenth, prior.sixteenth);
     float quarter = prior.quarter, sixteenth = prior.sixteenth;
     for (uint32_t n = 1; n <= 20; ++n) {
-      const select::FillQuality q = select::frameFillQualities(n, everyEffect)[e];
+      const select::FillQuality q = select::frameFillQualities(n, kEveryEffect)[e];
       EXPECT_GE(q.quarter, quarter) << "effect " << e << " after " << n;
       EXPECT_GT(q.sixteenth, n <= 15 ? sixteenth : sixteenth - 1e-7f) << "effect " << e << " after " << n;
       quarter = q.quarter, sixteenth = q.sixteenth;
@@ -236,12 +236,12 @@ TEST(CostModel, AStillViewsFillQualitiesRiseFromThePriorsAsItsFramesCoverTheRate
         EXPECT_NEAR(q.quarter, prior.quarter + (float(RB_FILL_QUALITY_STILL) - prior.quarter) / 3.0f, 1e-6f);
       }
     }
-    EXPECT_FLOAT_EQ(select::frameFillQualities(3, everyEffect)[e].quarter, float(RB_FILL_QUALITY_STILL));
-    EXPECT_LT(select::frameFillQualities(14, everyEffect)[e].sixteenth, float(RB_FILL_QUALITY_STILL));
-    EXPECT_FLOAT_EQ(select::frameFillQualities(15, everyEffect)[e].sixteenth, float(RB_FILL_QUALITY_STILL));
+    EXPECT_FLOAT_EQ(select::frameFillQualities(3, kEveryEffect)[e].quarter, float(RB_FILL_QUALITY_STILL));
+    EXPECT_LT(select::frameFillQualities(14, kEveryEffect)[e].sixteenth, float(RB_FILL_QUALITY_STILL));
+    EXPECT_FLOAT_EQ(select::frameFillQualities(15, kEveryEffect)[e].sixteenth, float(RB_FILL_QUALITY_STILL));
   }
   // Where the fill keeps nearly all, the cheapest rate is worth the most per cost: 1/16 first.
-  const select::FrameFillQualities still = select::frameFillQualities(15, everyEffect);
+  const select::FrameFillQualities still = select::frameFillQualities(15, kEveryEffect);
   for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e)
     EXPECT_EQ(select::rateSegment(0, float(RB_FILL_SHARE_PRIOR), still[e]).rate, RB_RATE_SIXTEENTH) << "effect " << e;
 }

@@ -15,6 +15,7 @@
 
 #include "raybudget/renderer.h"
 #include "select/policies.h"
+#include "shared/config.h"
 #include "shared/selection.h"
 
 namespace raybudget::select {
@@ -40,7 +41,10 @@ FillQuality fillQualities(uint32_t effect);  // the effect's prior
 // A frame's qualities per effect (RB_ITEM_*; SelectPush's quarterQuality and sixteenthQuality,
 // which select_common.glsl's fillQualities reads): the priors, moved toward
 // RB_FILL_QUALITY_STILL after `stillFrames` frames of a still view for the effects whose
-// temporal fill carries the traced values (`history`, 1 << RB_ITEM_* bits).
+// temporal fill carries the traced values (`history`, RB_RT_* bits: each effect's is
+// 1 << RB_ITEM_*, as select_common.glsl reads the frame's effects too).
+static_assert(RB_RT_SHADOWS == 1u << RB_ITEM_SHADOWS && RB_RT_REFLECTIONS == 1u << RB_ITEM_REFLECTIONS &&
+              RB_RT_REFRACTIONS == 1u << RB_ITEM_REFRACTIONS);
 using FrameFillQualities = std::array<FillQuality, RB_ITEMS_PER_OBJECT>;
 FrameFillQualities frameFillQualities(uint32_t stillFrames, uint32_t history);
 FrameFillQualities priorFillQualities();  // frameFillQualities(0, 0)

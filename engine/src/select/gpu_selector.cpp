@@ -221,9 +221,10 @@ struct GpuSelector::Impl {
     if (segments && groups > capacity)
       throw Error("GPU selection: rate segment IDs up to " + std::to_string(groups * RB_SEGMENT_SLOTS) + " exceed the capacity's " +
                   std::to_string(capacity) + " item groups");
+    const ItemFrame atPriors;  // (unread: only frame mode prices segments and marks item levels)
     SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, segments ? groups : options.graphPointers),
                     glm::vec4(budget, 0, 0, 0), glm::uvec4(options.paperHops, 0, 0, segments ? RB_RATE_AUTO : RB_RATE_FULL), glm::uvec4(0),
-                    qualities(ItemFrame{}, &FillQuality::quarter), qualities(ItemFrame{}, &FillQuality::sixteenth)};
+                    qualities(atPriors, &FillQuality::quarter), qualities(atPriors, &FillQuality::sixteenth)};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
       if (n > 0) {

@@ -35,13 +35,13 @@ PolicyOptions policyOptions(const RenderSettings& s) {
   return {s.graphPointers, s.seed, 1, 4096, segments, segments};
 }
 
-// The effects (1 << RB_ITEM_* bits) whose reduced rates the temporal fill carries on a still
-// view: reflections and refractions (include/fill_history.glsl), and shadows when every light
-// has a place in the shadow history (include/shadow_history.glsl).
+// The effects (RB_RT_* bits) whose reduced rates the temporal fill carries on a still view:
+// reflections and refractions (include/fill_history.glsl), and shadows when every light has a
+// place in the shadow history (include/shadow_history.glsl).
 uint32_t historyEffects(const RenderSettings& s, uint32_t lights) {
   if (!s.rayTracing.temporalFill) return 0u;
-  const uint32_t paths = (1u << RB_ITEM_REFLECTIONS) | (1u << RB_ITEM_REFRACTIONS);
-  return lights <= RB_SHADOW_HISTORY_LIGHTS ? paths | (1u << RB_ITEM_SHADOWS) : paths;
+  const uint32_t paths = RB_RT_REFLECTIONS | RB_RT_REFRACTIONS;
+  return lights <= RB_SHADOW_HISTORY_LIGHTS ? paths | RB_RT_SHADOWS : paths;
 }
 
 ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget, uint32_t stillFrames) {
