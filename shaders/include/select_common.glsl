@@ -92,6 +92,14 @@ uvec4 greedyRecord(uint ci) {
 // midpoint between floats, and 2.5 double ULP is under 2^-51.
 float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 
+// `benefit`: work units per clock tick, the exchange that prices items' clock time, held once
+// a frame timed traced items (the totals record's workPerPixel; cost_model.cpp's
+// itemTicksToWork is the CPU reference and says why).
+float heldTicksToWork(float held, uint totalWork, uint totalTicks) {
+  if (held > 0.0) return held;
+  return totalTicks > 0u && totalWork > 0u ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0;
+}
+
 // `benefit`: the pixels item `effect` of object i covers this frame (0: nothing to trace):
 // shadows every pixel of the object (the shadow pass classifies per light), reflections and
 // refractions the classifier's counts; none for an effect the frame does not trace or a

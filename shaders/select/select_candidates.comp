@@ -52,10 +52,11 @@ float probedWorkPerPixel(float previous, float prior, float observed, uint pixel
   return from + (observed - from) * share;
 }
 
-// Work units per clock tick over last frame's traced items (0: nothing timed).
+// Work units per clock tick: held since the first frame that timed traced items (0: nothing
+// timed yet; cost_model.h's itemTicksToWork says why it is held).
 float ticksToWork() {
   GpuItemCost totals = items[push.walk.z * RB_ITEMS_PER_OBJECT];
-  return totals.ticks > 0u && totals.work > 0u ? exactQuotient(float(totals.work), float(totals.ticks)) : 0.0;
+  return heldTicksToWork(totals.workPerPixel, totals.work, totals.ticks);
 }
 
 // Item `effect` of object i: learns from last frame's counters, restarts them, and returns

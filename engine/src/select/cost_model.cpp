@@ -148,7 +148,8 @@ float tracedPixelCost(uint32_t rate) {
   }
 }
 
-float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
+float itemTicksToWork(float held, uint32_t totalWork, uint32_t totalTicks) {
+  if (held > 0.0f) return held;
   return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
 }
 
