@@ -107,15 +107,12 @@ TEST(CostModel, ItemPriorsFollowTheMaterials) {
   for (const glm::vec3& v : {m, p, g}) EXPECT_EQ(v.x, float(RB_PRIOR_BENEFIT_SHADOWS));
 }
 
-// An item's cost per pixel comes from its clock ticks at the exchange rate (work per tick over
-// every item of the first timed frame, held after it), or from its traversal work where
-// nothing was timed.
-TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheHeldExchangeRate) {
-  EXPECT_EQ(select::itemTicksToWork(0.0f, 3000, 1000), 3.0f);
-  EXPECT_EQ(select::itemTicksToWork(0.0f, 3000, 0), 0.0f);
-  EXPECT_EQ(select::itemTicksToWork(0.0f, 0, 1000), 0.0f);
-  EXPECT_EQ(select::itemTicksToWork(2.0f, 3000, 1000), 2.0f) << "held: a later frame's mix of rates does not move it";
-  EXPECT_EQ(select::itemTicksToWork(2.0f, 0, 0), 2.0f);
+// An item's cost per pixel comes from its clock ticks at the frame's exchange rate (work per
+// tick over every item), or from its traversal work where nothing was timed.
+TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
+  EXPECT_EQ(select::itemTicksToWork(3000, 1000), 3.0f);
+  EXPECT_EQ(select::itemTicksToWork(3000, 0), 0.0f);
+  EXPECT_EQ(select::itemTicksToWork(0, 1000), 0.0f);
   const select::ItemLearned fresh;
   // 50 ticks a pixel at 3 work units a tick: 150 per pixel, whatever its traversal work.
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100}, 3.0f).workPerPixel, 150.0f);

@@ -16,9 +16,7 @@ void applySelection(uint i) {
   // The pixels the trace passes will count work over, for next frame's learning.
   costs[i].pixels = bits != 0u ? floatBitsToUint(records[i].crCandidatePixels.w) : 0u;
   if (push.sizes.z != RB_SELECT_BENEFIT) return;
-  if (i == 0u) {  // the frame's totals restart (select_candidates.comp has read them), the exchange held
-    GpuItemCost totals = items[push.walk.z * RB_ITEMS_PER_OBJECT];
-    items[push.walk.z * RB_ITEMS_PER_OBJECT].workPerPixel = heldTicksToWork(totals.workPerPixel, totals.work, totals.ticks);
+  if (i == 0u) {  // the frame's totals restart (select_candidates.comp has read them)
     items[push.walk.z * RB_ITEMS_PER_OBJECT].work = 0u;
     items[push.walk.z * RB_ITEMS_PER_OBJECT].ticks = 0u;
   }

@@ -92,14 +92,6 @@ uvec4 greedyRecord(uint ci) {
 // midpoint between floats, and 2.5 double ULP is under 2^-51.
 float exactQuotient(float a, float b) { return float(double(a) / double(b)); }
 
-// `benefit`: work units per clock tick, the exchange that prices items' clock time, held once
-// a frame timed traced items (the totals record's workPerPixel; cost_model.cpp's
-// itemTicksToWork is the CPU reference and says why).
-float heldTicksToWork(float held, uint totalWork, uint totalTicks) {
-  if (held > 0.0) return held;
-  return totalTicks > 0u && totalWork > 0u ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0;
-}
-
 // `benefit`: the pixels item `effect` of object i covers this frame (0: nothing to trace):
 // shadows every pixel of the object (the shadow pass classifies per light), reflections and
 // refractions the classifier's counts; none for an effect the frame does not trace or a
@@ -123,10 +115,7 @@ float fillShare(uint effect, float fillPerPixel, float workPerPixel) {
 
 // The clock time of a pixel a rate traces over full rate's per pixel (shared/selection.h;
 // cost_model.cpp's tracedPixelCost).
-float tracedPixelCost(uint rate) {
-  return rate == RB_RATE_HALF ? RB_TRACED_PIXEL_COST_HALF
-                              : (rate == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER : (rate == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0));
-}
+float tracedPixelCost(uint rate) { return RB_TRACED_PIXEL_COST(rate); }
 
 // The quality of an item's fill at 1/16 (x) and at 1/4 (y) this frame: the effect's prior, or
 // toward RB_FILL_QUALITY_STILL on a still view (shared/selection.h; cost_model.cpp's

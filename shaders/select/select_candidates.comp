@@ -52,11 +52,10 @@ float probedWorkPerPixel(float previous, float prior, float observed, uint pixel
   return from + (observed - from) * share;
 }
 
-// Work units per clock tick: held since the first frame that timed traced items (0: nothing
-// timed yet; cost_model.h's itemTicksToWork says why it is held).
+// Work units per clock tick over last frame's traced items (0: nothing timed).
 float ticksToWork() {
   GpuItemCost totals = items[push.walk.z * RB_ITEMS_PER_OBJECT];
-  return heldTicksToWork(totals.workPerPixel, totals.work, totals.ticks);
+  return totals.ticks > 0u && totals.work > 0u ? exactQuotient(float(totals.work), float(totals.ticks)) : 0.0;
 }
 
 // Item `effect` of object i: learns from last frame's counters, restarts them, and returns

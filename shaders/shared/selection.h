@@ -166,6 +166,11 @@ struct GpuObjectCost {
 #define RB_TRACED_PIXEL_COST_HALF 1.3
 #define RB_TRACED_PIXEL_COST_QUARTER 1.33
 #define RB_TRACED_PIXEL_COST_SIXTEENTH 2.24
+// Per rate (RB_RATE_*), 1 at full rate.
+#define RB_TRACED_PIXEL_COST(rate)                                                                                           \
+  ((rate) == RB_RATE_HALF ? RB_TRACED_PIXEL_COST_HALF                                                                         \
+                          : (rate) == RB_RATE_QUARTER ? RB_TRACED_PIXEL_COST_QUARTER                                          \
+                                                      : (rate) == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0)
 #define RB_TRACED_SHARE_HALF 0.65        // 0.5 * RB_TRACED_PIXEL_COST_HALF (literals, as RB_FILL_QUALITY_*)
 #define RB_TRACED_SHARE_QUARTER 0.3325   // 0.25 * RB_TRACED_PIXEL_COST_QUARTER
 #define RB_TRACED_SHARE_SIXTEENTH 0.14   // 0.0625 * RB_TRACED_PIXEL_COST_SIXTEENTH
@@ -208,8 +213,7 @@ struct GpuObjectCost {
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
 // 1 once measured, S as last frame's option (0: left out; 1 + its rate), and its learned cost
 // per pixel its rate skips with this frame's ticks and count of such pixels. One more record after the items holds the
-// frame's totals of work and ticks over every item, in `workPerPixel` the ticks' exchange rate
-// to work units held since the first timed frame (select_common.glsl's heldTicksToWork),
+// frame's totals of work and ticks over every item (the ticks' exchange rate to work units),
 // in `pixels` the frame's probe stride (0: no probe), in `selectedLast` the partial item + 1 (0:
 // none) and in `benefit` its share of tiles. A probed item's `pixels` start at 0
 // and count the covered pixels the probe traced.

@@ -139,17 +139,9 @@ RateSegment rateSegment(uint32_t k, float fill, FillQuality q) {
   return {rateShare(rate, fill) - costFrom, keepShare(rate, q) - valueFrom, rate};
 }
 
-float tracedPixelCost(uint32_t rate) {
-  switch (rate) {
-    case RB_RATE_HALF: return float(RB_TRACED_PIXEL_COST_HALF);
-    case RB_RATE_QUARTER: return float(RB_TRACED_PIXEL_COST_QUARTER);
-    case RB_RATE_SIXTEENTH: return float(RB_TRACED_PIXEL_COST_SIXTEENTH);
-    default: return 1.0f;
-  }
-}
+float tracedPixelCost(uint32_t rate) { return float(RB_TRACED_PIXEL_COST(rate)); }
 
-float itemTicksToWork(float held, uint32_t totalWork, uint32_t totalTicks) {
-  if (held > 0.0f) return held;
+float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
   return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
 }
 

@@ -111,14 +111,15 @@ struct ItemCounts {
 float tracedPixelCost(uint32_t rate);
 ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0,
                       float priorWorkPerPixel = 0.0f);
-// Work units per tick: `held` where one was (the items' totals record keeps it), else the
-// frame's totals' work over their ticks (0: nothing timed). Held from the first timed frame
-// on, because a frame's own ratio follows its mix of rates: a pixel traced alone in its SIMD
-// batch (1/16) costs more ticks for the same traversal work, so as a still view moved items
-// to 1/16 the court's fell from 0.037 to 0.024 work per tick in 15 frames, every item's
-// learned cost fell with it, and the time scale chased the drift a few frames behind: the
-// stage ran 1.3-1.4x its prediction on every frame of the warm-up.
-float itemTicksToWork(float held, uint32_t totalWork, uint32_t totalTicks);
+// Work units per tick from the frame's totals over every item (0: nothing timed). The totals'
+// ticks are each traced pixel's over its rate's RB_TRACED_PIXEL_COST (item_stats.glsl): a
+// pixel traced alone in its SIMD batch takes more ticks for the same traversal work, so the
+// raw ratio followed the frame's mix of rates (0.037 to 0.024 work per tick on the court as a
+// still view moved items to 1/16), every item's learned cost fell with it, and the time scale
+// chased the drift a few frames behind: the stage ran 1.3-1.4x its prediction through the
+// warm-up. Held from the first timed frame instead, it removed the drift but let each frame's
+// clock noise into the learned costs, which the per-frame ratio cancels (docs/SELECTION.md).
+float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks);
 // An item candidate's predicted work: its pixels times its work per pixel, or before that
 // is learned, the rays per pixel (a shadow ray per light; a reflection or refraction path and
 // its hit's shadow rays) times the work a ray costs.

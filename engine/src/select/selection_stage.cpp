@@ -295,7 +295,7 @@ struct SelectionStage::Impl {
     // With rates chosen per item the candidates are the items' rate segments.
     const bool segments = frame.rate == RB_RATE_AUTO;
     auto itemOf = [&](uint32_t id) { return segments ? id / RB_SEGMENT_SLOTS : id; };
-    const float exchange = itemTicksToWork(before[items].workPerPixel, before[items].work, before[items].ticks);
+    const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
     double left = 0.0, prior = 0.0;
     // The candidates taken (items, or their rate segments), in ascending order.
     const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments, after, frame.qualities);
@@ -306,7 +306,6 @@ struct SelectionStage::Impl {
     const uint32_t stride = after[items].pixels;
     if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
     if (after[items].work != 0 || after[items].ticks != 0) return false;  // the totals restart
-    if (std::bit_cast<uint32_t>(after[items].workPerPixel) != std::bit_cast<uint32_t>(exchange)) return false;  // and hold the exchange
     std::vector<ItemLearned> learned(items);
     std::vector<float> fill(items);  // each item's fill share, which prices its rates
     size_t expected = 0;
