@@ -86,8 +86,7 @@ void traceEffects(ivec2 pixel, Surface s, Selection sel, bvec2 here) {
   vec3 N, V, specularWeight, transmitWeight;
   tracedPathWeights(s, p, ng, N, V, specularWeight, transmitWeight);
   uint depth = clamp(frame.rayTracing.y, 1u, uint(RB_RT_MAX_DEPTH));
-  vec3 R = reflect(-V, N);
-  if (dot(R, ng) < 0.0) R = reflect(R, ng);  // a normal map tilted the mirror ray below the surface
+  vec3 R = mirrorDirection(V, N, ng);
   // The fallback's paths, as the env_fallback pass computed them.
   vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
   vec3 fallback[2] = vec3[2](envReflection(s, rasterV, pixel), envTransmission(s, rasterV));

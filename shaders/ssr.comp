@@ -57,14 +57,14 @@ float marchHiZ(vec3 origin, vec3 dir, float tStart, int levels) {
 // meeting it: relative to the distance and the scene's size.
 float hitShell(float surfaceW) { return 0.02 * surfaceW + 0.002 * frame.ssr.z; }
 
-// The reflection seen on smooth surface `s`: rgb radiance, a confidence; `hitDistance` how far
-// along the mirror ray the surface it met lies (-1: none).
-vec4 reflectionAt(Surface s, out float hitDistance) {
+// The reflection seen on smooth surface `s` (geometric normal ng): rgb radiance, a confidence;
+// `hitDistance` how far along the mirror ray the surface it met lies (-1: none).
+vec4 reflectionAt(Surface s, vec3 ng, out float hitDistance) {
   hitDistance = -1.0;
   float cutoff = frame.ssr.y;
   vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
-  vec3 R = reflect(-V, s.normal);
-  vec3 start = s.position + s.normal * 1e-3 * length(frame.cameraPositionNear.xyz - s.position);
+  vec3 R = mirrorDirection(V, s.normal, ng);
+  vec3 start = s.position + ng * 1e-3 * length(frame.cameraPositionNear.xyz - s.position);
   // The ray's far end, pulled in front of the near plane where the ray comes back towards the camera.
   float reach = frame.ssr.z;
   vec4 c0 = frame.viewProj * vec4(start, 1.0), c1 = frame.viewProj * vec4(start + R * reach, 1.0);
@@ -108,15 +108,16 @@ bool wantsReflection(ivec2 pixel) {
   return texelFetch(gObjectId, pixel, 0).r != RB_NO_OBJECT && rti.r < frame.ssr.y && rti.a <= 0.5;
 }
 
-// The reflection on `s`, a neighbour of the surface `marched` whose ray met a surface
+// The reflection on `s` (geometric normal ng), a neighbour of the surface `marched` whose ray met a surface
 // `hitDistance` along it: `s`'s own mirror ray is taken to meet a surface as far along, and
 // where the frame has a surface there (within the march's shell) the previous frame is read
 // where it showed that point, with the marched pixel's confidence; elsewhere the marched
 // pixel's result stands.
-vec4 neighbourReflection(Surface s, vec4 marchedResult, float hitDistance) {
+vec4 neighbourReflection(Surface s, vec3 ng, vec4 marchedResult, float hitDistance) {
   if (hitDistance <= 0.0) return marchedResult;
   vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
-  vec3 p = s.position + reflect(-V, s.normal) * hitDistance;
+  vec3 R = mirrorDirection(V, s.normal, ng);
+  vec3 p = s.position + R * hitDistance;
   vec4 clip = frame.viewProj * vec4(p, 1.0);
   vec2 size = vec2(frame.sizeLightsFrame.xy);
   vec2 screen = (clip.xy / clip.w * 0.5 + 0.5) * size;
@@ -126,7 +127,6 @@ vec4 neighbourReflection(Surface s, vec4 marchedResult, float hitDistance) {
   float surfaceW = (frame.viewProj * vec4(q, 1.0)).w;
   if (texelFetch(gObjectId, at, 0).r == RB_NO_OBJECT || abs(clip.w - surfaceW) >= hitShell(surfaceW)) return marchedResult;
   // One refinement: the point along the ray as far as the surface found there.
-  vec3 R = reflect(-V, s.normal);
   vec2 uv;
   if (!previousUv(s.position + R * max(dot(q - s.position, R), 0.0), uv)) return marchedResult;
   // The texel there, as a marched ray reads it (a filtered read would blur edges).
@@ -152,11 +152,12 @@ void main() {
     float distance = length(s.position - frame.cameraPositionNear.xyz);
     bool same = haveMarched && s.objectId == marched.objectId && dot(s.normal, marched.normal) > 0.95 &&
                 abs(distance - length(marched.position - frame.cameraPositionNear.xyz)) < 0.02 * distance;
+    vec3 ng = surfaceGeometricNormal(pixel);
     if (same) {
-      imageStore(ssrImage, pixel, neighbourReflection(s, marchedResult, hitDistance));
+      imageStore(ssrImage, pixel, neighbourReflection(s, ng, marchedResult, hitDistance));
       continue;
     }
-    marchedResult = reflectionAt(s, hitDistance);
+    marchedResult = reflectionAt(s, ng, hitDistance);
     marched = s;
     haveMarched = true;
     imageStore(ssrImage, pixel, marchedResult);

@@ -65,13 +65,6 @@ TEST(MaterialLayers, LoaderReadsTextureTransformsAndLayers) {
   for (const std::string& w : scene.warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
 }
 
-// A quad in the XZ plane facing +y with texture coordinates (0,0)..(1,1) at its corners.
-Mesh texturedQuad(float half) {
-  Mesh m = test::quad(half);
-  for (Vertex& v : m.vertices) v.uv = glm::vec2(v.position.x, v.position.z) / (2.0f * half) + 0.5f;
-  return m;
-}
-
 // An 8x8 texture of distinct colours, sampled nearest and repeated.
 void addChecker(Scene& scene) {
   Image img{"checker", 8, 8, {}};
@@ -106,7 +99,7 @@ Scene transformScene(bool viaTexture, bool transform = true) {
   unlit.unlit = true;
   unlit.baseColorTexture = 0;
   auto textured = [&](float half) {
-    Mesh m = texturedQuad(half);
+    Mesh m = test::texturedQuad(half);
     if (!viaTexture && transform)
       for (Vertex& v : m.vertices) v.uv = specTransform(v.uv, offset, rotation, scale);
     return m;
@@ -185,16 +178,6 @@ glm::vec3 centreRadiance(Scene scene, glm::vec3 sunTravel, Policy policy, glm::v
   return hdr(img, 8, 8);
 }
 
-// A 2x2 normal map holding one tangent-space normal t (|t| = 1) everywhere, linear.
-int addFlatNormalMap(Scene& scene, glm::vec3 t) {
-  const glm::vec3 c = glm::round((t * 0.5f + 0.5f) * 255.0f);
-  Image img{"normals", 2, 2, {}};
-  for (int i = 0; i < 4; ++i) img.rgba.insert(img.rgba.end(), {uint8_t(c.x), uint8_t(c.y), uint8_t(c.z), 255});
-  scene.images.push_back(img);
-  scene.textures.push_back(Texture{int(scene.images.size() - 1), -1});
-  return int(scene.textures.size() - 1);
-}
-
 // A quad carrying `layered` faces down at y = 10 (turned by `tilt` about z), lit from below by
 // a directional light;
 // `mirrored`: seen in a small mirror at the origin from 5 above it (the tracer shades the
@@ -205,8 +188,8 @@ glm::vec3 layeredQuadRadiance(const Material& layered, float tilt, bool mirrored
   const glm::mat4 above = glm::translate(glm::mat4(1.0f), glm::vec3(0, 10, 0)) * glm::rotate(glm::mat4(1.0f), tilt, glm::vec3(0, 0, 1)) *
                           glm::rotate(glm::mat4(1.0f), glm::pi<float>(), glm::vec3(1, 0, 0));
   Material m = layered;
-  if (normalMap != glm::vec3(0, 0, 1)) m.normalTexture = addFlatNormalMap(scene, normalMap);
-  test::addObject(scene, texturedQuad(4.0f), above, m);
+  if (normalMap != glm::vec3(0, 0, 1)) m.normalTexture = test::addFlatNormalMap(scene, normalMap);
+  test::addObject(scene, test::texturedQuad(4.0f), above, m);
   if (mirrored) test::addObject(scene, test::quad(0.5f), glm::mat4(1.0f), test::mirror());
   // Travelling up: the mirror's shadow falls 3 units aside.
   return centreRadiance(scene, glm::vec3(0.3f, 1.0f, 0.0f), Policy::All, mirrored ? glm::vec3(0, 5, 0) : glm::vec3(0.0f),
@@ -265,8 +248,8 @@ float normalMappedQuadRadiance(glm::vec3 t, glm::vec3 towardsLight) {
   Material diffuse;
   diffuse.roughness = 1.0f;
   diffuse.metallic = 0.0f;
-  if (t != glm::vec3(0, 0, 1)) diffuse.normalTexture = addFlatNormalMap(scene, t);
-  test::addObject(scene, texturedQuad(4.0f), glm::mat4(1.0f), diffuse);
+  if (t != glm::vec3(0, 0, 1)) diffuse.normalTexture = test::addFlatNormalMap(scene, t);
+  test::addObject(scene, test::texturedQuad(4.0f), glm::mat4(1.0f), diffuse);
   return centreRadiance(scene, -towardsLight, Policy::None, glm::vec3(0, 5, 0), glm::vec3(0.0f), 0u).g;
 }
 

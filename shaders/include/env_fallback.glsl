@@ -16,9 +16,11 @@ void envWeights(Surface s, vec3 N, vec3 V, out vec3 reflectWeight, out vec3 tran
 
 // The reflection at `pixel`: the screen-space reflection where it found the reflected surface
 // (by its confidence), else the surroundings. A pixel of -1 (the opaque frame behind glass,
-// whose surfaces the screen-space pass did not see) takes the surroundings alone.
+// whose surfaces the screen-space pass did not see, nor the G-buffer's geometric normal)
+// takes the surroundings alone.
 vec3 envReflection(Surface s, vec3 V, ivec2 pixel) {
-  vec3 incoming = surroundings(s.position, reflect(-V, s.normal), s.roughness);
+  vec3 R = pixel.x >= 0 ? mirrorDirection(V, s.normal, surfaceGeometricNormal(pixel)) : reflect(-V, s.normal);
+  vec3 incoming = surroundings(s.position, R, s.roughness);
   if (pixel.x >= 0 && ssrReady() && s.roughness < frame.ssr.y) {
     vec4 screen = imageLoad(ssrImage, pixel);
     incoming = mix(incoming, screen.rgb, screen.a);

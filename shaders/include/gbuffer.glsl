@@ -83,4 +83,14 @@ void readExactSurface(ivec2 pixel, out vec3 position, out vec3 geometricNormal) 
   geometricNormal = octDecode(unpackSnorm2x16(floatBitsToUint(p.w)));
 }
 
+vec3 surfaceGeometricNormal(ivec2 pixel) { return octDecode(unpackSnorm2x16(floatBitsToUint(texelFetch(gPosition, pixel, 0).w))); }
+
+// The mirror direction of the view direction V (towards the viewer) about the shading normal
+// N, turned back above the surface (geometric normal ng) where a normal map tilted it below:
+// the traced reflection's and its fallbacks' alike.
+vec3 mirrorDirection(vec3 V, vec3 N, vec3 ng) {
+  vec3 R = reflect(-V, N);
+  return dot(R, ng) < 0.0 ? reflect(R, ng) : R;
+}
+
 #endif

@@ -95,6 +95,21 @@ Mesh quad(float h) {
   return m;
 }
 
+Mesh texturedQuad(float h) {
+  Mesh m = quad(h);
+  for (Vertex& v : m.vertices) v.uv = glm::vec2(v.position.x, v.position.z) / (2.0f * h) + 0.5f;
+  return m;
+}
+
+int addFlatNormalMap(Scene& scene, glm::vec3 t) {
+  const glm::vec3 c = glm::round((t * 0.5f + 0.5f) * 255.0f);
+  Image img{"normals", 2, 2, {}};
+  for (int i = 0; i < 4; ++i) img.rgba.insert(img.rgba.end(), {uint8_t(c.x), uint8_t(c.y), uint8_t(c.z), 255});
+  scene.images.push_back(img);
+  scene.textures.push_back(Texture{int(scene.images.size() - 1), -1});
+  return int(scene.textures.size() - 1);
+}
+
 Mesh smallAndLargeTriangles(int perAxis, int large) {
   Mesh m;
   m.name = "small and large triangles";

@@ -8,6 +8,7 @@ namespace raybudget::test {
 Mesh icosphere(int subdivisions);        // unit radius, shared vertices: closed and watertight
 Mesh subdividedCube(int cellsPerEdge);   // [-1, 1]^3, shared vertices along every edge
 Mesh quad(float halfSize);               // the XZ plane, facing +y, two triangles
+Mesh texturedQuad(float halfSize);       // quad() with u along +x and v along +z, 0..1 over it
 // perAxis^3 small triangles spread through [-1, 1]^3 and `large` triangles cutting through
 // the whole cube: triangles of very different sizes whose boxes no object split can
 // separate, the mesh spatial splits are for.
@@ -22,6 +23,10 @@ Material mirror(float roughness = 0.0f);
 Material emitter(const glm::vec3& radiance);
 // Clear glass with a volume (thickness 1, IOR 1.5) that halves red over one unit of path.
 Material tintedGlass();
+
+// Adds a 2x2 linear normal map holding the tangent-space normal t (|t| = 1) everywhere, and
+// returns its texture index.
+int addFlatNormalMap(Scene& scene, glm::vec3 t);
 
 // Adds `mesh` with its own `material` as a new object and grows the scene bounds.
 void addObject(Scene& scene, Mesh mesh, const glm::mat4& transform, const Material& material);
