@@ -236,12 +236,7 @@ TEST(Items, TheShadowClassifierSavesRaysAndKeepsTheImage) {
   ASSERT_EQ(full.timings.size(), 1u);
   ASSERT_EQ(classified.timings.size(), 1u);
   EXPECT_LT(classified.timings[0].raysTraced, full.timings[0].raysTraced / 2) << "most shadow-map lookups are certain";
-  auto meanDifference = [](const FrameImages& a, const FrameImages& b) {
-    double d = 0.0;
-    for (size_t i = 0; i < a.ldrRgba8.size(); ++i) d += std::abs(double(a.ldrRgba8[i]) - double(b.ldrRgba8[i]));
-    return d / double(a.ldrRgba8.size());
-  };
-  const double kept = meanDifference(classified.images, full.images), fallback = meanDifference(raster.images, full.images);
+  const double kept = test::meanLdrDifference(classified.images, full.images), fallback = test::meanLdrDifference(raster.images, full.images);
   EXPECT_GT(fallback, 0.0);
   EXPECT_LT(kept, 0.25 * fallback) << "classified " << kept << " against the shadow maps' " << fallback;
 }

@@ -27,24 +27,6 @@ RenderSettings effectsOnly(ItemRate rate, bool temporal, uint32_t w, uint32_t h)
   return s;
 }
 
-// The largest difference of any channel between two frames' display images.
-int largestDifference(const FrameImages& a, const FrameImages& b) {
-  int most = 0;
-  for (size_t i = 0; i < a.ldrRgba8.size(); ++i) most = std::max(most, std::abs(int(a.ldrRgba8[i]) - int(b.ldrRgba8[i])));
-  return most;
-}
-
-// The pixels where any channel of two frames' display images differs by more than `steps`.
-size_t pixelsDifferingBy(const FrameImages& a, const FrameImages& b, int steps) {
-  size_t n = 0;
-  for (size_t i = 0; i + 3 < a.ldrRgba8.size(); i += 4) {
-    int most = 0;
-    for (size_t c = 0; c < 3; ++c) most = std::max(most, std::abs(int(a.ldrRgba8[i + c]) - int(b.ldrRgba8[i + c])));
-    n += most > steps;
-  }
-  return n;
-}
-
 // Renders `cameras` in turn; `between(renderer, frame)` runs before each frame.
 FrameImages lastFrame(const Scene& scene, const RenderSettings& s, const std::vector<Camera>& cameras,
                       const std::function<void(Renderer&, size_t)>& between = {}) {
@@ -72,9 +54,9 @@ TEST(TemporalFill, AStillCameraAtAReducedRateShowsTheFullRateImage) {
     const FrameImages full = lastFrame(scene, effectsOnly(ItemRate::Full, false, kW, kH), still);
     const FrameImages temporal = lastFrame(scene, effectsOnly(rate, true, kW, kH), still);
     const FrameImages spatial = lastFrame(scene, effectsOnly(rate, false, kW, kH), still);
-    EXPECT_LE(largestDifference(full, temporal), 4) << itemRateName(rate);
-    EXPECT_LE(pixelsDifferingBy(full, temporal, 1), 2u) << itemRateName(rate) << ": one step of 255 at all but a pixel or two";
-    EXPECT_GT(largestDifference(full, spatial), 16) << itemRateName(rate) << ": the spatial fill alone differs where reflections hold detail";
+    EXPECT_LE(test::largestLdrDifference(full, temporal), 4) << itemRateName(rate);
+    EXPECT_LE(test::pixelsDifferingBy(full, temporal, 1), 2u) << itemRateName(rate) << ": one step of 255 at all but a pixel or two";
+    EXPECT_GT(test::largestLdrDifference(full, spatial), 16) << itemRateName(rate) << ": the spatial fill alone differs where reflections hold detail";
   }
 }
 
@@ -91,7 +73,7 @@ TEST(TemporalFill, NothingIsCarriedWhereTheViewTurned) {
   frames.push_back(turned);
   const FrameImages temporal = lastFrame(scene, effectsOnly(ItemRate::Quarter, true, 192, 112), frames);
   const FrameImages spatial = lastFrame(scene, effectsOnly(ItemRate::Quarter, false, 192, 112), frames);
-  EXPECT_EQ(largestDifference(temporal, spatial), 0);
+  EXPECT_EQ(test::largestLdrDifference(temporal, spatial), 0);
 }
 
 // Two coplanar mirrors, one reflecting red and one green, trade places under a still camera:
@@ -115,9 +97,9 @@ TEST(TemporalFill, HistoryNeverCrossesObjects) {
   };
   const FrameImages temporal = lastFrame(scene, settings(true), frames, swapAtFrame5);
   const FrameImages spatial = lastFrame(scene, settings(false), frames, swapAtFrame5);
-  EXPECT_EQ(largestDifference(temporal, spatial), 0);
+  EXPECT_EQ(test::largestLdrDifference(temporal, spatial), 0);
   // And without the swap the history is taken: the frames differ.
-  EXPECT_GT(largestDifference(lastFrame(scene, settings(true), frames), lastFrame(scene, settings(false), frames)), 0);
+  EXPECT_GT(test::largestLdrDifference(lastFrame(scene, settings(true), frames), lastFrame(scene, settings(false), frames)), 0);
 }
 
 RenderSettings shadowsOnly(ItemRate rate, bool temporal, uint32_t w, uint32_t h, uint32_t shadowMapSize = 1024) {
@@ -131,14 +113,6 @@ RenderSettings shadowsOnly(ItemRate rate, bool temporal, uint32_t w, uint32_t h,
   return s;
 }
 
-// The mean difference of the colour channels of two frames' display images, in 255ths.
-double meanDifference(const FrameImages& a, const FrameImages& b) {
-  double sum = 0.0;
-  for (size_t i = 0; i < a.ldrRgba8.size(); ++i)
-    if (i % 4 != 3) sum += std::abs(double(a.ldrRgba8[i]) - double(b.ldrRgba8[i]));
-  return sum / double(a.ldrRgba8.size() / 4 * 3);
-}
-
 // Shadows alone (include/shadow_history.glsl): under a still camera a quarter rate shows the
 // full-rate shadows once each pixel of a quad has been traced, but for the history's 8-bit
 // steps of the maps' error; the spatial fill alone does not.
@@ -149,9 +123,9 @@ TEST(TemporalFill, ShadowsUnderAStillCameraAtAQuarterRateShowTheFullRateImage) {
   const FrameImages temporal = lastFrame(scene, shadowsOnly(ItemRate::Quarter, true, 192, 112), frames);
   const FrameImages spatial = lastFrame(scene, shadowsOnly(ItemRate::Quarter, false, 192, 112), frames);
   std::printf("still camera, shadows at 1/4: largest difference from full rate %d with the history, %d without\n",
-              largestDifference(full, temporal), largestDifference(full, spatial));
-  EXPECT_LE(largestDifference(full, temporal), 3);
-  EXPECT_GT(largestDifference(full, spatial), 16) << "the spatial fill alone misses thin shadows' detail";
+              test::largestLdrDifference(full, temporal), test::largestLdrDifference(full, spatial));
+  EXPECT_LE(test::largestLdrDifference(full, temporal), 3);
+  EXPECT_GT(test::largestLdrDifference(full, spatial), 16) << "the spatial fill alone misses thin shadows' detail";
 }
 
 // A shadow does not move with the view: under an orbit of a degree a frame the history is
@@ -171,8 +145,8 @@ TEST(TemporalFill, ShadowsFollowAMovingCamera) {
     frames.push_back(c);
   }
   const FrameImages full = lastFrame(scene, shadowsOnly(ItemRate::Full, false, 192, 112, 128), frames);
-  const double temporal = meanDifference(full, lastFrame(scene, shadowsOnly(ItemRate::Quarter, true, 192, 112, 128), frames));
-  const double spatial = meanDifference(full, lastFrame(scene, shadowsOnly(ItemRate::Quarter, false, 192, 112, 128), frames));
+  const double temporal = test::meanLdrDifference(full, lastFrame(scene, shadowsOnly(ItemRate::Quarter, true, 192, 112, 128), frames));
+  const double spatial = test::meanLdrDifference(full, lastFrame(scene, shadowsOnly(ItemRate::Quarter, false, 192, 112, 128), frames));
   std::printf("orbit, shadows at 1/4: mean difference from full rate %.4f with the history, %.4f without\n", temporal, spatial);
   EXPECT_LT(temporal, 0.92 * spatial) << "measured 0.86 against 1.01";
 }

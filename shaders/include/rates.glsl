@@ -30,9 +30,7 @@ bool rateTraces(uint rate, ivec2 pixel) {
 }
 
 // The frames after which `rate` traces a pixel again.
-uint ratePeriod(uint rate) {
-  return rate == RB_RATE_HALF ? 2u : (rate == RB_RATE_QUARTER ? 4u : (rate == RB_RATE_SIXTEENTH ? 16u : 1u));
-}
+uint ratePeriod(uint rate) { return RB_RATE_PERIOD(rate); }
 
 // Whether the pixel's selected item `effect` is traced here this frame.
 bool itemTracedHere(Selection sel, uint effect, ivec2 pixel) { return rateTraces(itemRate(sel, effect), pixel); }

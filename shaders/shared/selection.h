@@ -166,6 +166,8 @@ struct GpuObjectCost {
 #define RB_TRACED_PIXEL_COST_HALF 1.3
 #define RB_TRACED_PIXEL_COST_QUARTER 1.33
 #define RB_TRACED_PIXEL_COST_SIXTEENTH 2.24
+// The frames after which a rate traces a pixel again (rates.glsl's patterns).
+#define RB_RATE_PERIOD(rate) ((rate) == RB_RATE_HALF ? 2u : (rate) == RB_RATE_QUARTER ? 4u : (rate) == RB_RATE_SIXTEENTH ? 16u : 1u)
 // Per rate (RB_RATE_*), 1 at full rate.
 #define RB_TRACED_PIXEL_COST(rate)                                                                                           \
   ((rate) == RB_RATE_HALF ? RB_TRACED_PIXEL_COST_HALF                                                                         \

@@ -1,6 +1,7 @@
 // Renders a scene with validation on and returns what the tests check.
 #pragma once
 #include <algorithm>
+#include <cstdlib>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,6 +19,30 @@ namespace raybudget::test {
 inline glm::vec3 hdr(const FrameImages& img, uint32_t x, uint32_t y) {
   const size_t i = (size_t(y) * img.width + x) * 4;
   return {glm::unpackHalf1x16(img.hdrRgba16[i]), glm::unpackHalf1x16(img.hdrRgba16[i + 1]), glm::unpackHalf1x16(img.hdrRgba16[i + 2])};
+}
+
+// Comparisons of two frames' display (LDR) images over their colour channels, in 255ths: the
+// largest difference, the pixels where a channel differs by more than `steps`, and the mean.
+inline int largestLdrDifference(const FrameImages& a, const FrameImages& b) {
+  int most = 0;
+  for (size_t i = 0; i < a.ldrRgba8.size(); ++i)
+    if (i % 4 != 3) most = std::max(most, std::abs(int(a.ldrRgba8[i]) - int(b.ldrRgba8[i])));
+  return most;
+}
+inline size_t pixelsDifferingBy(const FrameImages& a, const FrameImages& b, int steps) {
+  size_t n = 0;
+  for (size_t i = 0; i + 3 < a.ldrRgba8.size(); i += 4) {
+    int most = 0;
+    for (size_t c = 0; c < 3; ++c) most = std::max(most, std::abs(int(a.ldrRgba8[i + c]) - int(b.ldrRgba8[i + c])));
+    n += most > steps;
+  }
+  return n;
+}
+inline double meanLdrDifference(const FrameImages& a, const FrameImages& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.ldrRgba8.size(); ++i)
+    if (i % 4 != 3) sum += std::abs(double(a.ldrRgba8[i]) - double(b.ldrRgba8[i]));
+  return sum / double(std::max<size_t>(1, a.ldrRgba8.size() / 4 * 3));
 }
 
 // The CPU references checked every frame (raybudget/testing.h).

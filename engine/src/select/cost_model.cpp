@@ -86,8 +86,8 @@ FrameFillQualities frameFillQualities(uint32_t stillFrames, uint32_t history) {
       const float traced = std::min(1.0f, float(stillFrames) / float(period - 1));
       prior += (float(RB_FILL_QUALITY_STILL) - prior) * traced;
     };
-    toward(q[e].quarter, 4);
-    toward(q[e].sixteenth, 16);
+    toward(q[e].quarter, RB_RATE_PERIOD(RB_RATE_QUARTER));
+    toward(q[e].sixteenth, RB_RATE_PERIOD(RB_RATE_SIXTEENTH));
   }
   return q;
 }
