@@ -215,7 +215,8 @@ struct GpuObjectCost {
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
 // 1 once measured, S as last frame's option (0: left out; 1 + its rate), and its learned cost
 // per pixel its rate skips with this frame's ticks and count of such pixels. One more record after the items holds the
-// frame's totals of work and ticks over every item (the ticks' exchange rate to work units),
+// frame's totals of work and ticks over every item (the ticks' exchange rate to work units; each
+// traced pixel's ticks over its rate's RB_TRACED_PIXEL_COST),
 // in `pixels` the frame's probe stride (0: no probe), in `selectedLast` the partial item + 1 (0:
 // none) and in `benefit` its share of tiles. A probed item's `pixels` start at 0
 // and count the covered pixels the probe traced.
