@@ -22,6 +22,9 @@ void main() {
     return;
   }
   vec3 V = normalize(frame.cameraPositionNear.xyz - s.position);
-  imageStore(reflectionImage, pixel, vec4(envReflection(s, V, behindGlassPass() ? ivec2(-1) : pixel), 1.0));
+  // Behind glass the screen-space reflections and the geometric normal are not this surface's.
+  bool behind = behindGlassPass();
+  vec3 reflection = envReflection(s, V, behind ? ivec2(-1) : pixel, behind ? s.normal : surfaceGeometricNormal(pixel));
+  imageStore(reflectionImage, pixel, vec4(reflection, 1.0));
   imageStore(refractionImage, pixel, vec4(envTransmission(s, V), 1.0));
 }

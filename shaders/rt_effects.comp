@@ -89,7 +89,7 @@ void traceEffects(ivec2 pixel, Surface s, Selection sel, bvec2 here) {
   vec3 R = mirrorDirection(V, N, ng);
   // The fallback's paths, as the env_fallback pass computed them.
   vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
-  vec3 fallback[2] = vec3[2](envReflection(s, rasterV, pixel), envTransmission(s, rasterV));
+  vec3 fallback[2] = vec3[2](envReflection(s, rasterV, pixel, ng), envTransmission(s, rasterV));
   // Path 0 reflects, path 1 transmits; one traceRadiance call site keeps the shader (and
   // its compile time on lavapipe) half the size.
   vec3 color[2] = fallback;

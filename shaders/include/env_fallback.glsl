@@ -14,12 +14,13 @@ void envWeights(Surface s, vec3 N, vec3 V, out vec3 reflectWeight, out vec3 tran
   layeredEnvWeights(s.baseColor, s.metallic, s.roughness, s.transmission, s.layers, N, V, reflectWeight, transmitWeight);
 }
 
-// The reflection at `pixel`: the screen-space reflection where it found the reflected surface
+// The reflection at `pixel` (geometric normal ng, which turns the mirror ray back above the
+// surface as the tracer does): the screen-space reflection where it found the reflected surface
 // (by its confidence), else the surroundings. A pixel of -1 (the opaque frame behind glass,
-// whose surfaces the screen-space pass did not see, nor the G-buffer's geometric normal)
-// takes the surroundings alone.
-vec3 envReflection(Surface s, vec3 V, ivec2 pixel) {
-  vec3 R = pixel.x >= 0 ? mirrorDirection(V, s.normal, surfaceGeometricNormal(pixel)) : reflect(-V, s.normal);
+// whose surfaces neither the screen-space pass nor the G-buffer saw: ng is not read) takes the
+// surroundings alone, along the unturned mirror ray.
+vec3 envReflection(Surface s, vec3 V, ivec2 pixel, vec3 ng) {
+  vec3 R = pixel.x >= 0 ? mirrorDirection(V, s.normal, ng) : reflect(-V, s.normal);
   vec3 incoming = surroundings(s.position, R, s.roughness);
   if (pixel.x >= 0 && ssrReady() && s.roughness < frame.ssr.y) {
     vec4 screen = imageLoad(ssrImage, pixel);

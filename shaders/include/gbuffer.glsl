@@ -75,15 +75,17 @@ bool readFillSurface(ivec2 pixel, uint objectId, out Surface s) {
   return !s.unlit;
 }
 
-// The exact world position and the geometric normal (towards the viewer) of a pixel, for
-// secondary rays.
+// The geometric normal (towards the viewer) a texel of the G-buffer's position target holds in w.
+vec3 geometricNormalIn(vec4 positionTexel) { return octDecode(unpackSnorm2x16(floatBitsToUint(positionTexel.w))); }
+
+// The exact world position and the geometric normal of a pixel, for secondary rays.
 void readExactSurface(ivec2 pixel, out vec3 position, out vec3 geometricNormal) {
   vec4 p = texelFetch(gPosition, pixel, 0);
   position = p.xyz;
-  geometricNormal = octDecode(unpackSnorm2x16(floatBitsToUint(p.w)));
+  geometricNormal = geometricNormalIn(p);
 }
 
-vec3 surfaceGeometricNormal(ivec2 pixel) { return octDecode(unpackSnorm2x16(floatBitsToUint(texelFetch(gPosition, pixel, 0).w))); }
+vec3 surfaceGeometricNormal(ivec2 pixel) { return geometricNormalIn(texelFetch(gPosition, pixel, 0)); }
 
 // The mirror direction of the view direction V (towards the viewer) about the shading normal
 // N, turned back above the surface (geometric normal ng) where a normal map tilted it below:
