@@ -32,5 +32,5 @@ void main() {
   uint share = clockShare(start, clockNow(), subgroupAdd(filling ? 1u : 0u));
   uvec2 paths = uvec2(filled);
   uint each = share / max(paths.x + paths.y, 1u);
-  addItemCounts(filling ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), uvec3(RB_RATE_FULL), vec3(0.0), uvec3(0u), uvec3(0u, paths * each), uvec3(0u, paths));
+  addItemCounts(filling ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(0u, paths * each), uvec3(0u, paths));
 }

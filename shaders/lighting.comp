@@ -132,6 +132,6 @@ void main() {
   if (measuringItems() && !behindGlassPass()) {
     vec3 indirect = indirectLight(pixel);
     float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
-    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), uvec3(RB_RATE_FULL), vec3(error, 0.0, 0.0), uvec3(0u));
+    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0), uvec3(0u));
   }
 }

@@ -107,12 +107,9 @@ TEST(CostModel, ItemPriorsFollowTheMaterials) {
   for (const glm::vec3& v : {m, p, g}) EXPECT_EQ(v.x, float(RB_PRIOR_BENEFIT_SHADOWS));
 }
 
-// An item's cost per pixel comes from its clock ticks at the frame's exchange rate (work per
-// tick over every item), or from its traversal work where nothing was timed.
-TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
-  EXPECT_EQ(select::itemTicksToWork(3000, 1000), 3.0f);
-  EXPECT_EQ(select::itemTicksToWork(3000, 0), 0.0f);
-  EXPECT_EQ(select::itemTicksToWork(0, 1000), 0.0f);
+// An item's cost per pixel comes from its clock ticks at a given rate of work units per tick
+// (the frames' RB_WORK_PER_CLOCK_UNIT), or from its traversal work where nothing was timed.
+TEST(CostModel, ItemCostIsLearnedFromItsTicks) {
   const select::ItemLearned fresh;
   // 50 ticks a pixel at 3 work units a tick: 150 per pixel, whatever its traversal work.
   EXPECT_EQ(select::learnItem(0.05f, fresh, {100, 5000, 0, 100}, 3.0f).workPerPixel, 150.0f);
@@ -128,8 +125,8 @@ TEST(CostModel, ItemCostIsLearnedFromItsTicksAtTheFramesExchangeRate) {
   EXPECT_EQ(select::tracedPixelCost(RB_RATE_FULL), 1.0f);
 }
 
-// A pixel a reduced rate skipped is timed too: its ticks over the skipped pixels at the frame's
-// exchange rate are the item's fill per pixel (averaged as its cost per pixel is), and the rates'
+// A pixel a reduced rate skipped is timed too: its ticks over the skipped pixels, in work units,
+// are the item's fill per pixel (averaged as its cost per pixel is), and the rates'
 // shares of the full-rate cost grow with the fill over the traced pixel's cost.
 TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
   const select::ItemLearned fresh;

@@ -4,26 +4,14 @@
 #ifndef RB_ITEM_STATS_GLSL
 #define RB_ITEM_STATS_GLSL
 
-// Adds this invocation's work, ticks (traced at `rates`, RB_RATE_FULL where probed), error and
-// counted pixels (1 where the probe or a reduced
+// Adds this invocation's work, ticks, error and counted pixels (1 where the probe or a reduced
 // ray rate traced the item here; a full rate's pixels are set at selection), and the ticks and
 // count of the pixels its reduced rate skipped (fill_effects.comp), per effect (x shadows, y
-// reflections, z refractions) to its object's items: lanes
-// of the subgroup on the same object are summed first, then one atomic per item with something
-// to add. The error is summed in float over
-// the lanes and added in 1/RB_ERROR_UNITS units, rounded. The frame's totals of work and
-// ticks (of traced pixels: their exchange rate) take one atomic each per subgroup; the totals'
-// ticks at full rate's cost (each over its rate's RB_TRACED_PIXEL_COST), so that the exchange
-// rate does not follow the frame's mix of rates (cost_model.h's itemTicksToWork).
-void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, uvec3 rates, vec3 error, uvec3 counted, uvec3 skippedTicks, uvec3 skipped) {
+// reflections, z refractions) to its object's items: lanes of the subgroup on the same object
+// are summed first, then one atomic per item with something to add. The error is summed in
+// float over the lanes and added in 1/RB_ERROR_UNITS units, rounded.
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted, uvec3 skippedTicks, uvec3 skipped) {
   bool pending = objectId != RB_NO_OBJECT;
-  uint allWork = subgroupAdd(pending ? work.x + work.y + work.z : 0u);
-  vec3 fullRateTicks = vec3(ticks) / vec3(RB_TRACED_PIXEL_COST(rates.x), RB_TRACED_PIXEL_COST(rates.y), RB_TRACED_PIXEL_COST(rates.z));
-  uint allTicks = subgroupAdd(pending ? uint(fullRateTicks.x + fullRateTicks.y + fullRateTicks.z + 0.5) : 0u);
-  if (subgroupElect()) {
-    if (allWork != 0u) atomicAdd(itemCosts[itemTotalsIndex()].work, allWork);
-    if (allTicks != 0u) atomicAdd(itemCosts[itemTotalsIndex()].ticks, allTicks);
-  }
   while (subgroupAny(pending)) {
     uint current = subgroupMin(pending ? objectId : RB_NO_OBJECT);
     bool mine = pending && objectId == current;
@@ -49,8 +37,8 @@ void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, uvec3 rates, vec3 err
   }
 }
 
-void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, uvec3 rates, vec3 error, uvec3 counted) {
-  addItemCounts(objectId, work, ticks, rates, error, counted, uvec3(0u), uvec3(0u));
+void addItemCounts(uint objectId, uvec3 work, uvec3 ticks, vec3 error, uvec3 counted) {
+  addItemCounts(objectId, work, ticks, error, counted, uvec3(0u), uvec3(0u));
 }
 
 // The subgroup clock (VK_KHR_shader_clock): the subgroup's lanes run together, so a span

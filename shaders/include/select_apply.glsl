@@ -16,10 +16,6 @@ void applySelection(uint i) {
   // The pixels the trace passes will count work over, for next frame's learning.
   costs[i].pixels = bits != 0u ? floatBitsToUint(records[i].crCandidatePixels.w) : 0u;
   if (push.sizes.z != RB_SELECT_BENEFIT) return;
-  if (i == 0u) {  // the frame's totals restart (select_candidates.comp has read them)
-    items[push.walk.z * RB_ITEMS_PER_OBJECT].work = 0u;
-    items[push.walk.z * RB_ITEMS_PER_OBJECT].ticks = 0u;
-  }
   bool probing = items[push.walk.z * RB_ITEMS_PER_OBJECT].pixels != 0u && records[i].crCandidatePixels.z > 0.5;
   // A fixed rate for every selected item, or each item's as the walk chose it.
   uint fixedRate = push.walk.w, marks = 0u, chosen = selected[i];

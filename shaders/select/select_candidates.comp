@@ -52,15 +52,9 @@ float probedWorkPerPixel(float previous, float prior, float observed, uint pixel
   return from + (observed - from) * share;
 }
 
-// Work units per clock tick over last frame's traced items (0: nothing timed).
-float ticksToWork() {
-  GpuItemCost totals = items[push.walk.z * RB_ITEMS_PER_OBJECT];
-  return totals.ticks > 0u && totals.work > 0u ? exactQuotient(float(totals.work), float(totals.ticks)) : 0.0;
-}
-
 // Item `effect` of object i: learns from last frame's counters, restarts them, and returns
 // its candidate's cost and value and its fill share (false: not a candidate).
-bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out float cost, out float value, out float fill) {
+bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out float value, out float fill) {
   uint id = i * RB_ITEMS_PER_OBJECT + effect;
   GpuItemCost c = items[id];
   fill = fillShare(effect, 0.0, 0.0);
@@ -70,13 +64,13 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
   float priorPerPixel = rays * push.budget.w;
   uint rate = c.selectedLast == 0u ? RB_RATE_FULL : c.selectedLast - 1u;  // (1 + its rate; 0: probed)
   if (c.pixels > 0u) {  // traced last frame
-    // Its cost per pixel: its time, in work units at the frame's exchange rate (shading,
-    // texture lookups, the shadow classifier, divergence: what traversal work leaves out),
-    // or its traversal work where nothing was timed.
-    bool timed = exchange > 0.0 && c.ticks > 0u;
+    // Its cost per pixel: its time, in work units (RB_WORK_PER_CLOCK_UNIT: shading, texture
+    // lookups, the shadow classifier, divergence, what traversal work leaves out), or its
+    // traversal work where nothing was timed.
+    bool timed = c.ticks > 0u;
     if (timed || c.work > 0u) {
       // Timed at a reduced rate (selectedLast: 1 + its rate), per pixel at full rate.
-      float observed = timed ? exactQuotient(exactQuotient(float(c.ticks), float(c.pixels)) * exchange, tracedPixelCost(rate))
+      float observed = timed ? exactQuotient(exactQuotient(float(c.ticks), float(c.pixels)) * RB_WORK_PER_CLOCK_UNIT, tracedPixelCost(rate))
                              : exactQuotient(float(c.work), float(c.pixels));
       c.workPerPixel = c.selectedLast == 0u ? probedWorkPerPixel(c.workPerPixel, priorPerPixel, observed, c.pixels)
                                             : averagedWith(c.workPerPixel, observed);
@@ -87,9 +81,9 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, float exchange, out f
       c.measured = 1u;
     }
   }
-  // Its cost per pixel its reduced rate skipped (the fill), at the same exchange rate.
-  if (c.skippedPixels > 0u && exchange > 0.0 && c.skippedTicks > 0u)
-    c.fillPerPixel = averagedWith(c.fillPerPixel, exactQuotient(float(c.skippedTicks), float(c.skippedPixels)) * exchange);
+  // Its cost per pixel its reduced rate skipped (the fill), in the same units.
+  if (c.skippedPixels > 0u && c.skippedTicks > 0u)
+    c.fillPerPixel = averagedWith(c.fillPerPixel, exactQuotient(float(c.skippedTicks), float(c.skippedPixels)) * RB_WORK_PER_CLOCK_UNIT);
   if (c.pixels == 0u || !learnBenefit) {
     // Untraced: drift towards the prior (by a power-of-two share: an exact product, so a
     // fused multiply-add rounds alike), or the prior itself before any measurement.
@@ -127,10 +121,9 @@ void main() {
   costs[i] = GpuObjectCost(oc.workPerPixel, 0u, 0u, 0u);
   GpuObjectRecord r = records[i];
   if (push.sizes.z == RB_SELECT_BENEFIT) {
-    float exchange = ticksToWork();
     for (uint effect = 0u; effect < RB_ITEMS_PER_OBJECT; ++effect) {
       float cost = 0.0, value = 0.0, fill = 0.0;
-      bool add = itemCandidate(i, effect, r, exchange, cost, value, fill);
+      bool add = itemCandidate(i, effect, r, cost, value, fill);
       uint item = i * RB_ITEMS_PER_OBJECT + effect;
       if (!rateSegmentsWalk()) {
         append(add, item, cost, value, r.apdv.z);

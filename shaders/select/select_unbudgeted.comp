@@ -22,10 +22,5 @@ void main() {
     itemCosts[item].ticks = 0u;
     itemCosts[item].error = 0u;
   }
-  if (i == 0u) {
-    uint totals = uint(itemCosts.length()) - 1u;
-    itemCosts[totals].work = 0u;
-    itemCosts[totals].ticks = 0u;
-    itemCosts[totals].selectedLast = 0u;  // no partial item (include/probe.glsl)
-  }
+  if (i == 0u) itemCosts[uint(itemCosts.length()) - 1u].selectedLast = 0u;  // no partial item (include/probe.glsl)
 }

@@ -214,10 +214,8 @@ struct GpuObjectCost {
 // RB_CLOCK_UNIT) and error the trace passes counted for it this frame over `pixels` (the
 // pixels it was traced on), its learned benefit b (display error removed per covered pixel),
 // 1 once measured, S as last frame's option (0: left out; 1 + its rate), and its learned cost
-// per pixel its rate skips with this frame's ticks and count of such pixels. One more record after the items holds the
-// frame's totals of work and ticks over every item (the ticks' exchange rate to work units; each
-// traced pixel's ticks over its rate's RB_TRACED_PIXEL_COST),
-// in `pixels` the frame's probe stride (0: no probe), in `selectedLast` the partial item + 1 (0:
+// per pixel its rate skips with this frame's ticks and count of such pixels. One more record
+// after the items holds, in `pixels`, the frame's probe stride (0: no probe), in `selectedLast` the partial item + 1 (0:
 // none) and in `benefit` its share of tiles. A probed item's `pixels` start at 0
 // and count the covered pixels the probe traced.
 struct GpuItemCost {
@@ -235,6 +233,15 @@ struct GpuItemCost {
 };
 // Clock ticks per unit of GpuItemCost::ticks: a 32-bit sum then holds 2^36 ticks a frame.
 #define RB_CLOCK_UNIT 16u
+// Item work units per RB_CLOCK_UNIT ticks: an item's cost is its traced pixels' time, and the
+// time scale (ms per unit) is learned from the timestamps. A fixed rate, not one measured per
+// frame (all items' traversal work over all their ticks), which followed the view: on
+// ClearCoatTest's orbit from one camera to the next the reflection items' traversal work per
+// pixel fell tenfold (43 nodes to 2-5: their rays left for the sky) while their ticks per pixel
+// halved, so every item's learned cost fell about fivefold in units whose milliseconds the time
+// scale learns two frames late. 0.5 (exact in float) puts lavapipe's item costs near the
+// traversal work counts of the object policies' unit.
+#define RB_WORK_PER_CLOCK_UNIT 0.5
 
 // Frame mode: the candidates' total cost in units of 2^-20 budget (rounded up each) at or
 // below which every candidate fits for certain and no order is needed: 31/32 of the budget

@@ -243,8 +243,8 @@ struct FrameTiming {
 // What the cost model has learned: the stage's time is affine in the selection's work,
 // coverage + select + trace fixed cost + ms per unit x work. Trace milliseconds per unit of
 // predicted work (our work units for density, nearest and random; the paper's C for paper;
-// benefit's item work units, its items' clock ticks exchanged at the frame's traversal work
-// per tick, which weigh shading and divergence as object work does not: a scale of one
+// benefit's item work units, its items' clock ticks (RB_WORK_PER_CLOCK_UNIT), which weigh
+// shading and divergence as object work does not: a scale of one
 // unit predicted another's items 5-10x too cheap), the coverage and select passes' time and
 // the trace passes' fixed cost (dispatch, tile setup), which the selection subtracts from T.
 // 0 = not learned (the prior; no fixed cost).

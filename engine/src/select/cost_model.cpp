@@ -141,19 +141,15 @@ RateSegment rateSegment(uint32_t k, float fill, FillQuality q) {
 
 float tracedPixelCost(uint32_t rate) { return float(RB_TRACED_PIXEL_COST(rate)); }
 
-float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks) {
-  return totalTicks > 0 && totalWork > 0 ? exactQuotient(float(totalWork), float(totalTicks)) : 0.0f;
-}
-
-ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation,
+ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float workPerTick, uint32_t ablation,
                       float priorWorkPerPixel) {
   ItemLearned after = before;
   const bool learnBenefit = !(ablation & RB_BENEFIT_PRIOR_ONLY);
   const uint32_t pixels = counts.pixels;
   if (pixels > 0) {
-    const bool timed = exchange > 0.0f && counts.ticks > 0;
+    const bool timed = workPerTick > 0.0f && counts.ticks > 0;
     if (timed || counts.work > 0) {
-      const float observed = timed ? exactQuotient(exactQuotient(float(counts.ticks), float(pixels)) * exchange, tracedPixelCost(counts.rate))
+      const float observed = timed ? exactQuotient(exactQuotient(float(counts.ticks), float(pixels)) * workPerTick, tracedPixelCost(counts.rate))
                                    : exactQuotient(float(counts.work), float(pixels));
       after.workPerPixel = counts.probed ? probedWorkPerPixel(before.workPerPixel, priorWorkPerPixel, observed, pixels)
                                          : averagedWith(before.workPerPixel, observed);
@@ -164,8 +160,8 @@ ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& 
       after.measured = true;
     }
   }
-  if (counts.skippedPixels > 0 && exchange > 0.0f && counts.skippedTicks > 0)
-    after.fillPerPixel = averagedWith(before.fillPerPixel, exactQuotient(float(counts.skippedTicks), float(counts.skippedPixels)) * exchange);
+  if (counts.skippedPixels > 0 && workPerTick > 0.0f && counts.skippedTicks > 0)
+    after.fillPerPixel = averagedWith(before.fillPerPixel, exactQuotient(float(counts.skippedTicks), float(counts.skippedPixels)) * workPerTick);
   if (pixels == 0 || !learnBenefit) {
     // The drift's product is exact (a power-of-two share), so a fused multiply-add rounds alike.
     after.benefit = before.measured ? before.benefit + (prior - before.benefit) * float(RB_BENEFIT_DRIFT) : prior;

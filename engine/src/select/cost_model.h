@@ -92,13 +92,13 @@ struct ItemLearned {
 // What an item knows after a frame that counted `work` and `error` (in 1/RB_ERROR_UNITS) over
 // the `pixels` it was traced on (0: not traced; its benefit drifts to `prior`, the item's
 // GpuObjectParams::priors).
-// An item's cost per pixel is learned from its clock ticks at `exchange` work units per tick
-// (itemTicksToWork: the frame's totals), or from its traversal work where nothing was timed
-// (exchange 0 or no ticks). `ablation`: RB_BENEFIT_* bits (RB_BENEFIT_PRIOR_ONLY: b stays the prior).
+// An item's cost per pixel is learned from its clock ticks at `workPerTick` work units per
+// RB_CLOCK_UNIT ticks (the frame's: RB_WORK_PER_CLOCK_UNIT), or from its traversal work where
+// nothing was timed (workPerTick 0 or no ticks). `ablation`: RB_BENEFIT_* bits (RB_BENEFIT_PRIOR_ONLY: b stays the prior).
 // `probed`: the item was left out, so its counts are the probe's few tiles, which move the
 // work per pixel (or, before that was learned, `priorWorkPerPixel`) by a share growing with
 // the pixels probed (RB_PROBE_TRUSTED_PIXELS), not to their mean. Its cost per pixel a reduced
-// rate skipped (fillPerPixel) is learned from those pixels' ticks at the same exchange rate
+// rate skipped (fillPerPixel) is learned from those pixels' ticks at the same rate
 // (select_candidates.comp).
 struct ItemCounts {
   uint32_t work = 0, ticks = 0, error = 0, pixels = 0;
@@ -109,17 +109,8 @@ struct ItemCounts {
 // The clock time of a pixel `rate` traces over full rate's per pixel (shared/selection.h's
 // RB_TRACED_PIXEL_COST_*; 1 at full rate).
 float tracedPixelCost(uint32_t rate);
-ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float exchange, uint32_t ablation = 0,
+ItemLearned learnItem(float prior, const ItemLearned& before, const ItemCounts& counts, float workPerTick, uint32_t ablation = 0,
                       float priorWorkPerPixel = 0.0f);
-// Work units per tick from the frame's totals over every item (0: nothing timed). The totals'
-// ticks are each traced pixel's over its rate's RB_TRACED_PIXEL_COST (item_stats.glsl): a
-// pixel traced alone in its SIMD batch takes more ticks for the same traversal work, so the
-// raw ratio followed the frame's mix of rates (0.037 to 0.024 work per tick on the court as a
-// still view moved items to 1/16), every item's learned cost fell with it, and the time scale
-// chased the drift a few frames behind: the stage ran 1.3-1.4x its prediction through the
-// warm-up. Held from the first timed frame instead, it removed the drift but let each frame's
-// clock noise into the learned costs, which the per-frame ratio cancels (docs/SELECTION.md).
-float itemTicksToWork(uint32_t totalWork, uint32_t totalTicks);
 // An item candidate's predicted work: its pixels times its work per pixel, or before that
 // is learned, the rays per pixel (a shadow ray per light; a reflection or refraction path and
 // its hit's shadow rays) times the work a ray costs.

@@ -295,7 +295,6 @@ struct SelectionStage::Impl {
     // With rates chosen per item the candidates are the items' rate segments.
     const bool segments = frame.rate == RB_RATE_AUTO;
     auto itemOf = [&](uint32_t id) { return segments ? id / RB_SEGMENT_SLOTS : id; };
-    const float exchange = itemTicksToWork(before[items].work, before[items].ticks);
     double left = 0.0, prior = 0.0;
     // The candidates taken (items, or their rate segments), in ascending order.
     const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments, after, frame.qualities);
@@ -305,7 +304,6 @@ struct SelectionStage::Impl {
     }
     const uint32_t stride = after[items].pixels;
     if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
-    if (after[items].work != 0 || after[items].ticks != 0) return false;  // the totals restart
     std::vector<ItemLearned> learned(items);
     std::vector<float> fill(items);  // each item's fill share, which prices its rates
     size_t expected = 0;
@@ -315,7 +313,7 @@ struct SelectionStage::Impl {
       learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0, b.fillPerPixel},
                               {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0, b.selectedLast == 0 ? RB_RATE_FULL : b.selectedLast - 1,
                                b.skippedTicks, b.skippedPixels},
-                              exchange, frame.ablation,
+                              float(RB_WORK_PER_CLOCK_UNIT), frame.ablation,
                               priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
       fill[id] = fillShare(e, learned[id].fillPerPixel, learned[id].workPerPixel);
       const gpu::GpuItemCost& a = after[id];
