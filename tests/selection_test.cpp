@@ -170,7 +170,8 @@ TEST(SelectionPolicies, ThePartialItemTakesTheShareOfItsTilesTheBudgetLeft) {
   const std::vector<Candidate> c = {{reflections0, 1, 10, 0}, {shadows1, 2.5f, 15, 0}, {reflections1, 4, 20, 0}, {reflections2, 0.5f, 20, 0},
                                     {reflections3, 0.25f, 0.5f, 0}};
   // Density order: reflections 2 (40), 0 (10), shadows 1 (6), reflections 1 (5), 3 (2). Budget
-  // 3.5: reflections 2 and 0 (2 left); shadows 1 does not fit but is no partial item;
+  // 3.5: reflections 2 and 0 (2 left); shadows 1 does not fit and is no partial item while a
+  // reflection item takes what is left (below);
   // reflections 1 takes 2 / 4 of its tiles, and the walk stops there: reflections 3, which
   // fits, is worth less per cost than the partial item's share.
   const select::Selection s = select::selectObjects(Policy::Benefit, c, 3.5f, o);
@@ -200,6 +201,20 @@ TEST(SelectionPolicies, ThePartialItemTakesTheShareOfItsTilesTheBudgetLeft) {
   const select::Selection b = select::selectObjects(Policy::Benefit, single, 3.0f, o);
   EXPECT_EQ(b.ids, (std::vector<uint32_t>{reflections1}));
   EXPECT_EQ(b.partial.id, UINT32_MAX);
+  // A shadow item takes what the whole walk left, where no reflection or refraction item took
+  // it: alone, 1 of its 2.5; beside a reflection item whose share is under an eighth (0.5 of
+  // 40), the 0.5 left after reflections 0.
+  const std::vector<Candidate> shadow = {{shadows1, 2.5f, 15, 0}};
+  const select::Selection alone = select::selectObjects(Policy::Benefit, shadow, 1.0f, o);
+  EXPECT_EQ(alone.ids, (std::vector<uint32_t>{shadows1}));
+  EXPECT_EQ(alone.partial.id, shadows1);
+  EXPECT_FLOAT_EQ(alone.partial.share, 0.4f);
+  const std::vector<Candidate> under = {{reflections0, 1, 10, 0}, {shadows1, 2.5f, 15, 0}, {reflections1, 40, 41, 0}};
+  const select::Selection left = select::selectObjects(Policy::Benefit, under, 1.5f, o);
+  EXPECT_EQ(left.ids, (std::vector<uint32_t>{reflections0, shadows1}));
+  EXPECT_EQ(left.partial.id, shadows1);
+  EXPECT_FLOAT_EQ(left.partial.share, 0.2f);
+  EXPECT_EQ(select::selectObjects(Policy::Benefit, shadow, 0.25f, o).ids, std::vector<uint32_t>{}) << "under an eighth: nothing";
 }
 
 TEST(SelectionPolicies, RejectBadInput) {

@@ -9,7 +9,7 @@
 //   depth     max(0, 1 - h / (RB_FILL_PLANE * r)), h the neighbour's distance from the
 //             pixel's tangent plane, r the pixel's distance from the camera;
 //   normal    max(0, n . n')^RB_FILL_NORMAL_POWER.
-// The includer includes bindings.glsl, gbuffer.glsl and rates.glsl.
+// The includer includes bindings.glsl, gbuffer.glsl, rates.glsl and probe.glsl.
 #ifndef RB_FILL_WEIGHTS_GLSL
 #define RB_FILL_WEIGHTS_GLSL
 
@@ -70,7 +70,15 @@ void fillLattice(ivec2 pixel, uint rate, out ivec2 at[4], out float near[4]) {
   }
 }
 
-// The traced pixels around `pixel` on c's object and lit, and their weights for the fill of c.
+// Whether a shadow item's pixel `q` lies in a tile it is traced in: a partial item (probe.glsl's
+// selectionInTile) is traced on a share of its tiles, and outside them its shadow mask is an
+// older frame's (read there, it drew the rate's lattice into a fly-through's ground).
+bool shadowsTracedInTile(uint objectId, ivec2 q) {
+  return (selectionInTile(objectId, 1u << RB_ITEM_SHADOWS, uvec2(q) / RB_TILE_SIZE) & (1u << RB_ITEM_SHADOWS)) != 0u;
+}
+
+// The traced pixels around `pixel` on c's object and lit, and their weights for the shadow fill
+// of c.
 FillSources fillSources(ivec2 pixel, FillCentre c, uint rate) {
   FillSources f;
   float near[4];
@@ -78,7 +86,8 @@ FillSources fillSources(ivec2 pixel, FillCentre c, uint rate) {
   f.total = 0.0;
   for (int k = 0; k < 4; ++k) {
     ivec2 q = f.at[k];
-    bool source = near[k] > 0.0 && texelFetch(gObjectId, q, 0).r == c.objectId && texelFetch(gRoughTransIor, q, 0).a <= 0.5;
+    bool source = near[k] > 0.0 && texelFetch(gObjectId, q, 0).r == c.objectId && texelFetch(gRoughTransIor, q, 0).a <= 0.5 &&
+                  shadowsTracedInTile(c.objectId, q);
     f.weight[k] = source ? near[k] * fillSimilarity(c, surfacePosition(q), surfaceNormal(q)) : 0.0;
     f.total += f.weight[k];
   }

@@ -5,7 +5,7 @@
 // the map's there, both in the shadow mask (rt_shadows.comp). Filling the correction, not the
 // visibility, keeps the map's shadow edges at the map's resolution where the rays agree with
 // it, where a filled visibility makes every edge a staircase of the rate's blocks. The traced
-// neighbours (fillSources) are read across tiles, as the lighting pass runs over every pixel
+// neighbours (fillSources) are read across tiles (those the item is traced in), as the lighting pass runs over every pixel
 // anyway; the trace pass then spends nothing on a skipped pixel but reading its object. Where
 // no neighbour qualifies the map stays.
 // The includer includes bindings.glsl, gbuffer.glsl and rates.glsl.

@@ -104,11 +104,32 @@ float partialShare() {
   return share >= RB_PARTIAL_MIN_SHARE ? share : 0.0;
 }
 // Whether candidate `id` may become the partial one: the first segment of a reflection or
-// refraction item (the first rate on its hull). Shadow items were allowed too and lost: on
+// refraction item (the first rate on its hull). Shadow items in the walk's order too lost: on
 // AlphaBlendModeTest's orbit a partial shadow item took the budget a mirror's share had, for
-// no change in the image (error recovered at 25% 0.23 to 0.03, two repeats each).
+// no change in the image (error recovered at 25% 0.23 to 0.03, two repeats each). So the
+// first shadow item whose first segment did not fit gets only what the whole walk left, where
+// no reflection or refraction item took it (a scene whose error is one large shadow item,
+// CesiumMilkTruck's, else traces nothing below its first segment's cost).
 bool partialCandidate(uint id) {
   return id % RB_SEGMENT_SLOTS == 0u && candidateItem(id) % RB_ITEMS_PER_OBJECT != RB_ITEM_SHADOWS;
+}
+bool shadowPartialCandidate(uint id) {
+  return id % RB_SEGMENT_SLOTS == 0u && candidateItem(id) % RB_ITEMS_PER_OBJECT == RB_ITEM_SHADOWS;
+}
+uint shadowPartialId = RB_NO_PARTIAL;
+float shadowPartialCost = 0.0, shadowPartialValue = 0.0;
+void recordShadowPartial(uint id, float cost, float value) {
+  shadowPartialId = id;
+  shadowPartialCost = cost;
+  shadowPartialValue = value;
+}
+// After the walk: the shadow item takes what was left where no other partial item did.
+void takeShadowPartial(float remaining) {
+  if (partialShare() > 0.0 || shadowPartialId == RB_NO_PARTIAL || exactQuotient(remaining, shadowPartialCost) < RB_PARTIAL_MIN_SHARE) return;
+  partialId = shadowPartialId;
+  partialCost = shadowPartialCost;
+  partialValue = shadowPartialValue;
+  leftOver = remaining;
 }
 
 // The greedy fill-in, a subgroup's batch of the order at a time: the lanes load their
@@ -134,6 +155,7 @@ Picked selectGreedy(uint n, float budget) {
     GpuCandidate c = GpuCandidate(record.w, valid ? uintBitsToFloat(record.x) : uintBitsToFloat(0x7F800000u), uintBitsToFloat(record.y), 0.0);
     bool taken = false;
     bool eligible = valid && partialWanted() && partialCandidate(c.id);
+    bool shadowEligible = valid && partialWanted() && shadowPartialCandidate(c.id);
     if (subgroupAny(c.cost <= remaining)) {
       uint count = min(gl_SubgroupSize, n - base);
       // Unrolled to the subgroup size (a specialization constant): a GPU then issues the
@@ -152,17 +174,26 @@ Picked selectGreedy(uint n, float budget) {
           if (segments) scratch[id / RB_SEGMENT_SLOTS] = id % RB_SEGMENT_SLOTS + 1u;
         } else if (partialId == RB_NO_PARTIAL && subgroupShuffle(eligible, j)) {
           recordPartial(id, cost, value, remaining);
+        } else if (shadowPartialId == RB_NO_PARTIAL && subgroupShuffle(shadowEligible, j)) {
+          recordShadowPartial(id, cost, value);
         }
       }
-    } else if (partialId == RB_NO_PARTIAL && subgroupAny(eligible)) {  // nothing here fits: the first eligible one
-      uint first = subgroupBallotFindLSB(subgroupBallot(eligible));
-      recordPartial(subgroupShuffle(c.id, first), subgroupShuffle(c.cost, first), subgroupShuffle(c.value, first), remaining);
+    } else {  // nothing here fits: the first eligible ones
+      if (partialId == RB_NO_PARTIAL && subgroupAny(eligible)) {
+        uint first = subgroupBallotFindLSB(subgroupBallot(eligible));
+        recordPartial(subgroupShuffle(c.id, first), subgroupShuffle(c.cost, first), subgroupShuffle(c.value, first), remaining);
+      }
+      if (shadowPartialId == RB_NO_PARTIAL && subgroupAny(shadowEligible)) {
+        uint first = subgroupBallotFindLSB(subgroupBallot(shadowEligible));
+        recordShadowPartial(subgroupShuffle(c.id, first), subgroupShuffle(c.cost, first), subgroupShuffle(c.value, first));
+      }
     }
     if (valid) mark(ci, c.id, taken);
     // Rate segments: a single option is an item's first segment (the others build on it).
     bool single = !segments || c.id % RB_SEGMENT_SLOTS == 0u;
     if (density && valid && single && c.cost <= budget && betterSingle(c, ci, best)) best = Single(1u, c.value, c.id, ci);
   }
+  takeShadowPartial(remaining);
   bool found = best.found != 0u;
   if (!subgroupAny(found)) return p;
   // The subgroup's best: highest value, then lowest ID, then lowest index.

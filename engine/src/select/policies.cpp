@@ -36,17 +36,25 @@ constexpr uint32_t kSegmentSlots = 4;  // shared/selection.h's RB_SEGMENT_SLOTS
 bool partialCandidate(uint32_t id) {
   return id % kSegmentSlots == 0 && id / kSegmentSlots % RB_ITEMS_PER_OBJECT != RB_ITEM_SHADOWS;
 }
+// A shadow item's first segment: the partial item only with what the whole walk left, where no
+// reflection or refraction item took it (select_walk.comp's takeShadowPartial).
+bool shadowPartialCandidate(uint32_t id) {
+  return id % kSegmentSlots == 0 && id / kSegmentSlots % RB_ITEMS_PER_OBJECT == RB_ITEM_SHADOWS;
+}
 
 // The same over rate segments: one goes in only onto its item's previous segment. `partial`
 // (when given) gets the first candidate in `order` that partialCandidate allows and that did
 // not fit, and `partialBudget` what the budget left then. Where that pays for at least
 // RB_PARTIAL_MIN_SHARE of it, the walk stops there (the fractional knapsack's greedy: what
-// follows in the order is worth less per cost than the partial item's share).
+// follows in the order is worth less per cost than the partial item's share). Where none was
+// or its share is under that, the first shadow item's first segment that did not fit gets what
+// the walk left at its end, at least RB_PARTIAL_MIN_SHARE of it.
 std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std::vector<uint32_t>& order, float budget,
                                         uint32_t* partial = nullptr, float* partialBudget = nullptr) {
   std::unordered_map<uint32_t, uint32_t> level;  // item -> segments taken
   std::vector<uint32_t> chosen;
   float remaining = budget;
+  uint32_t shadow = UINT32_MAX;
   for (uint32_t i : order) {
     uint32_t& taken = level[c[i].id / kSegmentSlots];
     if (c[i].cost <= remaining && taken == c[i].id % kSegmentSlots) {
@@ -57,7 +65,14 @@ std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std:
       *partial = i;
       *partialBudget = remaining;
       if (exactQuotient(remaining, c[i].cost) >= float(RB_PARTIAL_MIN_SHARE)) remaining = 0.0f;
+    } else if (partial && shadow == UINT32_MAX && shadowPartialCandidate(c[i].id)) {
+      shadow = i;
     }
+  }
+  const auto shareOf = [&](uint32_t i, float left) { return exactQuotient(left, c[i].cost) >= float(RB_PARTIAL_MIN_SHARE); };
+  if (shadow != UINT32_MAX && (*partial == UINT32_MAX || !shareOf(*partial, *partialBudget)) && shareOf(shadow, remaining)) {
+    *partial = shadow;
+    *partialBudget = remaining;
   }
   return chosen;
 }
