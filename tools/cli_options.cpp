@@ -220,6 +220,7 @@ bool parseImageOption(const std::vector<std::string>& args, size_t& i, RenderSet
   else if (a == "--no-temporal-fill") s.rayTracing.temporalFill = false;
   else if (a == "--shadow-normal-offset") s.shadowNormalOffset = parseWithin(a, optionValue(args, i), 0.0f, 16.0f);
   else if (a == "--shadow-slope-bias") s.shadowSlopeBias = parseWithin(a, optionValue(args, i), 0.0f, 16.0f);
+  else if (a == "--budget-confidence") s.budgetConfidence = parseWithin(a, optionValue(args, i), 0.5f, 0.99f);
   else return false;
   return true;
 }
@@ -274,7 +275,6 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (a == "--full-shadow-rays") c.settings.rayTracing.shortenShadowRays = false;
     else if (a == "--rate") c.settings.rayTracing.rate = parseItemRate(value());
     else if (a == "--benefit-ablation") c.settings.benefitAblation = parseAblation(value());
-    else if (a == "--budget-confidence") c.settings.budgetConfidence = parseWithin(a, value(), 0.5f, 0.99f);
     else if (a == "--probe-share") c.settings.probeShare = parseWithin(a, value(), 0.0f, 0.5f);
     else if (a == "--no-rt-shadows") c.settings.rayTracing.shadows = false;
     else if (a == "--strict") c.load.strict = true;

@@ -44,6 +44,8 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --shadow-normal-offset X
                         shadow-map lookups' normal offset in texels (RenderSettings::shadowNormalOffset)
   --shadow-slope-bias X the shadow pass's slope-scaled depth bias (RenderSettings::shadowSlopeBias)
+  --budget-confidence C the budgeted policies' headroom quantile, 0.5..0.99
+                        (RenderSettings::budgetConfidence, default 0.9)
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
