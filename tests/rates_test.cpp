@@ -232,6 +232,9 @@ TEST(Rates, ChosenPerItemEqualTheCpuReferenceOnAllMirrors) {
   ASSERT_GT(all.timings.front().candidatesMs, 0.0);
   s.budgetMs = float(all.timings.front().candidatesMs / 3.0);
   const test::RenderedFrames part = test::renderFrames(scene, s, {cam}, test::kCheckSelection);
+  // Items learn from their clock ticks only where the time scale is learned too (with the
+  // prior's, in traversal work units, they learn traversal work: RB_ITEM_COSTS_UNTIMED).
+  s.learnTimeScale = true;
   const test::RenderedFrames later = test::renderFrames(scene, s, std::vector<Camera>(3, cam), test::kCheckSelection);
   for (const test::RenderedFrames* r : {&all, &part, &later})
     for (const FrameTiming& t : r->timings) {

@@ -66,8 +66,9 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out f
   if (c.pixels > 0u) {  // traced last frame
     // Its cost per pixel: its time, in work units (RB_WORK_PER_CLOCK_UNIT: shading, texture
     // lookups, the shadow classifier, divergence, what traversal work leaves out), or its
-    // traversal work where nothing was timed.
-    bool timed = c.ticks > 0u;
+    // traversal work where nothing was timed (or ticks are not to be used: RB_ITEM_COSTS_UNTIMED).
+    bool untimed = (push.items.w & RB_ITEM_COSTS_UNTIMED) != 0u;
+    bool timed = c.ticks > 0u && !untimed;
     if (timed || c.work > 0u) {
       // Timed at a reduced rate (selectedLast: 1 + its rate), per pixel at full rate.
       float observed = timed ? exactQuotient(exactQuotient(float(c.ticks), float(c.pixels)) * RB_WORK_PER_CLOCK_UNIT, tracedPixelCost(rate))
@@ -82,7 +83,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out f
     }
   }
   // Its cost per pixel its reduced rate skipped (the fill), in the same units.
-  if (c.skippedPixels > 0u && c.skippedTicks > 0u)
+  if (c.skippedPixels > 0u && c.skippedTicks > 0u && (push.items.w & RB_ITEM_COSTS_UNTIMED) == 0u)
     c.fillPerPixel = averagedWith(c.fillPerPixel, exactQuotient(float(c.skippedTicks), float(c.skippedPixels)) * RB_WORK_PER_CLOCK_UNIT);
   if (c.pixels == 0u || !learnBenefit) {
     // Untraced: drift towards the prior (by a power-of-two share: an exact product, so a

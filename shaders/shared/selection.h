@@ -75,6 +75,10 @@ struct GpuObjectCost {
 #define RB_BENEFIT_WITHOUT_CENTRALITY 1u
 #define RB_BENEFIT_WITHOUT_HYSTERESIS 2u
 #define RB_BENEFIT_PRIOR_ONLY 4u
+// Items learn their cost from traversal work, not clock ticks: with the time scale held at its
+// prior (RenderSettings::learnTimeScale off), whose unit is traversal work, so that selections
+// depend on nothing timed (the editor's --fixed-time-scale, the sweep's --prior-time-scale).
+#define RB_ITEM_COSTS_UNTIMED 8u
 
 // The sparse probe (`benefit`): candidate items the walk left out are traced, measured and
 // not shown, on the 8x8 tiles whose turn it is this frame, one tile in `stride` each frame in
@@ -276,7 +280,7 @@ struct SelectPush {
   vec4 budget;   // x budget, y frame mode: kappa (budget units per unit of work), z `benefit`'s probe budget,
                  // w frame mode: the work a ray costs (what was never traced is priced at)
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects, w `benefit`'s rate (RB_RATE_*)
-  uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_WITHOUT_* bits
+  uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_* and RB_ITEM_COSTS_UNTIMED bits
   vec4 quarterQuality;    // `benefit` with rates: the fill's quality q(1/4) per effect (RB_ITEM_*) this frame
   vec4 sixteenthQuality;  // and q(1/16) (cost_model.cpp's frameFillQualities)
 };

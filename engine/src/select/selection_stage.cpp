@@ -51,6 +51,7 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget,
   if (s.benefitAblation == BenefitAblation::NoCentrality) ablation = RB_BENEFIT_WITHOUT_CENTRALITY;
   if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
   if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
+  if (!s.learnTimeScale) ablation |= RB_ITEM_COSTS_UNTIMED;
   return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate), frameFillQualities(stillFrames, historyEffects(s, lights))};
 }
 
@@ -313,7 +314,7 @@ struct SelectionStage::Impl {
       learned[id] = learnItem(params[i].priors[int(e)], {b.workPerPixel, b.benefit, b.measured != 0, b.fillPerPixel},
                               {b.work, b.ticks, b.error, b.pixels, b.selectedLast == 0, b.selectedLast == 0 ? RB_RATE_FULL : b.selectedLast - 1,
                                b.skippedTicks, b.skippedPixels},
-                              float(RB_WORK_PER_CLOCK_UNIT), frame.ablation,
+                              frame.ablation & RB_ITEM_COSTS_UNTIMED ? 0.0f : float(RB_WORK_PER_CLOCK_UNIT), frame.ablation,
                               priorItemWorkPerPixel(e, frame.lights, slot.workPerRay));
       fill[id] = fillShare(e, learned[id].fillPerPixel, learned[id].workPerPixel);
       const gpu::GpuItemCost& a = after[id];
