@@ -63,12 +63,12 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out f
   float rays = float(RB_ITEM_PRIOR_RAYS(push.items.y, effect));
   float priorPerPixel = rays * push.budget.w;
   uint rate = c.selectedLast == 0u ? RB_RATE_FULL : c.selectedLast - 1u;  // (1 + its rate; 0: probed)
+  bool useTicks = (push.items.w & RB_ITEM_COSTS_UNTIMED) == 0u;
   if (c.pixels > 0u) {  // traced last frame
     // Its cost per pixel: its time, in work units (RB_WORK_PER_CLOCK_UNIT: shading, texture
     // lookups, the shadow classifier, divergence, what traversal work leaves out), or its
     // traversal work where nothing was timed (or ticks are not to be used: RB_ITEM_COSTS_UNTIMED).
-    bool untimed = (push.items.w & RB_ITEM_COSTS_UNTIMED) != 0u;
-    bool timed = c.ticks > 0u && !untimed;
+    bool timed = c.ticks > 0u && useTicks;
     if (timed || c.work > 0u) {
       // Timed at a reduced rate (selectedLast: 1 + its rate), per pixel at full rate.
       float observed = timed ? exactQuotient(exactQuotient(float(c.ticks), float(c.pixels)) * RB_WORK_PER_CLOCK_UNIT, tracedPixelCost(rate))
@@ -83,7 +83,7 @@ bool itemCandidate(uint i, uint effect, GpuObjectRecord r, out float cost, out f
     }
   }
   // Its cost per pixel its reduced rate skipped (the fill), in the same units.
-  if (c.skippedPixels > 0u && c.skippedTicks > 0u && (push.items.w & RB_ITEM_COSTS_UNTIMED) == 0u)
+  if (c.skippedPixels > 0u && c.skippedTicks > 0u && useTicks)
     c.fillPerPixel = averagedWith(c.fillPerPixel, exactQuotient(float(c.skippedTicks), float(c.skippedPixels)) * RB_WORK_PER_CLOCK_UNIT);
   if (c.pixels == 0u || !learnBenefit) {
     // Untraced: drift towards the prior (by a power-of-two share: an exact product, so a
