@@ -41,8 +41,12 @@ float worldThickness(Surface s, float thickness) {
 // frame (lit before the transmissive surfaces were drawn) where the ray leaves the volume,
 // projected to the screen, blurred by a mip from roughness and IOR; the surroundings in the
 // ray's direction where that point is off the screen or the opaque frame there lies in front
-// of the surface.
+// of the surface. A thin wall (the exit point is the surface's) is not blurred: the tracer
+// passes the view ray through it as it is, one ray and no roughness lobe, and the blur made
+// the fallback disagree with it on rough thin glass (TransmissionTest's FLIP against `all`
+// 0.0758 / 0.1063 blurred, 0.0588 / 0.0975 sharp; volumes moved by under 0.0001).
 vec3 behindSurface(Surface s, vec3 exitPoint, vec3 exitDir) {
+  float blur = exitPoint == s.position ? 0.0 : s.roughness;
   if (behindGlassReady()) {
     vec4 clip = frame.viewProj * vec4(exitPoint, 1.0);
     vec2 uv = clip.xy / max(clip.w, 1e-6) * 0.5 + 0.5;
@@ -50,12 +54,12 @@ vec3 behindSurface(Surface s, vec3 exitPoint, vec3 exitDir) {
       vec2 size = vec2(textureSize(behindGlass, 0));
       float behind = texelFetch(behindGlass, min(ivec2(uv * size), ivec2(size) - 1), 0).a;
       if (behind > length(s.position - frame.cameraPositionNear.xyz)) {
-        float lod = log2(max(size.x, size.y)) * s.roughness * clamp(2.0 * s.ior - 2.0, 0.0, 1.0);
+        float lod = log2(max(size.x, size.y)) * blur * clamp(2.0 * s.ior - 2.0, 0.0, 1.0);
         return textureLod(behindGlass, uv, lod).rgb;
       }
     }
   }
-  return surroundings(exitPoint, exitDir, s.roughness);
+  return surroundings(exitPoint, exitDir, blur);
 }
 
 // Zero for opaque surfaces.
