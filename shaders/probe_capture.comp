@@ -26,7 +26,7 @@ void main() {
   uint face = push.objectMaterial.y + id.z;  // the dispatch's first face, then one per z
   vec3 dir = cubeDirection(face, id.xy, RB_ENV_SIZE);
   uint work = 0u;
-  vec3 radiance = traceRadiance(frame.probeCenter[probe].xyz, dir, 1u, work);
+  vec3 radiance = traceRadiance(frame.probeCenter[probe].xyz, dir, 0.0, 1u, work);
   bool against = rbFirstHitDistance < RB_PROBE_MIN_CLEARANCE * frame.ssr.z;
   imageStore(probeRadianceImage, ivec3(id.xy, probe * 6u + face), vec4(radiance, rbFirstHitInside || against ? 0.0 : 1.0));
 }

@@ -101,7 +101,7 @@ void traceEffects(ivec2 pixel, Surface s, Selection sel, bvec2 here) {
     vec3 origin = offsetRay(p, ng), dir = R, absorbed = vec3(1.0);
     color[path] = vec3(0.0);
     if (path == 1 && !transmittedRay(p, ng, V, N, s.ior, s.materialId, origin, dir, absorbed, work[path])) continue;
-    color[path] = traceRadiance(origin, dir, depth, work[path]) * absorbed * (path == 0 ? specularWeight : transmitWeight);
+    color[path] = traceRadiance(origin, dir, path == 0 ? s.roughness : 0.0, depth, work[path]) * absorbed * (path == 0 ? specularWeight : transmitWeight);
     pathTicks[path] = clockNow() - pathStart;
   }
   if (reflects && !probed[0]) imageStore(reflectionImage, pixel, vec4(color[0], 1.0));
