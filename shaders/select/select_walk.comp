@@ -89,6 +89,8 @@ bool betterSingle(GpuCandidate c, uint ci, Single b) {
 uint partialId = RB_NO_PARTIAL;
 float partialCost = 0.0, partialValue = 0.0, leftOver = 0.0;
 bool partialWanted() { return push.walk.y != 0u && rateSegmentsWalk(); }
+// Whether `left` pays for RB_PARTIAL_MIN_SHARE of a candidate of `cost`.
+bool sharePays(float left, float cost) { return exactQuotient(left, cost) >= RB_PARTIAL_MIN_SHARE; }
 // Records candidate `id`, which did not fit, as the partial item with the budget left now; where
 // that pays for RB_PARTIAL_MIN_SHARE of it, nothing more goes in.
 void recordPartial(uint id, float cost, float value, inout float remaining) {
@@ -96,7 +98,7 @@ void recordPartial(uint id, float cost, float value, inout float remaining) {
   partialCost = cost;
   partialValue = value;
   leftOver = remaining;
-  if (exactQuotient(remaining, cost) >= RB_PARTIAL_MIN_SHARE) remaining = 0.0;
+  if (sharePays(remaining, cost)) remaining = 0.0;
 }
 // The partial item's share of its tiles: 0 where there is none or under RB_PARTIAL_MIN_SHARE.
 float partialShare() {
@@ -125,7 +127,7 @@ void recordShadowPartial(uint id, float cost, float value) {
 }
 // After the walk: the shadow item takes what was left where no other partial item did.
 void takeShadowPartial(float remaining) {
-  if (partialShare() > 0.0 || shadowPartialId == RB_NO_PARTIAL || exactQuotient(remaining, shadowPartialCost) < RB_PARTIAL_MIN_SHARE) return;
+  if (partialShare() > 0.0 || shadowPartialId == RB_NO_PARTIAL || !sharePays(remaining, shadowPartialCost)) return;
   partialId = shadowPartialId;
   partialCost = shadowPartialCost;
   partialValue = shadowPartialValue;

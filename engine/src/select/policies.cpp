@@ -55,6 +55,8 @@ std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std:
   std::vector<uint32_t> chosen;
   float remaining = budget;
   uint32_t shadow = UINT32_MAX;
+  // Whether `left` pays for RB_PARTIAL_MIN_SHARE of candidate i.
+  const auto sharePays = [&](uint32_t i, float left) { return exactQuotient(left, c[i].cost) >= float(RB_PARTIAL_MIN_SHARE); };
   for (uint32_t i : order) {
     uint32_t& taken = level[c[i].id / kSegmentSlots];
     if (c[i].cost <= remaining && taken == c[i].id % kSegmentSlots) {
@@ -64,13 +66,12 @@ std::vector<uint32_t> greedyFitSegments(std::span<const Candidate> c, const std:
     } else if (partial && *partial == UINT32_MAX && partialCandidate(c[i].id)) {
       *partial = i;
       *partialBudget = remaining;
-      if (exactQuotient(remaining, c[i].cost) >= float(RB_PARTIAL_MIN_SHARE)) remaining = 0.0f;
+      if (sharePays(i, remaining)) remaining = 0.0f;
     } else if (partial && shadow == UINT32_MAX && shadowPartialCandidate(c[i].id)) {
       shadow = i;
     }
   }
-  const auto shareOf = [&](uint32_t i, float left) { return exactQuotient(left, c[i].cost) >= float(RB_PARTIAL_MIN_SHARE); };
-  if (shadow != UINT32_MAX && (*partial == UINT32_MAX || !shareOf(*partial, *partialBudget)) && shareOf(shadow, remaining)) {
+  if (shadow != UINT32_MAX && (*partial == UINT32_MAX || !sharePays(*partial, *partialBudget)) && sharePays(shadow, remaining)) {
     *partial = shadow;
     *partialBudget = remaining;
   }
