@@ -20,10 +20,10 @@
 // before, from the tile's traced pixels in shared memory behind a barrier (which lavapipe runs
 // as coroutines): as a pass of its own it costs about the same and reads across tiles
 // (docs/SELECTION.md, "Ray rates").
-layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+layout(local_size_x = RB_TILE_SIZE * RB_TILE_SIZE) in;
 
 void main() {
-  ivec2 pixel = tilePixel(RB_EFFECT_TILES);
+  ivec2 pixel = fillPixel();
   uint start = clockNow();
   uint objectId;
   bvec2 filled = fillEffects(pixel, objectId);

@@ -28,7 +28,7 @@
 // item the probe traces here (include/probe.glsl) is measured and not shown. An item at a
 // reduced ray rate (include/rates.glsl) traces its pixels of this frame and writes what it
 // changed to the fill's history; fill_effects.comp fills the others from it (include/effect_fill.glsl).
-layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+layout(local_size_x = RB_TRACE_GROUP_SIZE) in;
 
 // The ray that carries light through the surface at p towards the viewer: for a thin wall
 // the view ray continued behind the surface, for a volume the refracted ray after its way
@@ -140,7 +140,7 @@ bvec2 pathsHere(Selection sel, ivec2 pixel) {
 }
 
 void main() {
-  ivec2 pixel = tilePixel(RB_EFFECT_TILES);
+  ivec2 pixel = tracePixel(RB_EFFECT_CHUNKS);
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   // A pixel whose items trace nothing here reads no more of the G-buffer than its object.
   uint objectId = texelFetch(gObjectId, pixel, 0).r;

@@ -23,7 +23,7 @@
 // (include/shadow_fill.glsl), so a skipped pixel costs this pass no more than reading its
 // object. Where the probe traces a left-out shadow item, the mask is written for the lighting
 // pass to measure, which still shows the shadow maps there.
-layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
+layout(local_size_x = RB_TRACE_GROUP_SIZE) in;
 
 void traceShadows(ivec2 pixel) {
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
@@ -70,4 +70,4 @@ void traceShadows(ivec2 pixel) {
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
 }
 
-void main() { traceShadows(tilePixel(RB_SHADOW_TILES)); }
+void main() { traceShadows(tracePixel(RB_SHADOW_CHUNKS)); }

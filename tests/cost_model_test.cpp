@@ -147,7 +147,7 @@ TEST(CostModel, AReducedRateIsPricedFromWhatItsSkippedPixelsCost) {
   EXPECT_EQ(select::fillShare(RB_ITEM_SHADOWS, 500.0f, 100.0f), float(RB_FILL_SHARE_MAX));
   EXPECT_EQ(select::rateShare(RB_RATE_FULL, 0.5f), 1.0f);
   EXPECT_EQ(select::rateShare(RB_RATE_QUARTER, 0.0f), float(RB_TRACED_SHARE_QUARTER));
-  EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_SIXTEENTH, 0.2f), 0.0625f * 2.24f + 0.9375f * 0.2f);
+  EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_SIXTEENTH, 0.2f), 0.0625f * 1.65f + 0.9375f * 0.2f);
   EXPECT_FLOAT_EQ(select::rateShare(RB_RATE_HALF, 0.2f), 0.5f * 1.3f + 0.5f * 0.2f);
   for (float fill : {0.0f, float(RB_FILL_SHARE_PRIOR), 0.3f, 0.4f, 0.55f, float(RB_FILL_SHARE_MAX)})
     EXPECT_LT(select::rateShare(RB_RATE_SIXTEENTH, fill), select::rateShare(RB_RATE_QUARTER, fill));
@@ -193,8 +193,8 @@ TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
         EXPECT_LE(v, v0 + (v1 - v0) * (c - c0) / (c1 - c0) + 1e-6f) << "rate " << rate << " dominated";
       }
     }
-  // At the prior qualities: all three rates at the prior fill share; from a dear fill (0.4 for
-  // reflections) 1/4 first.
+  // At the prior qualities: all three rates at the prior fill share; from a dear fill (0.45 for
+  // reflections) 1/4 first. Refractions, whose fills keep more, keep all three up to the dearest fill.
   EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::fillQualities(RB_ITEM_REFLECTIONS)), 3u);
   EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::fillQualities(RB_ITEM_REFRACTIONS)), 3u);
   // Shadows, whose fill keeps less (shared/selection.h): at their prior fill share 1/4 and full
@@ -203,12 +203,12 @@ TEST(CostModel, RateSegmentsAreTheConcaveHullOfTheOptions) {
   EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR_SHADOWS), select::fillQualities(RB_ITEM_SHADOWS)), 2u);
   EXPECT_EQ(select::rateSegment(0, float(RB_FILL_SHARE_PRIOR_SHADOWS), select::fillQualities(RB_ITEM_SHADOWS)).rate, RB_RATE_QUARTER);
   EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::fillQualities(RB_ITEM_SHADOWS)), 1u);
-  const select::RateSegment quarterFirst = select::rateSegment(0, 0.4f, select::fillQualities(RB_ITEM_REFLECTIONS));
+  EXPECT_EQ(select::rateSegments(0.4f, select::fillQualities(RB_ITEM_REFLECTIONS)), 3u);
+  const select::RateSegment quarterFirst = select::rateSegment(0, 0.45f, select::fillQualities(RB_ITEM_REFLECTIONS));
   EXPECT_EQ(quarterFirst.rate, RB_RATE_QUARTER);
-  EXPECT_EQ(quarterFirst.costShare, select::rateShare(RB_RATE_QUARTER, 0.4f));
+  EXPECT_EQ(quarterFirst.costShare, select::rateShare(RB_RATE_QUARTER, 0.45f));
   EXPECT_NEAR(quarterFirst.valueShare, 0.78f, 1e-4f) << "the prior keep of 1/4";
-  EXPECT_EQ(select::rateSegments(0.4f, select::fillQualities(RB_ITEM_REFRACTIONS)), 3u);
-  EXPECT_EQ(select::rateSegments(0.55f, select::fillQualities(RB_ITEM_REFRACTIONS)), 2u);
+  EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_MAX), select::fillQualities(RB_ITEM_REFRACTIONS)), 3u);
 }
 
 // A still view's temporal fill carries every traced pixel until its rate traces it again: the

@@ -545,6 +545,32 @@ TEST(RtPolicy, EachTracePassRunsOverTheTilesOfItsOwnItems) {
   }
 }
 
+// The trace passes run a tile's pixels in chunks of 4, as many as its items' rate traces: every
+// item at one fixed rate on the court (room for all of them), each listed tile runs 16 chunks
+// at full rate, 8 at 1/2, 4 at 1/4 and 1 at 1/16, in both passes.
+TEST(RtPolicy, TracePassesRunTheChunksOfATileItsRateTraces) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  for (const ItemRate rate : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter, ItemRate::Sixteenth}) {
+    RenderSettings s;
+    s.width = 200;
+    s.height = 120;
+    s.validation = true;
+    s.policy = Policy::Benefit;
+    s.budgetMs = 1e5f;
+    s.learnTimeScale = false;
+    s.rayTracing.rate = rate;
+    Renderer renderer(scene, s);
+    const std::vector<FrameTiming> t = test::renderStill(renderer, defaultCamera(scene, 200.0f / 120.0f), 2);
+    ASSERT_EQ(t.size(), 2u);
+    const uint32_t perTile = rate == ItemRate::Full ? 16u : rate == ItemRate::Half ? 8u : rate == ItemRate::Quarter ? 4u : 1u;
+    EXPECT_GT(t.back().shadowTiles, 0u);
+    EXPECT_GT(t.back().effectTiles, 0u);
+    EXPECT_EQ(t.back().shadowChunks, perTile * t.back().shadowTiles) << int(rate);
+    EXPECT_EQ(t.back().effectChunks, perTile * t.back().effectTiles) << int(rate);
+    test::expectValidationClean(renderer.validationMessages());
+  }
+}
+
 }  // namespace
 }  // namespace raybudget
 

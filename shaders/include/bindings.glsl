@@ -66,20 +66,26 @@ layout(set = 0, binding = 29) uniform sampler2D gPosition;  // xyz world positio
 layout(set = 0, binding = 30, std430) buffer CoverageBlock { GpuCoverage coverage[]; };
 layout(set = 0, binding = 31, std430) readonly buffer ObjectParamsBlock { GpuObjectParams objectParams[]; };
 layout(set = 0, binding = 32, std430) buffer ObjectRecordBlock { GpuObjectRecord objectRecords[]; };
-// The selection (1: the object's pixels get ray-traced effects) and, per trace pass, the 8x8
-// tiles holding pixels it traces (tile_list.comp), each list's count doubling as the pass's
-// indirect dispatch (x, y, z). Apart, so that a pass never runs over the tiles of the other's
-// items (the shadow pass over a mirror's tiles cost a quarter of the mirror's 1/16 rate).
+// The selection (1: the object's pixels get ray-traced effects) and, per trace pass, the
+// chunks of the 8x8 tiles holding pixels it traces (tile_list.comp, include/tile_pixel.glsl),
+// with the pass's indirect dispatch (x, y, z). Apart, so that a pass never runs over the tiles
+// of the other's items (the shadow pass over a mirror's tiles cost a quarter of the mirror's
+// 1/16 rate). The fill of reflections and refractions runs over the effect pass's tiles.
 layout(set = 0, binding = 33, std430) buffer SelectionBlock { uint selected[]; };
 layout(set = 0, binding = 34, std430) buffer TileListBlock {
-  uvec4 tileDispatch;    // the shadow pass's: x tiles (= groups in x), y 1, z 1, w rays the trace passes traced
-  uvec4 effectDispatch;  // the reflection and refraction pass's: x tiles, y 1, z 1, w tiles in either list
-  uvec4 traceCounts;     // x the rays the items' prior counts at the pixels traced (rt_common.glsl); yzw 0
-  uint tiles[];          // the shadow pass's tiles, then from RB_EFFECT_TILES the other's: tile x | tile y << 16
+  uvec4 tileDispatch;    // the shadow pass's: x groups, y 1, z 1, w rays the trace passes traced
+  uvec4 effectDispatch;  // the reflection and refraction pass's: x groups, y 1, z 1, w tiles in either list
+  uvec4 traceCounts;     // x the rays the items' prior counts at the pixels traced (rt_common.glsl); y, z the
+                         // shadow and the effect pass's chunks; w the shadow pass's tiles
+  uvec4 fillDispatch;    // the fill's (fill_effects.comp): x the effect pass's tiles (= groups), y 1, z 1, w 0
+  uint tiles[];          // the effect pass's tiles (tile x | tile y << 16), then from RB_SHADOW_CHUNKS and
+                         // RB_EFFECT_CHUNKS each trace pass's chunks (tile_pixel.glsl's chunkWord)
 };
-// Where a trace pass's list starts in tiles[].
-#define RB_SHADOW_TILES 0u
-#define RB_EFFECT_TILES screenTileCount()
+// Where the lists start in tiles[]: a trace pass needs at most 64 / RB_TRACE_CHUNK chunks a tile.
+#define RB_EFFECT_TILES 0u
+#define RB_CHUNKS_PER_TILE (RB_TILE_SIZE * RB_TILE_SIZE / RB_TRACE_CHUNK)
+#define RB_SHADOW_CHUNKS screenTileCount()
+#define RB_EFFECT_CHUNKS (screenTileCount() * (1u + RB_CHUNKS_PER_TILE))
 
 layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost objectCosts[]; };
 // Per tile, RB_TILE_OBJECT_WORDS words: the objects it shows (shared/config.h).

@@ -1,20 +1,19 @@
-// Compute passes dispatched over the tile list (the trace passes). The includer
-// includes bindings.glsl.
+// The pixels of the passes dispatched over the tile lists (tile_list.comp): the trace passes
+// over chunks of tiles, the fill over whole tiles. The includer includes bindings.glsl.
 #ifndef RB_TILE_PIXEL_GLSL
 #define RB_TILE_PIXEL_GLSL
 #include "include/rates.glsl"
 
-// This invocation's pixel: one workgroup per listed 8x8 tile. With reduced ray rates in the
-// frame (RB_RT_RATES) the tile's pixels are handed out so that those a rate traces this frame
-// come first: invocations 0-3 get the pixels 1/16 traces (one per 4x4 block), 0-15 those 1/4
-// traces (one per 2x2 quad), 16-31 the rest of those 1/2 traces, 32-63 the others. A SIMD batch or warp holding only pixels its items
-// skip then has nothing to do, where in row order every one would hold some pixels to trace
-// (a checkerboard leaves half of each row).
-ivec2 tilePixel(uint list) {
-  uint t = tiles[list + gl_WorkGroupID.x];
-  ivec2 origin = ivec2(t & 0xFFFFu, t >> 16) * RB_TILE_SIZE;
-  if ((frame.rayTracing.w & RB_RT_RATES) == 0u) return origin + ivec2(gl_LocalInvocationID.xy);
-  uint i = gl_LocalInvocationIndex, group = i >> 4u, k = i & 15u;
+// A tile's pixels in rank order. Without reduced ray rates in the frame (RB_RT_RATES) row
+// order. With them the pixels a rate traces this frame come first: ranks 0-3 the pixels 1/16
+// traces (one per 4x4 block), 0-15 those 1/4 traces (one per 2x2 quad), 16-31 the rest of those
+// 1/2 traces, 32-63 the others. A SIMD batch or warp holding only pixels its items skip then
+// has nothing to do, where in row order every one would hold some pixels to trace (a
+// checkerboard leaves half of each row).
+ivec2 rankPixel(uvec2 tile, uint rank) {
+  ivec2 origin = ivec2(tile) * RB_TILE_SIZE;
+  if ((frame.rayTracing.w & RB_RT_RATES) == 0u) return origin + ivec2(rank % RB_TILE_SIZE, rank / RB_TILE_SIZE);
+  uint group = rank >> 4u, k = rank & 15u;
   // The 2x2 quad's top left in the tile: k's low bits the 4x4 block, its high bits the quad in
   // the block, counted from the one 1/16 traces (sixteenthOffset).
   uint block = k & 3u, inBlock = k >> 2u;
@@ -23,6 +22,33 @@ ivec2 tilePixel(uint list) {
   // The quad's pixel of x + y's parity other than q is 1/2's other one; the last two are left.
   uvec2 offset = group == 0u ? q : (group == 1u ? uvec2(1u) - q : (group == 2u ? uvec2(q.x ^ 1u, q.y) : uvec2(q.x, q.y ^ 1u)));
   return origin + ivec2(quad + offset);
+}
+
+// The ranks of a tile a trace pass runs for an item at `rate` (RB_RATE_*): the first 4, 16 or
+// 32 where 1/16, 1/4 or 1/2 traces only those, all 64 at full rate (and where a probe traces).
+uint rateRanks(uint rate) {
+  return rate == RB_RATE_SIXTEENTH ? 4u : rate == RB_RATE_QUARTER ? 16u : rate == RB_RATE_HALF ? 32u : RB_TILE_SIZE * RB_TILE_SIZE;
+}
+
+// A trace pass's chunk: RB_TRACE_CHUNK consecutive ranks of a tile, from rank 4c.
+uint chunkWord(uvec2 tile, uint c) { return tile.x | (tile.y << 12u) | (c << 24u); }
+
+// A trace pass's pixel (`list`: RB_SHADOW_CHUNKS or RB_EFFECT_CHUNKS), ivec2(-1) past the list's
+// end. The tile list holds a tile's chunks up to the ranks its items' rates trace, so
+// invocations run only where some item may trace: a tile at 1/16 costs 4, not 64, and two such
+// tiles fill a SIMD batch of 8 lanes (over whole tiles, the 60 invocations that returned at
+// once were most of the shadow pass at 1/16, and the four that traced left half of their batch idle).
+ivec2 tracePixel(uint list) {
+  uint g = gl_GlobalInvocationID.x, chunk = g / RB_TRACE_CHUNK;
+  if (chunk >= (list == RB_SHADOW_CHUNKS ? traceCounts.y : traceCounts.z)) return ivec2(-1);
+  uint word = tiles[list + chunk];
+  return rankPixel(uvec2(word & 0xFFFu, (word >> 12u) & 0xFFFu), (word >> 24u) * RB_TRACE_CHUNK + g % RB_TRACE_CHUNK);
+}
+
+// The fill's pixel: a workgroup of 64 per tile of the effect pass's list, in rank order.
+ivec2 fillPixel() {
+  uint t = tiles[RB_EFFECT_TILES + gl_WorkGroupID.x];
+  return rankPixel(uvec2(t & 0xFFFFu, t >> 16), gl_LocalInvocationIndex);
 }
 
 #endif

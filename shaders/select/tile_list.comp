@@ -1,10 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Appends each 8x8 tile holding at least one pixel whose shadow item is selected, or probed
-// where the probe traces this frame (include/probe.glsl), to the shadow pass's tile list, and
-// each holding one with a selected or probed reflection or refraction item to the other
-// pass's; each list's count is also the x of its pass's indirect dispatch: no selected pixel,
-// no work.
+// Lists, for each trace pass, the chunks of the 8x8 tiles where it may trace (include/tile_pixel.glsl):
+// a tile holding a pixel whose shadow item is selected, or probed where the probe traces this
+// frame (include/probe.glsl), goes to the shadow pass's list with as many of its chunks as the
+// highest ray rate among those items traces (all 16 at full rate or probed, 8 at 1/2, 4 at 1/4,
+// 1 at 1/16); one holding a selected or probed reflection or refraction item, to the other
+// pass's, and whole to the fill's list of tiles. Each list's count sets its pass's indirect
+// dispatch: no selected pixel, no work.
 // One invocation per tile: it checks the few objects the coverage pass noted for the tile,
 // and scans the tile's pixels only when the tile shows more (fetching every pixel cost
 // ~0.35 ms at 640x360 on lavapipe, most of the select pass for a small scene). No shared
@@ -12,9 +14,25 @@
 // workgroup barrier switches between invocations in software).
 #include "include/bindings.glsl"
 #include "include/probe.glsl"
+#include "include/tile_pixel.glsl"
 
 layout(local_size_x = RB_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
+
+// The ranks of the tile a trace pass needs for an object whose selection word here is `word`
+// (selectionInTile), over its items `effects` (bits); `probed`: the probe traces this tile.
+uint ranksNeeded(uint word, uint effects, bool probed) {
+  uint ranks = 0u;
+  for (uint e = 0u; e < RB_ITEMS_PER_OBJECT; ++e) {
+    if ((effects & (1u << e)) == 0u) continue;
+    if ((word & (1u << e)) != 0u) ranks = max(ranks, rateRanks((word >> (RB_RATE_SHIFT + 2u * e)) & 3u));
+    else if (probed && (word & (1u << (RB_PROBE_SHIFT + e))) != 0u) ranks = RB_TILE_SIZE * RB_TILE_SIZE;
+  }
+  return ranks;
+}
+
+// The workgroups that `chunks` listed chunks need.
+uint chunkGroups(uint chunks) { return (chunks * RB_TRACE_CHUNK + RB_TRACE_GROUP_SIZE - 1u) / RB_TRACE_GROUP_SIZE; }
 
 void main() {
   uint t = gl_GlobalInvocationID.x;
@@ -22,25 +40,36 @@ void main() {
   if (!screenTile(t, first, last)) return;
   uvec2 tile = first / RB_TILE_SIZE;
   uint base = t * RB_TILE_OBJECT_WORDS;
-  // The selection bits that make a pixel of this tile traced by each pass: its items', and its
-  // probed items' where the probe traces this tile.
-  uint items = RB_ITEMS_ALL | (probeTile(tile) ? RB_ITEMS_ALL << RB_PROBE_SHIFT : 0u);
-  uint shadows = (1u << RB_ITEM_SHADOWS) | (1u << (RB_PROBE_SHIFT + RB_ITEM_SHADOWS));
-  uint bits = 0u;  // the selection bits of the tile's pixels that either pass traces
+  bool probed = probeTile(tile);
+  const uint shadows = 1u << RB_ITEM_SHADOWS, effects = RB_ITEMS_ALL & ~shadows;
+  uvec2 ranks = uvec2(0u);  // the shadow pass's and the effect pass's
   if (tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] == 0u) {
     for (uint s = 0u; s + 1u < RB_TILE_OBJECT_WORDS; ++s) {
       uint v = tileObjects[base + s];
-      if (v != 0u) bits |= selectionInTile(v - 1u, selected[v - 1u], tile) & items;
+      if (v == 0u) continue;
+      uint word = selectionInTile(v - 1u, selected[v - 1u], tile);
+      ranks = max(ranks, uvec2(ranksNeeded(word, shadows, probed), ranksNeeded(word, effects, probed)));
     }
   } else {
-    for (uint y = first.y; y < last.y && (bits & items) != items; ++y)
+    for (uint y = first.y; y < last.y && any(lessThan(ranks, uvec2(RB_TILE_SIZE * RB_TILE_SIZE))); ++y)
       for (uint x = first.x; x < last.x; ++x) {
         uint id = texelFetch(gObjectId, ivec2(x, y), 0).r;
-        if (id != RB_NO_OBJECT) bits |= selectionInTile(id, selected[id], tile) & items;
+        if (id == RB_NO_OBJECT) continue;
+        uint word = selectionInTile(id, selected[id], tile);
+        ranks = max(ranks, uvec2(ranksNeeded(word, shadows, probed), ranksNeeded(word, effects, probed)));
       }
   }
-  uint tileWord = tile.x | (tile.y << 16);
-  if ((bits & shadows) != 0u) tiles[RB_SHADOW_TILES + atomicAdd(tileDispatch.x, 1u)] = tileWord;
-  if ((bits & ~shadows) != 0u) tiles[RB_EFFECT_TILES + atomicAdd(effectDispatch.x, 1u)] = tileWord;
-  if (bits != 0u) atomicAdd(effectDispatch.w, 1u);
+  if (ranks.x != 0u) {
+    uint chunks = ranks.x / RB_TRACE_CHUNK, at = atomicAdd(traceCounts.y, chunks);
+    for (uint c = 0u; c < chunks; ++c) tiles[RB_SHADOW_CHUNKS + at + c] = chunkWord(tile, c);
+    atomicAdd(tileDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
+    atomicAdd(traceCounts.w, 1u);
+  }
+  if (ranks.y != 0u) {
+    uint chunks = ranks.y / RB_TRACE_CHUNK, at = atomicAdd(traceCounts.z, chunks);
+    for (uint c = 0u; c < chunks; ++c) tiles[RB_EFFECT_CHUNKS + at + c] = chunkWord(tile, c);
+    atomicAdd(effectDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
+    tiles[RB_EFFECT_TILES + atomicAdd(fillDispatch.x, 1u)] = tile.x | (tile.y << 16);
+  }
+  if (any(notEqual(ranks, uvec2(0u)))) atomicAdd(effectDispatch.w, 1u);
 }

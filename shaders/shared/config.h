@@ -2,8 +2,12 @@
 #ifndef RAYBUDGET_SHARED_CONFIG_H
 #define RAYBUDGET_SHARED_CONFIG_H
 
-// Compute passes over the screen run 8x8 tiles: the later trace passes dispatch per tile.
+// Compute passes over the screen run 8x8 tiles. The trace passes run over chunks of
+// RB_TRACE_CHUNK pixels of a tile, as many of a tile's chunks as its items' ray rates need
+// (include/tile_pixel.glsl), RB_TRACE_GROUP_SIZE invocations a workgroup.
 #define RB_TILE_SIZE 8
+#define RB_TRACE_CHUNK 4u
+#define RB_TRACE_GROUP_SIZE 64
 // Lanes of the one-dimensional passes (one invocation per object, tile, candidate or ray),
 // and of the selection's key pass; the host dispatches groupsFor(n, ...) (vk/pipelines.h).
 #define RB_GROUP_SIZE 64

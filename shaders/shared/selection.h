@@ -156,20 +156,23 @@ struct GpuObjectCost {
 // pixels, below), and a pixel its rate skips costs fill = GpuItemCost::fillPerPixel, learned from
 // the skipped pixels' ticks. As a share of full rate, with f = fill / workPerPixel (clamped to
 // [0, RB_FILL_SHARE_MAX]; RB_FILL_SHARE_PRIOR before a skipped pixel was timed):
-//   share(1/2) = 0.5 * 1.3 + 0.5 f,  share(1/4) = 0.25 * 1.33 + 0.75 f,  share(1/16) = 0.0625 * 2.24 + 0.9375 f
+//   share(1/2) = 0.5 * 1.3 + 0.5 f,  share(1/4) = 0.25 * 1.33 + 0.75 f,  share(1/16) = 0.0625 * 1.65 + 0.9375 f
 // (RB_TRACED_SHARE_* are the first terms; cost_model.cpp's rateShare is the CPU reference). On
 // `classified` the items' ticks at 1/4 and 1/16 over full follow the pass's time (the WaterBottle
 // 0.69 and 0.45 against 0.84 and 0.55 ms, TransmissionTest 0.33, 0.14 against 0.34, 0.16).
 // A pixel a reduced rate traces costs more clock time than one of full rate (its neighbours'
-// rays and gathers do not run beside it; 1/16's lie four pixels apart, half a SIMD batch a tile):
-// per traced pixel over full rate's per pixel, `classified` at 640x360 on lavapipe, the median
-// over the items of the court (14) and the plaza (51-53): 1.29 and 1.33 at 1/2, 1.33 and 1.33 at
-// 1/4, 2.24 and 2.24 at 1/16 (Suzanne's 1.31 and 2.10). An item learns its cost per pixel
+// rays and gathers do not run beside it; 1/16's lie four pixels apart): per traced pixel over
+// full rate's per pixel, `classified` at 640x360 on lavapipe, the median over the items of the
+// court (14) and the plaza (51-53): 1.29 and 1.33 at 1/2, 1.33 and 1.33 at 1/4 (Suzanne's 1.31).
+// At 1/16 the median over all their traced items (58 and 170, 16 still frames each): 1.65 and
+// 1.64 (Suzanne 1.70), since the trace passes run chunks of 4 pixels (tile_pixel.glsl), so two
+// tiles' 1/16 pixels share a SIMD batch; 2.29 and 2.24 when each tile had a workgroup and its four
+// pixels half a batch. An item learns its cost per pixel
 // at full rate from its traced pixels' ticks divided by its rate's factor, so that
 // its rates are priced from the same figure whatever rate measured it.
 #define RB_TRACED_PIXEL_COST_HALF 1.3
 #define RB_TRACED_PIXEL_COST_QUARTER 1.33
-#define RB_TRACED_PIXEL_COST_SIXTEENTH 2.24
+#define RB_TRACED_PIXEL_COST_SIXTEENTH 1.65
 // The frames after which a rate traces a pixel again (rates.glsl's patterns).
 #define RB_RATE_PERIOD(rate) ((rate) == RB_RATE_HALF ? 2u : (rate) == RB_RATE_QUARTER ? 4u : (rate) == RB_RATE_SIXTEENTH ? 16u : 1u)
 // Per rate (RB_RATE_*), 1 at full rate.
@@ -179,7 +182,7 @@ struct GpuObjectCost {
                                                       : (rate) == RB_RATE_SIXTEENTH ? RB_TRACED_PIXEL_COST_SIXTEENTH : 1.0)
 #define RB_TRACED_SHARE_HALF 0.65        // 0.5 * RB_TRACED_PIXEL_COST_HALF (literals, as RB_FILL_QUALITY_*)
 #define RB_TRACED_SHARE_QUARTER 0.3325   // 0.25 * RB_TRACED_PIXEL_COST_QUARTER
-#define RB_TRACED_SHARE_SIXTEENTH 0.14   // 0.0625 * RB_TRACED_PIXEL_COST_SIXTEENTH
+#define RB_TRACED_SHARE_SIXTEENTH 0.103125  // 0.0625 * RB_TRACED_PIXEL_COST_SIXTEENTH
 // The prior fill share: the skipped pixels' ticks of the court, Suzanne, the WaterBottle and
 // TransmissionTest at 1/4 and 1/16 gave 0.0-0.48, the court 0.01-0.03, Suzanne 0.16-0.17.
 // Shadows fill in the lighting pass, outside the stage: a skipped pixel costs the shadow pass

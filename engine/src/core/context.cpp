@@ -133,7 +133,7 @@ struct Context::Impl {
         behindGlassCopy(ctx, layouts, kSpirv_behind_glass_comp),
         traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows), passes::TileList::Shadows),
         traceEffects(ctx, layouts, scene.tracer->shader(passes::TraceShader::Effects), passes::TileList::Effects, tracedPaths()),
-        fillEffects(ctx, layouts, kSpirv_fill_effects_comp, passes::TileList::Effects) {
+        fillEffects(ctx, layouts, kSpirv_fill_effects_comp, passes::TileList::EffectFill) {
     if (passes::ShadowMapPass::needed(scene)) shadowMaps.emplace(ctx, layouts, scene.shadows, targets, rs.shadowSlopeBias);
     for (Slot& slot : slots) {
       slot.uniforms = vk::createBuffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);

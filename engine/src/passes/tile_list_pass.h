@@ -1,4 +1,5 @@
-// A compute pass over a tile list, an 8x8 workgroup per listed tile, its pipeline built on
+// A compute pass over a tile list (the trace passes over chunks of tiles, the fill a
+// workgroup per tile: shaders/include/tile_pixel.glsl), its pipeline built on
 // first use, so a scene or policy that never needs the pass builds none: the trace passes
 // (shadows, or reflections and refractions) and the fill of reflections and refractions at
 // reduced ray rates. The effects pass's pipeline holds only the paths the scene and settings
@@ -14,9 +15,10 @@
 
 namespace raybudget::passes {
 
-// The tile list a pass runs over (shaders/include/bindings.glsl's TileListBlock): the
-// tiles of its own items only.
-enum class TileList : uint32_t { Shadows = 0, Effects = 1 };
+// The list a pass runs over (shaders/include/bindings.glsl's TileListBlock), named by the
+// place of its indirect dispatch in the list's header: the trace passes' chunks of the tiles
+// of their own items, the fill's tiles of the effect pass.
+enum class TileList : uint32_t { Shadows = 0, Effects = 1, EffectFill = 3 };
 
 class TileListPass {
  public:

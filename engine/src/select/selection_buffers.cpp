@@ -34,7 +34,7 @@ SelectionBuffers createSelectionBuffers(const vk::Context& ctx, uint32_t objects
   b.objectCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuObjectCost>(records), kStorage | kCopy);
   b.itemCosts = vk::createDeviceBuffer(ctx, std::vector<gpu::GpuItemCost>(records * RB_ITEMS_PER_OBJECT + 1), kStorage | kCopy);
   b.tileObjects = vk::createBuffer(ctx, 4ull * RB_TILE_OBJECT_WORDS * b.tiles, kStorage, false);
-  b.tileList = vk::createBuffer(ctx, kTileListHeaderBytes + 2 * 4ull * b.tiles, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | kCopy, false);
+  b.tileList = vk::createBuffer(ctx, kTileListHeaderBytes + 4ull * kTileListWordsPerTile * b.tiles, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | kCopy, false);
   return b;
 }
 
