@@ -20,10 +20,10 @@
 // before, from the tile's traced pixels in shared memory behind a barrier (which lavapipe runs
 // as coroutines): as a pass of its own it costs about the same and reads across tiles
 // (docs/SELECTION.md, "Ray rates").
-layout(local_size_x = RB_TILE_SIZE * RB_TILE_SIZE) in;
+layout(local_size_x = RB_TRACE_GROUP_SIZE) in;
 
 void main() {
-  ivec2 pixel = fillPixel();
+  ivec2 pixel = chunkPixel(RB_FILL_CHUNKS);
   uint start = clockNow();
   uint objectId;
   bvec2 filled = fillEffects(pixel, objectId);

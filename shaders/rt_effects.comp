@@ -140,7 +140,7 @@ bvec2 pathsHere(Selection sel, ivec2 pixel) {
 }
 
 void main() {
-  ivec2 pixel = tracePixel(RB_EFFECT_CHUNKS);
+  ivec2 pixel = chunkPixel(RB_EFFECT_CHUNKS);
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   // A pixel whose items trace nothing here reads no more of the G-buffer than its object.
   uint objectId = texelFetch(gObjectId, pixel, 0).r;

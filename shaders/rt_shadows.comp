@@ -70,4 +70,4 @@ void traceShadows(ivec2 pixel) {
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
 }
 
-void main() { traceShadows(tracePixel(RB_SHADOW_CHUNKS)); }
+void main() { traceShadows(chunkPixel(RB_SHADOW_CHUNKS)); }

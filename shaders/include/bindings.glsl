@@ -66,26 +66,27 @@ layout(set = 0, binding = 29) uniform sampler2D gPosition;  // xyz world positio
 layout(set = 0, binding = 30, std430) buffer CoverageBlock { GpuCoverage coverage[]; };
 layout(set = 0, binding = 31, std430) readonly buffer ObjectParamsBlock { GpuObjectParams objectParams[]; };
 layout(set = 0, binding = 32, std430) buffer ObjectRecordBlock { GpuObjectRecord objectRecords[]; };
-// The selection (1: the object's pixels get ray-traced effects) and, per trace pass, the
-// chunks of the 8x8 tiles holding pixels it traces (tile_list.comp, include/tile_pixel.glsl),
-// with the pass's indirect dispatch (x, y, z). Apart, so that a pass never runs over the tiles
-// of the other's items (the shadow pass over a mirror's tiles cost a quarter of the mirror's
-// 1/16 rate). The fill of reflections and refractions runs over the effect pass's tiles.
+// The selection (1: the object's pixels get ray-traced effects) and, per trace pass and for
+// the fill of reflections and refractions, the chunks of the 8x8 tiles holding pixels it runs
+// (tile_list.comp, include/tile_pixel.glsl), with the pass's indirect dispatch (x, y, z). Apart,
+// so that a pass never runs over the tiles of the other's items (the shadow pass over a mirror's
+// tiles cost a quarter of the mirror's 1/16 rate).
 layout(set = 0, binding = 33, std430) buffer SelectionBlock { uint selected[]; };
 layout(set = 0, binding = 34, std430) buffer TileListBlock {
   uvec4 tileDispatch;    // the shadow pass's: x groups, y 1, z 1, w rays the trace passes traced
   uvec4 effectDispatch;  // the reflection and refraction pass's: x groups, y 1, z 1, w tiles in either list
-  uvec4 traceCounts;     // x the rays the items' prior counts at the pixels traced (rt_common.glsl); y, z the
-                         // shadow and the effect pass's chunks; w the shadow pass's tiles
-  uvec4 fillDispatch;    // the fill's (fill_effects.comp): x the effect pass's tiles (= groups), y 1, z 1, w 0
-  uint tiles[];          // the effect pass's tiles (tile x | tile y << 16), then from RB_SHADOW_CHUNKS and
-                         // RB_EFFECT_CHUNKS each trace pass's chunks (tile_pixel.glsl's chunkWord)
+  uvec4 traceCounts;     // x the rays the items' prior counts at the pixels traced (rt_common.glsl); y, z, w
+                         // the chunks listed for the shadow pass, the effect pass and the fill
+  uvec4 fillDispatch;    // the fill's (fill_effects.comp): x groups, y 1, z 1, w 0
+  uvec4 tileCounts;      // the tiles listed for the shadow pass (x) and the effect pass (y); zw 0
+  uint tiles[];          // from RB_SHADOW_CHUNKS, RB_EFFECT_CHUNKS and RB_FILL_CHUNKS each list's chunks
+                         // (tile_pixel.glsl's chunkWord)
 };
-// Where the lists start in tiles[]: a trace pass needs at most 64 / RB_TRACE_CHUNK chunks a tile.
-#define RB_EFFECT_TILES 0u
+// Where the lists start in tiles[]: a pass needs at most 64 / RB_TRACE_CHUNK chunks a tile.
 #define RB_CHUNKS_PER_TILE (RB_TILE_SIZE * RB_TILE_SIZE / RB_TRACE_CHUNK)
-#define RB_SHADOW_CHUNKS screenTileCount()
-#define RB_EFFECT_CHUNKS (screenTileCount() * (1u + RB_CHUNKS_PER_TILE))
+#define RB_SHADOW_CHUNKS 0u
+#define RB_EFFECT_CHUNKS (screenTileCount() * RB_CHUNKS_PER_TILE)
+#define RB_FILL_CHUNKS (screenTileCount() * 2u * RB_CHUNKS_PER_TILE)
 
 layout(set = 0, binding = 35, std430) buffer ObjectCostBlock { GpuObjectCost objectCosts[]; };
 // Per tile, RB_TILE_OBJECT_WORDS words: the objects it shows (shared/config.h).

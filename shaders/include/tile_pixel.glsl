@@ -1,5 +1,6 @@
 // The pixels of the passes dispatched over the tile lists (tile_list.comp): the trace passes
-// over chunks of tiles, the fill over whole tiles. The includer includes bindings.glsl.
+// and the fill of reflections and refractions, over chunks of tiles. The includer includes
+// bindings.glsl.
 #ifndef RB_TILE_PIXEL_GLSL
 #define RB_TILE_PIXEL_GLSL
 #include "include/rates.glsl"
@@ -30,25 +31,22 @@ uint rateRanks(uint rate) {
   return rate == RB_RATE_SIXTEENTH ? 4u : rate == RB_RATE_QUARTER ? 16u : rate == RB_RATE_HALF ? 32u : RB_TILE_SIZE * RB_TILE_SIZE;
 }
 
-// A trace pass's chunk: RB_TRACE_CHUNK consecutive ranks of a tile, from rank 4c.
+// A chunk: RB_TRACE_CHUNK consecutive ranks of a tile, from rank 4c.
 uint chunkWord(uvec2 tile, uint c) { return tile.x | (tile.y << 12u) | (c << 24u); }
 
-// A trace pass's pixel (`list`: RB_SHADOW_CHUNKS or RB_EFFECT_CHUNKS), ivec2(-1) past the list's
-// end. The tile list holds a tile's chunks up to the ranks its items' rates trace, so
-// invocations run only where some item may trace: a tile at 1/16 costs 4, not 64, and two such
-// tiles fill a SIMD batch of 8 lanes (over whole tiles, the 60 invocations that returned at
-// once were most of the shadow pass at 1/16, and the four that traced left half of their batch idle).
-ivec2 tracePixel(uint list) {
+// The pixel of a pass over chunks (`list`: RB_SHADOW_CHUNKS, RB_EFFECT_CHUNKS or
+// RB_FILL_CHUNKS), ivec2(-1) past the list's end. A trace pass's list holds a tile's chunks up
+// to the ranks its items' rates trace, the fill's those from the ranks the densest reduced rate
+// traces on, so invocations run only where some item may trace or be filled: a tile at 1/16
+// costs a trace pass 4, not 64, and two such tiles fill a SIMD batch of 8 lanes (over whole
+// tiles, the 60 invocations that returned at once were most of the shadow pass at 1/16, and
+// the four that traced left half of their batch idle); a tile traced at full rate costs the fill none.
+ivec2 chunkPixel(uint list) {
   uint g = gl_GlobalInvocationID.x, chunk = g / RB_TRACE_CHUNK;
-  if (chunk >= (list == RB_SHADOW_CHUNKS ? traceCounts.y : traceCounts.z)) return ivec2(-1);
+  uint count = list == RB_SHADOW_CHUNKS ? traceCounts.y : list == RB_EFFECT_CHUNKS ? traceCounts.z : traceCounts.w;
+  if (chunk >= count) return ivec2(-1);
   uint word = tiles[list + chunk];
   return rankPixel(uvec2(word & 0xFFFu, (word >> 12u) & 0xFFFu), (word >> 24u) * RB_TRACE_CHUNK + g % RB_TRACE_CHUNK);
-}
-
-// The fill's pixel: a workgroup of 64 per tile of the effect pass's list, in rank order.
-ivec2 fillPixel() {
-  uint t = tiles[RB_EFFECT_TILES + gl_WorkGroupID.x];
-  return rankPixel(uvec2(t & 0xFFFFu, t >> 16), gl_LocalInvocationIndex);
 }
 
 #endif

@@ -5,8 +5,9 @@
 // frame (include/probe.glsl), goes to the shadow pass's list with as many of its chunks as the
 // highest ray rate among those items traces (all 16 at full rate or probed, 8 at 1/2, 4 at 1/4,
 // 1 at 1/16); one holding a selected or probed reflection or refraction item, to the other
-// pass's, and whole to the fill's list of tiles. Each list's count sets its pass's indirect
-// dispatch: no selected pixel, no work.
+// pass's; and one holding a reflection or refraction item at a reduced rate, to the fill's with
+// the chunks from the first rank the densest such rate skips. Each list's count sets its pass's
+// indirect dispatch: no selected pixel, no work.
 // One invocation per tile: it checks the few objects the coverage pass noted for the tile,
 // and scans the tile's pixels only when the tile shows more (fetching every pixel cost
 // ~0.35 ms at 640x360 on lavapipe, most of the select pass for a small scene). No shared
@@ -21,7 +22,7 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 
 // The ranks of the tile a trace pass needs for an object whose selection word here is `word`
 // (selectionInTile), over its items `effects` (bits); `probed`: the probe traces this tile.
-uint ranksNeeded(uint word, uint effects, bool probed) {
+uint tracedRanks(uint word, uint effects, bool probed) {
   uint ranks = 0u;
   for (uint e = 0u; e < RB_ITEMS_PER_OBJECT; ++e) {
     if ((effects & (1u << e)) == 0u) continue;
@@ -29,6 +30,20 @@ uint ranksNeeded(uint word, uint effects, bool probed) {
     else if (probed && (word & (1u << (RB_PROBE_SHIFT + e))) != 0u) ranks = RB_TILE_SIZE * RB_TILE_SIZE;
   }
   return ranks;
+}
+
+// The first rank of the tile some selected item in `effects` of an object with selection word
+// `word` skips at its reduced rate (64: none does).
+uint firstSkippedRank(uint word, uint effects) {
+  uint first = RB_TILE_SIZE * RB_TILE_SIZE;
+  for (uint e = 0u; e < RB_ITEMS_PER_OBJECT; ++e)
+    if ((effects & word & (1u << e)) != 0u) first = min(first, rateRanks((word >> (RB_RATE_SHIFT + 2u * e)) & 3u));
+  return first;
+}
+
+// Appends the tile's chunks [first, end) to the list at `list` whose count was `at` before.
+void writeChunks(uint list, uint at, uvec2 tile, uint first, uint end) {
+  for (uint c = first; c < end; ++c) tiles[list + at + c - first] = chunkWord(tile, c);
 }
 
 // The workgroups that `chunks` listed chunks need.
@@ -42,34 +57,40 @@ void main() {
   uint base = t * RB_TILE_OBJECT_WORDS;
   bool probed = probeTile(tile);
   const uint shadows = 1u << RB_ITEM_SHADOWS, effects = RB_ITEMS_ALL & ~shadows;
-  uvec2 ranks = uvec2(0u);  // the shadow pass's and the effect pass's
+  // The ranks the shadow pass and the effect pass trace, and the first the fill fills.
+  uvec3 ranks = uvec3(0u, 0u, RB_TILE_SIZE * RB_TILE_SIZE);
   if (tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] == 0u) {
     for (uint s = 0u; s + 1u < RB_TILE_OBJECT_WORDS; ++s) {
       uint v = tileObjects[base + s];
       if (v == 0u) continue;
       uint word = selectionInTile(v - 1u, selected[v - 1u], tile);
-      ranks = max(ranks, uvec2(ranksNeeded(word, shadows, probed), ranksNeeded(word, effects, probed)));
+      ranks = uvec3(max(ranks.xy, uvec2(tracedRanks(word, shadows, probed), tracedRanks(word, effects, probed))), min(ranks.z, firstSkippedRank(word, effects)));
     }
   } else {
-    for (uint y = first.y; y < last.y && any(lessThan(ranks, uvec2(RB_TILE_SIZE * RB_TILE_SIZE))); ++y)
+    for (uint y = first.y; y < last.y; ++y)
       for (uint x = first.x; x < last.x; ++x) {
         uint id = texelFetch(gObjectId, ivec2(x, y), 0).r;
         if (id == RB_NO_OBJECT) continue;
         uint word = selectionInTile(id, selected[id], tile);
-        ranks = max(ranks, uvec2(ranksNeeded(word, shadows, probed), ranksNeeded(word, effects, probed)));
+        ranks = uvec3(max(ranks.xy, uvec2(tracedRanks(word, shadows, probed), tracedRanks(word, effects, probed))), min(ranks.z, firstSkippedRank(word, effects)));
       }
   }
   if (ranks.x != 0u) {
     uint chunks = ranks.x / RB_TRACE_CHUNK, at = atomicAdd(traceCounts.y, chunks);
-    for (uint c = 0u; c < chunks; ++c) tiles[RB_SHADOW_CHUNKS + at + c] = chunkWord(tile, c);
+    writeChunks(RB_SHADOW_CHUNKS, at, tile, 0u, chunks);
     atomicAdd(tileDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
-    atomicAdd(traceCounts.w, 1u);
+    atomicAdd(tileCounts.x, 1u);
   }
   if (ranks.y != 0u) {
     uint chunks = ranks.y / RB_TRACE_CHUNK, at = atomicAdd(traceCounts.z, chunks);
-    for (uint c = 0u; c < chunks; ++c) tiles[RB_EFFECT_CHUNKS + at + c] = chunkWord(tile, c);
+    writeChunks(RB_EFFECT_CHUNKS, at, tile, 0u, chunks);
     atomicAdd(effectDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
-    tiles[RB_EFFECT_TILES + atomicAdd(fillDispatch.x, 1u)] = tile.x | (tile.y << 16);
+    atomicAdd(tileCounts.y, 1u);
   }
-  if (any(notEqual(ranks, uvec2(0u)))) atomicAdd(effectDispatch.w, 1u);
+  if (ranks.z < RB_TILE_SIZE * RB_TILE_SIZE) {
+    uint from = ranks.z / RB_TRACE_CHUNK, chunks = RB_CHUNKS_PER_TILE - from, at = atomicAdd(traceCounts.w, chunks);
+    writeChunks(RB_FILL_CHUNKS, at, tile, from, RB_CHUNKS_PER_TILE);
+    atomicAdd(fillDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
+  }
+  if (any(notEqual(ranks.xy, uvec2(0u)))) atomicAdd(effectDispatch.w, 1u);
 }

@@ -1,5 +1,5 @@
-// A compute pass over a tile list (the trace passes over chunks of tiles, the fill a
-// workgroup per tile: shaders/include/tile_pixel.glsl), its pipeline built on
+// A compute pass over a tile list (chunks of tiles: shaders/include/tile_pixel.glsl), its
+// pipeline built on
 // first use, so a scene or policy that never needs the pass builds none: the trace passes
 // (shadows, or reflections and refractions) and the fill of reflections and refractions at
 // reduced ray rates. The effects pass's pipeline holds only the paths the scene and settings
@@ -17,7 +17,8 @@ namespace raybudget::passes {
 
 // The list a pass runs over (shaders/include/bindings.glsl's TileListBlock), named by the
 // place of its indirect dispatch in the list's header: the trace passes' chunks of the tiles
-// of their own items, the fill's tiles of the effect pass.
+// of their own items, the fill's chunks of the tiles whose reflections or refractions a
+// reduced rate skips.
 enum class TileList : uint32_t { Shadows = 0, Effects = 1, EffectFill = 3 };
 
 class TileListPass {

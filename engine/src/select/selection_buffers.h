@@ -22,13 +22,13 @@ struct SelectionBuffers {
   vk::Buffer itemCosts;      // GpuItemCost per item (RB_ITEMS_PER_OBJECT per object), then the frame's totals: what `benefit` learns
   vk::Buffer tileObjects;    // RB_TILE_OBJECT_WORDS per tile (shaders/select/coverage.comp)
   // The header (shaders/include/bindings.glsl's TileListBlock: each trace pass's and the fill's
-  // dispatch, the rays traced, the rays the items' prior counts, the tiles listed), then the fill's
-  // tiles and the trace passes' chunks of tiles.
+  // dispatch, the rays traced, the rays the items' prior counts, the chunks and tiles listed),
+  // then the trace passes' and the fill's chunks of tiles.
   vk::Buffer tileList;
 };
-constexpr uint32_t kTileListHeaderBytes = 64;
-// Per screen tile: the fill's tile list, and each trace pass's chunks (RB_TRACE_CHUNK pixels).
-constexpr uint64_t kTileListWordsPerTile = 1 + 2 * (RB_TILE_SIZE * RB_TILE_SIZE / RB_TRACE_CHUNK);
+constexpr uint32_t kTileListHeaderBytes = 80;
+// Per screen tile: each trace pass's and the fill's chunks (RB_TRACE_CHUNK pixels).
+constexpr uint64_t kTileListWordsPerTile = 3 * (RB_TILE_SIZE * RB_TILE_SIZE / RB_TRACE_CHUNK);
 
 // Each object's K, Q, I (its glTF extras or the defaults) and S = 0, as the selection starts;
 // `maxRoughness`: the reflections' roughness cut-off, which the derived Q counts.

@@ -361,10 +361,11 @@ struct SelectionStage::Impl {
   void retire(Slot& slot, const RenderSettings& s, FrameTiming& t) {
     const auto* header = static_cast<const uint32_t*>(slot.tileHeader.mapped);
     t.tracedTiles = slot.selected ? header[7] : 0u;
-    t.shadowTiles = slot.selected ? header[11] : 0u;
-    t.effectTiles = slot.selected ? header[12] : 0u;
+    t.shadowTiles = slot.selected ? header[16] : 0u;
+    t.effectTiles = slot.selected ? header[17] : 0u;
     t.shadowChunks = slot.selected ? header[9] : 0u;
     t.effectChunks = slot.selected ? header[10] : 0u;
+    t.fillChunks = slot.selected ? header[11] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
