@@ -41,6 +41,14 @@ uint firstSkippedRank(uint word, uint effects) {
   return first;
 }
 
+// Adds an object whose selection word at this tile is `word` (selectionInTile) to the ranks the
+// shadow pass (x) and the effect pass (y) trace and the first the fill fills (z).
+void addObject(inout uvec3 ranks, uint word, bool probed) {
+  const uint shadows = 1u << RB_ITEM_SHADOWS, effects = RB_ITEMS_ALL & ~shadows;
+  ranks.xy = max(ranks.xy, uvec2(tracedRanks(word, shadows, probed), tracedRanks(word, effects, probed)));
+  ranks.z = min(ranks.z, firstSkippedRank(word, effects));
+}
+
 // Appends the tile's chunks [first, end) to the list at `list` whose count was `at` before.
 void writeChunks(uint list, uint at, uvec2 tile, uint first, uint end) {
   for (uint c = first; c < end; ++c) tiles[list + at + c - first] = chunkWord(tile, c);
@@ -56,23 +64,20 @@ void main() {
   uvec2 tile = first / RB_TILE_SIZE;
   uint base = t * RB_TILE_OBJECT_WORDS;
   bool probed = probeTile(tile);
-  const uint shadows = 1u << RB_ITEM_SHADOWS, effects = RB_ITEMS_ALL & ~shadows;
   // The ranks the shadow pass and the effect pass trace, and the first the fill fills.
   uvec3 ranks = uvec3(0u, 0u, RB_TILE_SIZE * RB_TILE_SIZE);
   if (tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] == 0u) {
     for (uint s = 0u; s + 1u < RB_TILE_OBJECT_WORDS; ++s) {
       uint v = tileObjects[base + s];
       if (v == 0u) continue;
-      uint word = selectionInTile(v - 1u, selected[v - 1u], tile);
-      ranks = uvec3(max(ranks.xy, uvec2(tracedRanks(word, shadows, probed), tracedRanks(word, effects, probed))), min(ranks.z, firstSkippedRank(word, effects)));
+      addObject(ranks, selectionInTile(v - 1u, selected[v - 1u], tile), probed);
     }
   } else {
     for (uint y = first.y; y < last.y; ++y)
       for (uint x = first.x; x < last.x; ++x) {
         uint id = texelFetch(gObjectId, ivec2(x, y), 0).r;
         if (id == RB_NO_OBJECT) continue;
-        uint word = selectionInTile(id, selected[id], tile);
-        ranks = uvec3(max(ranks.xy, uvec2(tracedRanks(word, shadows, probed), tracedRanks(word, effects, probed))), min(ranks.z, firstSkippedRank(word, effects)));
+        addObject(ranks, selectionInTile(id, selected[id], tile), probed);
       }
   }
   if (ranks.x != 0u) {
