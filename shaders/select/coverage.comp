@@ -98,10 +98,13 @@ void main() {
       uvec4 q = textureGather(gObjectId, at, 0);
       vec4 rough = vec4(1.0), trans = vec4(0.0), unlit = vec4(1.0), metal = vec4(0.0);  // unclassified: no rays
       if (kClassify && !all(equal(q, uvec4(RB_NO_OBJECT)))) {
+        // Unlit and metallic only where they decide: a quad of rough opaque pixels (most of
+        // a scene) needs two gathers, not four.
         rough = textureGather(gRoughTransIor, at, 0);
         trans = textureGather(gRoughTransIor, at, 1);
-        unlit = textureGather(gRoughTransIor, at, 3);
-        metal = textureGather(gBaseMetal, at, 3);
+        bool glass = any(greaterThan(trans, vec4(0.0)));
+        if (glass || any(lessThanEqual(rough, vec4(maxTracedRoughness())))) unlit = textureGather(gRoughTransIor, at, 3);
+        if (glass) metal = textureGather(gBaseMetal, at, 3);
       }
       bool right = x + 1u < last.x, below = y + 1u < last.y;
       addPixel(slots, q.w, x, y, pixelClasses(rough.w, trans.w, unlit.w, metal.w));
