@@ -21,7 +21,7 @@ void TileListPass::recordOverTiles(const FrameContext& fc) {
   if (!pipeline_) pipeline_ = tileListPipeline(ctx_, layout_.pipelineLayout, shader_, paths_);
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  // Each list's dispatch is a uvec4 of the header whose xyz is its dispatch.
+  // The list's indirect dispatch: the xyz of the header's uvec4 that TileList names.
   vkCmdDispatchIndirect(fc.cmd, fc.selection.tileList.buffer, 16 * VkDeviceSize(tiles_));
 }
 
