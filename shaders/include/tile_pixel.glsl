@@ -25,11 +25,10 @@ ivec2 rankPixel(uvec2 tile, uint rank) {
   return origin + ivec2(quad + offset);
 }
 
-// The ranks of a tile a trace pass runs for an item at `rate` (RB_RATE_*): the first 4, 16 or
-// 32 where 1/16, 1/4 or 1/2 traces only those, all 64 at full rate (and where a probe traces).
-uint rateRanks(uint rate) {
-  return rate == RB_RATE_SIXTEENTH ? 4u : rate == RB_RATE_QUARTER ? 16u : rate == RB_RATE_HALF ? 32u : RB_TILE_SIZE * RB_TILE_SIZE;
-}
+// The ranks of a tile a trace pass runs for an item at `rate` (RB_RATE_*): a rate traces one
+// pixel in its period's (rankPixel puts them first): 4 at 1/16, 16 at 1/4, 32 at 1/2, all 64 at
+// full rate (and where a probe traces).
+uint rateRanks(uint rate) { return RB_TILE_SIZE * RB_TILE_SIZE / ratePeriod(rate); }
 
 // A chunk: RB_TRACE_CHUNK consecutive ranks of a tile, from rank 4c.
 uint chunkWord(uvec2 tile, uint c) { return tile.x | (tile.y << 12u) | (c << 24u); }
