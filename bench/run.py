@@ -8,7 +8,8 @@ results/<date>/: frames.csv, summary.csv, headline.md, headline.json, plots and 
 usage: bench/run.py [--quick] [--out DIR] [--publish DIR] [--scenes FILE...]
                     [--policies LIST] [--budgets N] [--frames N] [--warmup N]
                     [--repeats N] [--size WxH] [--paths LIST] [--order-seed S]
-                    [--validation] [--budget-confidence C] [--compare OTHER_RUN_DIR]
+                    [--validation] [--budget-confidence C] [--no-stage-deadline]
+                    [--compare OTHER_RUN_DIR]
 
 Needs numpy, matplotlib and flip-evaluator (scripts/bench-deps.sh makes .venv-bench).
 """
@@ -61,6 +62,7 @@ def parse_args(argv):
                    "neighbours alone")
     p.add_argument("--budget-list", help="passed to the sweep: explicit budgets in ms")
     p.add_argument("--budget-confidence", help="passed to the sweep: the headroom's quantile (default 0.9)")
+    p.add_argument("--no-stage-deadline", action="store_true", help="passed to the sweep: trace all that was selected even past T")
     p.add_argument("--publish", help="also copy summary.csv, headline.md, headline.json, plots/ and strips/ into this folder")
     p.add_argument("--compare", help="a finished run's folder: its headline figures beside this run's and the per-case differences (compare.md)")
     p.add_argument("--resume", action="store_true", help="keep the sweeps of --out that finished (raw/<scene>/sweep.ok)")
@@ -144,6 +146,8 @@ def run_sweep(a, scene, out, progress):
         cmd += ["--budget-list", a.budget_list]
     if a.budget_confidence:
         cmd += ["--budget-confidence", a.budget_confidence]
+    if a.no_stage_deadline:
+        cmd.append("--no-stage-deadline")
     log = []
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     for line in proc.stdout:

@@ -58,8 +58,9 @@ void main() {
   Selection sel = selectionAt(s.objectId, pixel);
   bool rtShadows = rtEnabled && itemSelected(sel, RB_ITEM_SHADOWS);
   bool probed = rtEnabled && !rtShadows && itemProbed(sel, RB_ITEM_SHADOWS, pixel);
-  // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced.
-  bool traced = probed || (rtShadows && itemTracedHere(sel, RB_ITEM_SHADOWS, pixel));
+  // Measured where traced this frame: a reduced rate's other pixels are upsampled, not traced;
+  // past the stage's deadline the shadow pass left the maps (include/fill_weights.glsl's shadowMaskWritten).
+  bool traced = (probed || (rtShadows && itemTracedHere(sel, RB_ITEM_SHADOWS, pixel))) && shadowMaskWritten(pixel);
   bool measure = traced && measuringItems();
   // Where the item's reduced rate skipped the pixel, the maps are corrected by their error
   // where the point was last traced, else by their traced neighbours'.
@@ -70,7 +71,7 @@ void main() {
   bool carried = past.age != RB_HISTORY_NONE;
   FillSources fill;
   fill.total = 0.0;
-  if (rtShadows && !traced && (!carried || frame.sizeLightsFrame.z > RB_SHADOW_HISTORY_LIGHTS))
+  if (rtShadows && !traced && rate != RB_RATE_FULL && (!carried || frame.sizeLightsFrame.z > RB_SHADOW_HISTORY_LIGHTS))
     fill = fillSources(pixel, fillCentre(s.objectId, s.position, N), rate);
   uvec3 mapErrors = uvec3(0u);  // traced minus mapped where traced, packSnorm4x8's bytes, four lights to a word
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring

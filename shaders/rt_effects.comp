@@ -4,6 +4,8 @@
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_ARB_shader_clock : require
+#extension GL_EXT_shader_realtime_clock : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
 #include "include/display.glsl"
@@ -11,6 +13,7 @@
 #include "include/item_stats.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
+#include "include/stage_clock.glsl"
 #include "include/effect_fill.glsl"
 #include "include/trace_radiance.glsl"
 
@@ -28,6 +31,8 @@
 // item the probe traces here (include/probe.glsl) is measured and not shown. An item at a
 // reduced ray rate (include/rates.glsl) traces its pixels of this frame and writes what it
 // changed to the fill's history; fill_effects.comp fills the others from it (include/effect_fill.glsl).
+// Past the stage's deadline (include/stage_clock.glsl) a subgroup traces nothing and leaves its
+// pixels their fallbacks (the fill finds no history of this frame there).
 layout(local_size_x = RB_TRACE_GROUP_SIZE) in;
 
 // The ray that carries light through the surface at p towards the viewer: for a thin wall
@@ -139,7 +144,29 @@ bvec2 pathsHere(Selection sel, ivec2 pixel) {
                (selected.y && rateHere.y) || (!selected.y && itemProbed(sel, RB_ITEM_REFRACTIONS, pixel)));
 }
 
+// Past the deadline: the paths the pixel would have traced keep the fallback; a full rate's
+// pixel, counted at selection, is taken off its item's count (a wrapping add), so that its cost
+// and benefit are learned over the pixels traced; its object learns nothing this frame.
+void leaveEffects(Surface s, Selection sel, bvec2 here) {
+  bvec2 paths = surfacePaths(s, rbPaths);
+  bool reflects = paths.x && here.x, refracts = paths.y && here.y;
+  bool full[2];
+  float work = 0.0;
+  for (int path = 0; path < 2; ++path) {
+    uint item = path == 0 ? RB_ITEM_REFLECTIONS : RB_ITEM_REFRACTIONS, rate = itemRate(sel, item);
+    bool selected = (path == 0 ? reflects : refracts) && itemSelected(sel, item);
+    full[path] = selected && rate == RB_RATE_FULL;
+    if (selected) work += predictedPixelWork(s.objectId, item, rate);
+  }
+  if (reflects || refracts) objectCosts[s.objectId].pixels = 0u;
+  countCut(reflects || refracts ? 1u : 0u, work);
+  if (measuringItems())
+    addItemCounts(s.objectId, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u, full[0] ? 0xFFFFFFFFu : 0u, full[1] ? 0xFFFFFFFFu : 0u));
+}
+
 void main() {
+  stampEffectsStart();
+  bool cut = pastDeadline(true);
   ivec2 pixel = chunkPixel(RB_EFFECT_CHUNKS);
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
   // A pixel whose items trace nothing here reads no more of the G-buffer than its object.
@@ -149,5 +176,7 @@ void main() {
   bvec2 here = pathsHere(sel, pixel);
   if (!any(here)) return;  // fill_effects.comp fills what a reduced rate skipped here
   Surface s;
-  if (readSurface(pixel, s) && !s.unlit) traceEffects(pixel, s, sel, here);
+  if (!readSurface(pixel, s) || s.unlit) return;
+  if (cut) leaveEffects(s, sel, here);
+  else traceEffects(pixel, s, sel, here);
 }

@@ -4,12 +4,15 @@
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_ARB_shader_clock : require
+#extension GL_EXT_shader_realtime_clock : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "include/rt_common.glsl"
 #include "include/gbuffer.glsl"
 #include "include/item_stats.glsl"
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
+#include "include/stage_clock.glsl"
 
 // Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
 // the geometric normal), alpha masks respected, for the pixels of objects whose shadow item
@@ -22,7 +25,8 @@
 // lighting pass fills the pixels the rate skipped from the map's error at the traced ones
 // (include/shadow_fill.glsl), so a skipped pixel costs this pass no more than reading its
 // object. Where the probe traces a left-out shadow item, the mask is written for the lighting
-// pass to measure, which still shows the shadow maps there.
+// pass to measure, which still shows the shadow maps there. Past the stage's deadline
+// (include/stage_clock.glsl) a subgroup traces nothing and leaves its pixels to the maps.
 layout(local_size_x = RB_TRACE_GROUP_SIZE) in;
 
 void traceShadows(ivec2 pixel) {
@@ -70,4 +74,33 @@ void traceShadows(ivec2 pixel) {
   if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
 }
 
-void main() { traceShadows(chunkPixel(RB_SHADOW_CHUNKS)); }
+// Past the deadline: where the pixel would have been traced (or probed), -1 in the light's
+// first mask layer tells the lighting pass that the maps stand (shadowMaskWritten); a full
+// rate's pixel, counted at selection, is taken off its item's count (a wrapping add), so that
+// its cost and benefit are learned over the pixels traced; its object learns nothing this frame.
+void leaveShadows(ivec2 pixel) {
+  uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
+  bool left = false, full = false;
+  float work = 0.0;
+  if (objectId != RB_NO_OBJECT) {
+    Selection sel = selectionAt(objectId, pixel);
+    uint rate = itemRate(sel, RB_ITEM_SHADOWS);
+    bool selected = itemSelected(sel, RB_ITEM_SHADOWS);
+    left = selected ? rateTraces(rate, pixel) : itemProbed(sel, RB_ITEM_SHADOWS, pixel);
+    full = left && selected && rate == RB_RATE_FULL;
+    if (left && selected) work = predictedPixelWork(objectId, RB_ITEM_SHADOWS, rate);
+  }
+  if (left) {
+    imageStore(shadowMask, ivec3(pixel, 0), vec4(-1.0));
+    objectCosts[objectId].pixels = 0u;
+  }
+  countCut(left ? 1u : 0u, work);
+  if (measuringItems()) addItemCounts(full ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0xFFFFFFFFu, 0u, 0u));
+}
+
+void main() {
+  ivec2 pixel = chunkPixel(RB_SHADOW_CHUNKS);
+  if (pastDeadline(false)) leaveShadows(pixel);
+  else traceShadows(pixel);
+  stampStageSpan();  // the shadow pass ends
+}

@@ -19,7 +19,7 @@ SCENE = ROOT.parent / "shared" / "scenes" / "ci" / "CornellBox"
 
 FRAME_COLUMNS = ["scene", "path", "policy", "budget_index", "budget_ms", "repeat", "order", "frame", "coverage_ms", "select_ms",
                  "trace_ms", "rt_stage_ms", "shadow_maps_ms", "env_fallback_ms", "frame_ms", "predicted_trace_ms", "trace_budget_ms",
-                 "candidates_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound", "selection_changes", "item_option_changes", "partial_share", "rmse",
+                 "candidates_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound", "selection_changes", "item_option_changes", "partial_share", "deadline_cut_pixels", "rmse",
                  "psnr", "image", "flip"]
 SELECTION = ["selected_objects", "rays", "selected_value", "predicted_trace_ms"]
 

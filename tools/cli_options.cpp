@@ -89,6 +89,9 @@ render options:
                         the share of frames the stage should hold T in if recent prediction
                         errors recur: the selection's budget is divided by that quantile of
                         measured over predicted trace time, 0.5..0.99 (default 0.9)
+  --no-stage-deadline   budgeted policies: the trace passes trace all that was selected even
+                        past T (default: they stop once the stage has run for T on the
+                        device's clock and leave the pixels left to their fallbacks)
   --probe-share F       benefit: the share of the trace budget for the sparse probe, which
                         traces left-out items on a few rotating tiles to measure their
                         benefit, not shown; 0..0.5 (default 0.05; 0: no probe)
@@ -221,6 +224,7 @@ bool parseImageOption(const std::vector<std::string>& args, size_t& i, RenderSet
   else if (a == "--shadow-normal-offset") s.shadowNormalOffset = parseWithin(a, optionValue(args, i), 0.0f, 16.0f);
   else if (a == "--shadow-slope-bias") s.shadowSlopeBias = parseWithin(a, optionValue(args, i), 0.0f, 16.0f);
   else if (a == "--budget-confidence") s.budgetConfidence = parseWithin(a, optionValue(args, i), 0.5f, 0.99f);
+  else if (a == "--no-stage-deadline") s.stageDeadline = false;
   else return false;
   return true;
 }

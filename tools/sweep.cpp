@@ -46,6 +46,8 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --shadow-slope-bias X the shadow pass's slope-scaled depth bias (RenderSettings::shadowSlopeBias)
   --budget-confidence C the budgeted policies' headroom quantile, 0.5..0.99
                         (RenderSettings::budgetConfidence, default 0.9)
+  --no-stage-deadline   the trace passes trace all that was selected even past T
+                        (RenderSettings::stageDeadline off)
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
@@ -178,7 +180,7 @@ class Sweep {
          << passCell(t, Pass::Select) << ',' << t.traceMs() << ',' << t.rtStageMs() << ',' << passCell(t, Pass::ShadowMaps) << ','
          << passCell(t, Pass::EnvFallback) << ',' << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
          << t.selectedObjects << ',' << t.raysTraced << ',' << t.selectedValue << ',' << t.optimalValueBound << ',' << t.selectionChanges << ','
-         << t.itemOptionChanges << ',' << t.partialShare << ',';
+         << t.itemOptionChanges << ',' << t.partialShare << ',' << t.deadlineCutPixels << ',';
     if (rmse >= 0.0) {
       const double mse = rmse * rmse;
       csv_ << rmse << ',' << (mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity()) << ','
@@ -310,7 +312,7 @@ int runSweep(const SweepCommand& c) {
   std::filesystem::create_directories(out / "paths");
   std::ofstream csv(out / "frames.csv");
   csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
-         "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,partial_share,rmse,psnr,image\n";
+         "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,partial_share,deadline_cut_pixels,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
   calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,ms_per_item_work_unit,stage_overhead_ms,trace_fixed_ms,ms_per_ray,ms_per_item_ray,budgets_ms\n";
   // The cost units the policies predict in, each calibrated with a policy that uses it.

@@ -77,6 +77,11 @@ bool shadowsTracedInTile(uint objectId, ivec2 q) {
   return (selectionInTile(objectId, 1u << RB_ITEM_SHADOWS, uvec2(q) / RB_TILE_SIZE) & (1u << RB_ITEM_SHADOWS)) != 0u;
 }
 
+// Whether the shadow pass wrote q's shadow mask this frame where its rate traces: past the
+// stage's deadline it left -1 in the first layer instead (rt_shadows.comp's leaveShadows; no
+// load where the deadline cut nothing).
+bool shadowMaskWritten(ivec2 q) { return deadlineCut.x == 0u || imageLoad(shadowMask, ivec3(q, 0)).r >= 0.0; }
+
 // The traced pixels around `pixel` on c's object and lit, and their weights for the shadow fill
 // of c.
 FillSources fillSources(ivec2 pixel, FillCentre c, uint rate) {
@@ -87,7 +92,7 @@ FillSources fillSources(ivec2 pixel, FillCentre c, uint rate) {
   for (int k = 0; k < 4; ++k) {
     ivec2 q = f.at[k];
     bool source = near[k] > 0.0 && texelFetch(gObjectId, q, 0).r == c.objectId && texelFetch(gRoughTransIor, q, 0).a <= 0.5 &&
-                  shadowsTracedInTile(c.objectId, q);
+                  shadowsTracedInTile(c.objectId, q) && shadowMaskWritten(q);
     f.weight[k] = source ? near[k] * fillSimilarity(c, surfacePosition(q), surfaceNormal(q)) : 0.0;
     f.total += f.weight[k];
   }

@@ -1,5 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_realtime_clock : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // Coverage: per object, the pixels it covers in the object-ID buffer and the sums of their
 // coordinates (for A and the centroid behind P), and per 8x8 tile the objects it shows.
 // One invocation per tile sums its pixels in registers for up to RB_TILE_OBJECT_WORDS - 1
@@ -8,6 +12,7 @@
 // object) cost ~1.4 ms at 640x360 on lavapipe, most of it contention on a few objects'
 // records. The 64-bit coordinate sums are kept as lo/hi words with an explicit carry.
 #include "include/bindings.glsl"
+#include "include/stage_clock.glsl"
 
 layout(local_size_x = RB_GROUP_SIZE) in;
 // A specialization: classify the pixels too. A pipeline of its own, used only when asked
@@ -84,6 +89,7 @@ void addPixel(inout TileSlots t, uint id, uint x, uint y, uint classes) {
 }
 
 void main() {
+  stampStageStart();
   uint t = gl_GlobalInvocationID.x;
   uvec2 first, last;
   if (!screenTile(t, first, last)) return;

@@ -1,5 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_realtime_clock : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // Lists, for each trace pass, the chunks of the 8x8 tiles where it may trace (include/tile_pixel.glsl):
 // a tile holding a pixel whose shadow item is selected, or probed where the probe traces this
 // frame (include/probe.glsl), goes to the shadow pass's list with as many of its chunks as the
@@ -16,6 +20,7 @@
 #include "include/bindings.glsl"
 #include "include/probe.glsl"
 #include "include/tile_pixel.glsl"
+#include "include/stage_clock.glsl"
 
 layout(local_size_x = RB_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
@@ -57,7 +62,7 @@ void writeChunks(uint list, uint at, uvec2 tile, uint first, uint end) {
 // The workgroups that `chunks` listed chunks need.
 uint chunkGroups(uint chunks) { return (chunks * RB_TRACE_CHUNK + RB_TRACE_GROUP_SIZE - 1u) / RB_TRACE_GROUP_SIZE; }
 
-void main() {
+void listTile() {
   uint t = gl_GlobalInvocationID.x;
   uvec2 first, last;
   if (!screenTile(t, first, last)) return;
@@ -98,4 +103,9 @@ void main() {
     atomicAdd(fillDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
   }
   if (any(notEqual(ranks.xy, uvec2(0u)))) atomicAdd(effectDispatch.w, 1u);
+}
+
+void main() {
+  listTile();
+  stampStageSpan();  // the select pass ends
 }

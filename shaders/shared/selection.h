@@ -238,6 +238,9 @@ struct GpuItemCost {
   uint skippedTicks;   // this frame's ticks (RB_CLOCK_UNIT) of the pixels its rate skipped
   uint skippedPixels;  // and how many
 };
+// Units per item work unit of the work the selection predicted for the pixels the stage's
+// deadline left out (TileListBlock::deadlineCut.y, include/stage_clock.glsl).
+#define RB_CUT_WORK_UNITS 16.0
 // Clock ticks per unit of GpuItemCost::ticks: a 32-bit sum then holds 2^36 ticks a frame.
 #define RB_CLOCK_UNIT 16u
 // Item work units per RB_CLOCK_UNIT ticks: an item's cost is its traced pixels' time, and the

@@ -127,6 +127,11 @@ struct RenderSettings {
   // quantile of their measured over predicted trace time (cost_model.h's headroom): higher
   // holds T more often and uses less of it (0.5..0.99; 0.5: the median error, about none).
   float budgetConfidence = 0.9f;
+  // Budgeted policies, with learnTimeScale: the trace passes and the fill stop tracing once the
+  // stage has run for T on the device's clock, and the pixels left keep their fallbacks
+  // (FrameTiming::deadlineCutPixels); the selection's prediction decides what is traced, the
+  // deadline bounds the stage where the prediction was wrong (docs/SELECTION.md, "The deadline").
+  bool stageDeadline = true;
   // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
   // timestamps (off: the prior stays, so a run selects the same objects on any machine;
   // per-object work per pixel is learned from the deterministic work counters either way).
@@ -200,6 +205,9 @@ struct FrameTiming {
   // at 1/4, 15 at 1/16, none at full rate).
   uint32_t shadowChunks = 0, effectChunks = 0, fillChunks = 0;
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
+  // Pixels the stage's deadline (RenderSettings::stageDeadline) left to their fallbacks: per
+  // trace pass, those it would have traced (or probed) after the deadline passed
+  uint32_t deadlineCutPixels = 0;
   uint32_t shadowMapViews = 0;  // shadow-map layers and cube faces rendered (0: every map was current)
   uint32_t shadowMapDraws = 0;  // draw calls into them (the casters inside each view)
   uint32_t shadowMapTexels = 0; // texels of the rendered views (each map's side from its screen coverage)

@@ -10,6 +10,10 @@ struct Checks {
   // CPU reference policy and cost model on the same candidates
   // (FrameTiming::selectionMatchesCpu, ::costsMatchCpu).
   bool selectionAgainstCpu = false;
+  // Nonzero: the ray-tracing stage's deadline in device-clock ticks after the stage began, in
+  // place of the one learned from T (RenderSettings::stageDeadline), whatever the policy; 1
+  // leaves every pixel the trace passes would trace to its fallback.
+  uint32_t stageDeadlineTicks = 0;
 };
 
 }  // namespace raybudget::testing

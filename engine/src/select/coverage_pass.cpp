@@ -2,6 +2,7 @@
 
 #include "coverage_comp.h"
 #include "object_metrics_comp.h"
+#include "select/selection_buffers.h"
 #include "shared/config.h"
 #include "shared/types.h"
 #include "vk/pipelines.h"
@@ -30,6 +31,8 @@ CoveragePass::CoveragePass(const vk::Context& ctx, passes::PassLayouts& layouts)
 void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
   const VkCommandBuffer cmd = fc.cmd;
   vkCmdFillBuffer(cmd, fc.selection.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
+  // The stage's clock (shaders/include/stage_clock.glsl): it begins here.
+  vkCmdFillBuffer(cmd, fc.selection.tileList.buffer, kTileListListBytes, kTileListHeaderBytes - kTileListListBytes, 0);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify ? classifying_ : coverage_);

@@ -17,7 +17,7 @@ SelectPass::SelectPass(const vk::Context& ctx, passes::PassLayouts& layouts)
 void SelectPass::record(const passes::FrameContext& fc, SelectMode mode, uint32_t rate) const {
   const VkCommandBuffer cmd = fc.cmd;
   // Every list: no tiles yet, x = 0 groups; the trace counts at 0.
-  const uint32_t emptyHeader[kTileListHeaderBytes / 4] = {0, 1, 1, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0};
+  const uint32_t emptyHeader[kTileListListBytes / 4] = {0, 1, 1, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0};
   vkCmdUpdateBuffer(cmd, fc.selection.tileList.buffer, 0, sizeof(emptyHeader), emptyHeader);
   const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};

@@ -22,11 +22,14 @@ struct SelectionBuffers {
   vk::Buffer itemCosts;      // GpuItemCost per item (RB_ITEMS_PER_OBJECT per object), then the frame's totals: what `benefit` learns
   vk::Buffer tileObjects;    // RB_TILE_OBJECT_WORDS per tile (shaders/select/coverage.comp)
   // The header (shaders/include/bindings.glsl's TileListBlock: each trace pass's and the fill's
-  // dispatch, the rays traced, the rays the items' prior counts, the chunks and tiles listed),
-  // then the trace passes' and the fill's chunks of tiles.
+  // dispatch, the rays traced, the rays the items' prior counts, the chunks and tiles listed,
+  // the stage's clock), then the trace passes' and the fill's chunks of tiles.
   vk::Buffer tileList;
 };
-constexpr uint32_t kTileListHeaderBytes = 80;
+constexpr uint32_t kTileListHeaderBytes = 112;
+// The header's words the select pass resets (the lists); the stage's clock and what its
+// deadline cut, after them, are reset before coverage (shaders/include/stage_clock.glsl).
+constexpr uint32_t kTileListListBytes = 80;
 // Per screen tile: each trace pass's and the fill's chunks (RB_TRACE_CHUNK pixels).
 constexpr uint64_t kTileListWordsPerTile = 3 * (RB_TILE_SIZE * RB_TILE_SIZE / RB_TRACE_CHUNK);
 

@@ -8,6 +8,7 @@
 #include "select/coverage_pass.h"
 #include "select/gpu_selector.h"
 #include "select/select_pass.h"
+#include "select/stage_deadline.h"
 #include "shared/config.h"
 #include "vk/check.h"
 #include "vk/resources.h"
@@ -130,6 +131,7 @@ struct SelectionStage::Impl {
   // float64, which `none` and `all` never use).
   std::unique_ptr<GpuSelector> selector;
   TimeScale timeScale;
+  StageDeadline deadline;
   std::vector<Slot> slots;
   bool checkCpu = false;  // compare every frame with the CPU references (tests)
 
@@ -367,6 +369,14 @@ struct SelectionStage::Impl {
     t.effectChunks = slot.selected ? header[10] : 0u;
     t.fillChunks = slot.selected ? header[11] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
+    t.deadlineCutPixels = slot.selected ? header[24] : 0u;
+    // The device clock's rate: its span from coverage's start to the shadow pass's end (the
+    // select pass's without one) against the same passes' timestamps (stage_deadline.h).
+    if (slot.selected && header[20] != 0u) {
+      double ms = 0.0;
+      for (Pass p : {Pass::Coverage, Pass::Select, Pass::TraceShadows}) ms += t.passMs[size_t(p)].value_or(0.0);
+      deadline.learn(header[21], ms);
+    }
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
       t.budgetBelowFixedCost = true;
@@ -407,7 +417,16 @@ struct SelectionStage::Impl {
     }
     t.measuredTraceMs = t.traceMs();
     if (!s.learnTimeScale) return;
-    timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWorkMs / slot.msPerUnit, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
+    double predictedWork = predictedWorkMs / slot.msPerUnit;
+    if (t.deadlineCutPixels > 0) {
+      // The deadline cut the frame short: what it traced was predicted at the selection's work
+      // less the cut pixels' (include/stage_clock.glsl). The object policies predict no work
+      // per pixel of an item: their cut frames teach nothing.
+      if (policy != Policy::Benefit) return;
+      predictedWork -= double(header[25]) / RB_CUT_WORK_UNITS;
+      if (predictedWork <= 0.0) return;
+    }
+    timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWork, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
                                          r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced,
                                          double(std::bit_cast<float>(r[9])) / slot.msPerUnit, slot.scaleSettled,
                                          uint64_t(header[8])});  // the items' prior's rays (tile list header)
@@ -511,6 +530,10 @@ void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classif
 
 void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames) {
   impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames);
+}
+
+uint32_t SelectionStage::deadlineTicks(const RenderSettings& s) const {
+  return isBudgeted(s.policy) && s.learnTimeScale && s.stageDeadline ? impl_->deadline.ticks(s.budgetMs) : 0u;
 }
 
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {

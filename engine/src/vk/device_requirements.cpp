@@ -80,6 +80,7 @@ DeviceCapabilities queryCapabilities(VkPhysicalDevice device) {
   c.bufferDeviceAddress = f12.bufferDeviceAddress;
   c.hostQueryReset = f12.hostQueryReset;
   c.shaderSubgroupClock = clock.shaderSubgroupClock;
+  c.shaderDeviceClock = clock.shaderDeviceClock;
   c.accelerationStructure = as.accelerationStructure;
   c.rayQuery = rq.rayQuery;
   return c;
@@ -104,6 +105,7 @@ std::vector<std::string> missingRequirements(const DeviceCapabilities& c, const 
   feature(c.sampledImageArrayNonUniformIndexing, "shaderSampledImageArrayNonUniformIndexing", "per-pixel material textures");
   feature(c.features.imageCubeArray, "imageCubeArray", "reflection probes");
   feature(!c.hasExtension(VK_KHR_SHADER_CLOCK_EXTENSION_NAME) || c.shaderSubgroupClock, "shaderSubgroupClock", "item cost measurement");
+  feature(!c.hasExtension(VK_KHR_SHADER_CLOCK_EXTENSION_NAME) || c.shaderDeviceClock, "shaderDeviceClock", "the ray-tracing stage's deadline");
   auto limit = [&](uint32_t have, uint32_t need, const char* name) {
     if (have < need) out.push_back(device + name + " is " + std::to_string(have) + ", at least " + std::to_string(need) + " is needed");
   };
@@ -130,6 +132,7 @@ core::DeviceSetup deviceSetup(const DeviceCapabilities& c) {
   s.queueFamily = c.queueFamily.value_or(0);
   s.extensions.push_back(VK_KHR_SHADER_CLOCK_EXTENSION_NAME);
   s.shaderClock.shaderSubgroupClock = VK_TRUE;
+  s.shaderClock.shaderDeviceClock = VK_TRUE;
   // Optional: lets Renderer::deviceMemoryUsage report the driver's figures.
   if (c.hasExtension(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME)) s.extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
   s.vulkan13.dynamicRendering = VK_TRUE;

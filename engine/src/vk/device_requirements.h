@@ -24,6 +24,7 @@ struct DeviceCapabilities {
   bool runtimeDescriptorArray = false, sampledImageArrayNonUniformIndexing = false;
   bool bufferDeviceAddress = false, hostQueryReset = false;
   bool shaderSubgroupClock = false;
+  bool shaderDeviceClock = false;
   bool rayQuery = false, accelerationStructure = false;
   std::optional<uint32_t> queueFamily;  // graphics + compute with timestamps
   bool hasExtension(const char* name) const;

@@ -1,0 +1,26 @@
+#include "select/stage_deadline.h"
+
+#include <cmath>
+
+namespace raybudget::select {
+
+namespace {
+// A span shorter than this is mostly the launch of its first workgroup and the readback's
+// rounding, not the clock's rate.
+constexpr double kShortestSpanMs = 0.05;
+}  // namespace
+
+void StageDeadline::learn(uint32_t spanTicks, double spanMs) {
+  if (spanTicks == 0 || !std::isfinite(spanMs) || spanMs < kShortestSpanMs) return;
+  ticksPerMs_.add(double(spanTicks) / spanMs);
+}
+
+uint32_t StageDeadline::ticks(double budgetMs) const {
+  if (!calibrated() || !(budgetMs > 0.0)) return 0;
+  const double t = budgetMs * (1.0 - kDrainShare) * ticksPerMs();
+  // Spans are differences of the clock's low 32 bits: half its range keeps them unambiguous.
+  if (!(t >= 1.0) || t >= double(1u << 31)) return 0;
+  return uint32_t(t);
+}
+
+}  // namespace raybudget::select

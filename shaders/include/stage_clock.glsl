@@ -1,0 +1,76 @@
+// The ray-tracing stage's deadline (RenderSettings::stageDeadline): the trace passes and the
+// fill stop tracing once the stage has run for frame.stageDeadline.x ticks of the device clock
+// (VK_KHR_shader_clock's shaderDeviceClock, GL_EXT_shader_realtime_clock), and the pixels left
+// keep their fallbacks. The selection predicts the stage's time; the deadline bounds it where
+// the prediction was wrong (a camera jump that left many shadow pixels uncertain: a trace pass
+// at 2-10x its prediction).
+// The stage is not contiguous on the queue: the fallback and lighting passes run between the
+// shadow pass and the effects pass. Its time is counted in TileListBlock::stageClock, reset to
+// 0 before coverage (coverage_pass.cpp):
+//   x the device clock when coverage began (workgroup 0; 0 until then),
+//   y the stage's span from x to the end of the select pass, then of the shadow pass (their
+//     last workgroup, which on lavapipe, which runs workgroups in order, ends about last),
+//   z 1 + when the effects pass began, after x (workgroup 0; 0 until then),
+//   w 0;
+// and in TileListBlock::deadlineCut, reset with it, what the deadline left to the fallbacks:
+//   x the pixels the trace passes would have traced or probed (FrameTiming::deadlineCutPixels),
+//   y the work the selection predicted for them, in 1/RB_CUT_WORK_UNITS of its units (items
+//     only), which the time scale takes off the frame's prediction before it learns from it.
+// The effects pass and the fill, which follows it at once, count y + their time since z.
+// The clock's unit is the device's: the CPU learns ticks per millisecond from y and the
+// timestamps of the same passes (selection_stage.cpp).
+// The includer enables GL_EXT_shader_realtime_clock and GL_KHR_shader_subgroup_basic, _ballot
+// and _arithmetic, and includes bindings.glsl.
+#ifndef RB_STAGE_CLOCK_GLSL
+#define RB_STAGE_CLOCK_GLSL
+
+uint deviceClock() { return max(clockRealtime2x32EXT().x, 1u); }  // (0 marks "not yet")
+
+// Coverage: the stage begins.
+void stampStageStart() {
+  if (gl_WorkGroupID.x == 0u && gl_LocalInvocationIndex == 0u) atomicCompSwap(stageClock.x, 0u, deviceClock());
+}
+
+// The select pass's and the shadow pass's last workgroup: the stage's span so far.
+void stampStageSpan() {
+  if (gl_WorkGroupID.x + 1u == gl_NumWorkGroups.x && gl_LocalInvocationIndex == 0u && stageClock.x != 0u)
+    atomicMax(stageClock.y, deviceClock() - stageClock.x);
+}
+
+// The effects pass begins.
+void stampEffectsStart() {
+  if (gl_WorkGroupID.x == 0u && gl_LocalInvocationIndex == 0u && stageClock.x != 0u)
+    atomicCompSwap(stageClock.z, 0u, deviceClock() - stageClock.x + 1u);
+}
+
+// Whether the stage is past its deadline, the same for the whole subgroup (one clock read
+// each): `effects` for the effects pass and the fill, else the shadow pass.
+bool pastDeadline(bool effects) {
+  uint deadline = frame.stageDeadline.x;
+  if (deadline == 0u || stageClock.x == 0u) return false;
+  uint since = subgroupBroadcastFirst(deviceClock()) - stageClock.x;
+  uint began = stageClock.z;  // this pass's start, effects only (0: workgroup 0 has not begun)
+  uint spent = !effects ? since : stageClock.y + (began == 0u ? 0u : since - (began - 1u));
+  return spent > deadline;
+}
+
+// The work the selection predicted for one pixel of item `effect` of the object traced at `rate`
+// (0 where its cost was never learned, and for the object policies, which learn none per item).
+float predictedPixelWork(uint objectId, uint effect, uint rate) {
+  if (!measuringItems()) return 0.0;
+  float perPixel = itemCosts[objectId * RB_ITEMS_PER_OBJECT + effect].workPerPixel;
+  return rate == RB_RATE_FULL ? perPixel : perPixel * RB_TRACED_PIXEL_COST(rate);
+}
+
+// Counts this lane's `pixels` the deadline left to their fallbacks and the `work` the selection
+// predicted for them: one atomic each a subgroup.
+void countCut(uint pixels, float work) {
+  uint sum = subgroupAdd(pixels);
+  float predicted = subgroupAdd(work);
+  if (subgroupElect() && sum != 0u) {
+    atomicAdd(deadlineCut.x, sum);
+    atomicAdd(deadlineCut.y, uint(predicted * RB_CUT_WORK_UNITS + 0.5));
+  }
+}
+
+#endif

@@ -1,0 +1,97 @@
+// The ray-tracing stage's deadline (RenderSettings::stageDeadline, shaders/include/stage_clock.glsl):
+// the pixels past it keep exactly the fallbacks `none` shows; a selection priced far too cheap
+// holds T with it and not without it; the device clock's rate is learned from the passes'
+// timestamps.
+#include <gtest/gtest.h>
+
+#include "select/stage_deadline.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace raybudget {
+namespace {
+
+TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
+  select::StageDeadline d;
+  EXPECT_EQ(d.ticks(4.0), 0u) << "no deadline before the clock's rate is known";
+  d.learn(1000, 0.01);  // too short a span to say anything
+  EXPECT_FALSE(d.calibrated());
+  d.learn(2'000'000, 2.0);
+  d.learn(3'000'000, 3.0);
+  d.learn(1'100'000, 1.0);  // one noisy frame: the median holds
+  ASSERT_TRUE(d.calibrated());
+  EXPECT_DOUBLE_EQ(d.ticksPerMs(), 1e6);
+  EXPECT_EQ(d.ticks(4.0), uint32_t(4.0 * (1.0 - select::StageDeadline::kDrainShare) * 1e6));
+  EXPECT_EQ(d.ticks(5000.0), 0u) << "past half the clock's 32-bit range the span is ambiguous";
+  EXPECT_EQ(d.ticks(0.0), 0u);
+}
+
+// Every pixel past the deadline (1 tick: all of them) shows what `none` shows: the shadow maps
+// where the shadow pass left -1 in the mask, the fallbacks in reflections and refractions, and
+// no fill from neighbours that were never traced; at full rate and at 1/4 (the fills' paths).
+TEST(StageDeadline, PixelsPastItKeepTheFallbacksNoneShows) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings none = test::settingsFor(Policy::None, 160, 96);
+  Renderer reference(scene, none);
+  const Camera camera = defaultCamera(scene, reference.aspect());
+  (void)test::renderStill(reference, camera, 3);
+  const FrameImages fallback = reference.readback(true);
+  for (const ItemRate rate : {ItemRate::Full, ItemRate::Quarter}) {
+    RenderSettings s = test::settingsFor(Policy::Benefit, 160, 96);
+    s.budgetMs = 1000.0f;  // every item fits
+    s.rayTracing.rate = rate;
+    testing::Checks checks;
+    checks.stageDeadlineTicks = 1;
+    Renderer renderer(scene, s, checks);
+    const std::vector<FrameTiming> t = test::renderStill(renderer, camera, 3);
+    const FrameImages img = renderer.readback(true);
+    test::expectValidationClean(renderer.validationMessages());
+    ASSERT_EQ(t.size(), 3u);
+    for (const FrameTiming& f : t) {
+      EXPECT_GT(f.selectedObjects, 0u) << "the selection must hold something for the deadline to cut";
+      EXPECT_GT(f.deadlineCutPixels, 0u);
+    }
+    EXPECT_TRUE(std::all_of(img.tracedMask.begin(), img.tracedMask.end(), [](uint32_t m) { return m == 0u; })) << "nothing traced";
+    EXPECT_EQ(test::largestLdrDifference(img, fallback), 0) << "rate " << int(rate);
+  }
+}
+
+// A selection priced at a twentieth of its time: without the deadline the stage runs far past
+// T, with it the stage stops near T and says what it left out. Tolerances for a busy 2-core
+// machine: 1.5 T, where the unbounded stage takes several T.
+TEST(StageDeadline, HoldsTWhereTheSelectionWasPricedTooCheap) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  const float T = 4.0f;
+  auto pricedTooCheap = [&](bool deadline) {
+    RenderSettings s = test::settingsFor(Policy::Benefit, 320, 180);
+    s.budgetMs = T;
+    s.stageDeadline = deadline;
+    Renderer renderer(scene, s);
+    const Camera camera = defaultCamera(scene, renderer.aspect());
+    (void)test::renderStill(renderer, camera, 12);  // the cost model and the clock's rate learned
+    CostModel cheap = renderer.costModel();
+    EXPECT_GT(cheap.msPerItemWorkUnit, 0.0);
+    cheap.msPerItemWorkUnit /= 20.0;
+    cheap.msPerItemRay /= 20.0;
+    cheap.stageOverheadMs /= 20.0;
+    cheap.traceFixedMs /= 20.0;
+    renderer.setCostModel(cheap);
+    std::vector<FrameTiming> t = test::renderStill(renderer, camera, 2);  // before it learns better
+    test::expectValidationClean(renderer.validationMessages());
+    return t;
+  };
+  const std::vector<FrameTiming> unbounded = pricedTooCheap(false), bounded = pricedTooCheap(true);
+  ASSERT_EQ(unbounded.size(), 2u);
+  ASSERT_EQ(bounded.size(), 2u);
+  for (size_t f = 0; f < 2; ++f) {
+    EXPECT_GT(unbounded[f].rtStageMs(), 1.5 * T) << "priced that cheap, the selection must overrun T, or the test shows nothing";
+    EXPECT_EQ(unbounded[f].deadlineCutPixels, 0u);
+    EXPECT_LE(bounded[f].rtStageMs(), 1.5 * T) << "frame " << f;
+    EXPECT_GT(bounded[f].deadlineCutPixels, 0u);
+    std::printf("priced a twentieth: stage %.2f ms without the deadline, %.2f ms with it (T = %.1f ms, %u pixels left out)\n",
+                unbounded[f].rtStageMs(), bounded[f].rtStageMs(), T, bounded[f].deadlineCutPixels);
+  }
+}
+
+}  // namespace
+}  // namespace raybudget
