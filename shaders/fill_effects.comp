@@ -4,15 +4,12 @@
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_ARB_shader_clock : require
-#extension GL_EXT_shader_realtime_clock : require
-#extension GL_KHR_shader_subgroup_ballot : require
 #include "include/bindings.glsl"
 #include "include/gbuffer.glsl"
 #include "include/item_stats.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
 #include "include/tile_pixel.glsl"
-#include "include/stage_clock.glsl"
 #include "include/effect_fill.glsl"
 
 // The fill of the reflections and refractions that reduced ray rates skipped this frame
@@ -26,13 +23,12 @@
 // 30-frame orbit at 640x360 on lavapipe: 0.80 of its time without). The fill ran inside the effects pass
 // before, from the tile's traced pixels in shared memory behind a barrier (which lavapipe runs
 // as coroutines): as a pass of its own it costs about the same and reads across tiles
-// (docs/SELECTION.md, "Ray rates"). Past the stage's deadline a subgroup fills nothing.
+// (docs/SELECTION.md, "Ray rates"). The stage's deadline does not cut it (include/stage_clock.glsl).
 layout(local_size_x = RB_TRACE_GROUP_SIZE) in;
 
 #define RB_FILL_MEASURE_STRIDE 4u
 
 void main() {
-  if (pastDeadline(true)) return;  // the fallbacks stand (include/stage_clock.glsl)
   ivec2 pixel = chunkPixel(RB_FILL_CHUNKS);
   bool measured = measuringItems() && (gl_WorkGroupID.x + frame.sizeLightsFrame.w) % RB_FILL_MEASURE_STRIDE == 0u;
   uint start = measured ? clockNow() : 0u;

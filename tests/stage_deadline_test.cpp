@@ -1,7 +1,7 @@
 // The ray-tracing stage's deadline (RenderSettings::stageDeadline, shaders/include/stage_clock.glsl):
 // the pixels past it keep exactly the fallbacks `none` shows; a selection priced far too cheap
 // holds T with it and not without it; the device clock's rate is learned from the passes'
-// timestamps.
+// timestamps, and each pass's deadline leaves the passes after it their recent time.
 #include <gtest/gtest.h>
 
 #include "select/stage_deadline.h"
@@ -24,6 +24,18 @@ TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
   EXPECT_EQ(d.ticks(4.0), uint32_t(4.0 * (1.0 - select::StageDeadline::kDrainShare) * 1e6));
   EXPECT_EQ(d.ticks(5000.0), 0u) << "past half the clock's 32-bit range the span is ambiguous";
   EXPECT_EQ(d.ticks(0.0), 0u);
+  // The effects pass's deadline leaves the fill its recent time, the shadow pass's the effects'
+  // and the fill's, down to a half and a quarter of T.
+  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(4.0)) << "no pass time learned yet";
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0));
+  for (int f = 0; f < 4; ++f) d.learnPassTimes(1.0, 0.5);
+  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(3.5));
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(2.5));
+  for (int f = 0; f < 4; ++f) d.learnPassTimes(10.0, 3.0);
+  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(2.0));
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(1.0));
+  d.restart();
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0)) << "a restarted selection's passes are another's";
 }
 
 // Every pixel past the deadline (1 tick: all of them) shows what `none` shows: the shadow maps

@@ -202,7 +202,7 @@ struct Context::Impl {
     u.previousViewProj = previousViewProj.value_or(u.viewProj);
     u.previousCamera = glm::vec4(previousCamera, previousViewProj ? 1.0f : 0.0f);
     u.ssr = glm::vec4(slot.ssr == PassSkip::None ? 1.0f : 0.0f, RB_SSR_MAX_ROUGHNESS, ssrReach, 0.0f);
-    u.stageDeadline = glm::uvec4(deadlineTicks != 0 ? deadlineTicks : selection.deadlineTicks(settings), 0u, 0u, 0u);
+    u.stageDeadline = glm::uvec4(deadlineTicks != 0 ? glm::uvec2(deadlineTicks) : selection.deadlineTicks(settings), 0u, 0u);
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 

@@ -377,6 +377,8 @@ struct SelectionStage::Impl {
       for (Pass p : {Pass::Coverage, Pass::Select, Pass::TraceShadows}) ms += t.passMs[size_t(p)].value_or(0.0);
       deadline.learn(header[21], ms);
     }
+    if (slot.selected && t.deadlineCutPixels == 0)
+      deadline.learnPassTimes(t.passMs[size_t(Pass::TraceEffects)].value_or(0.0), t.passMs[size_t(Pass::FillEffects)].value_or(0.0));
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
       t.budgetBelowFixedCost = true;
@@ -448,6 +450,7 @@ struct SelectionStage::Impl {
   void restart(const RenderSettings& s) {
     ensureSelector(s);
     timeScale.forgetErrors();
+    deadline.restart();
     ctx.submitAndWait([&](VkCommandBuffer cmd) { recordSelectionReset(cmd, buffers, initialParams); });
   }
 
@@ -532,8 +535,9 @@ void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot,
   impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames);
 }
 
-uint32_t SelectionStage::deadlineTicks(const RenderSettings& s) const {
-  return isBudgeted(s.policy) && s.learnTimeScale && s.stageDeadline ? impl_->deadline.ticks(s.budgetMs) : 0u;
+glm::uvec2 SelectionStage::deadlineTicks(const RenderSettings& s) const {
+  if (!isBudgeted(s.policy) || !s.learnTimeScale || !s.stageDeadline) return glm::uvec2(0u);
+  return {impl_->deadline.effectsTicks(s.budgetMs), impl_->deadline.shadowTicks(s.budgetMs)};
 }
 
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {
