@@ -13,7 +13,7 @@
 #include "include/item_stats.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
-#include "include/stage_clock.glsl"
+#include "include/deadline_cut.glsl"
 #include "include/effect_fill.glsl"
 #include "include/trace_radiance.glsl"
 
@@ -144,24 +144,20 @@ bvec2 pathsHere(Selection sel, ivec2 pixel) {
                (selected.y && rateHere.y) || (!selected.y && itemProbed(sel, RB_ITEM_REFRACTIONS, pixel)));
 }
 
-// Past the deadline: the paths the pixel would have traced keep the fallback; a full rate's
-// pixel, counted at selection, is taken off its item's count (a wrapping add), so that its cost
-// and benefit are learned over the pixels traced; its object learns nothing this frame.
+// Past the deadline: the paths the pixel would have traced keep the fallback, and what the stage
+// learns does without them (include/deadline_cut.glsl's leavePixel).
 void leaveEffects(Surface s, Selection sel, bvec2 here) {
   bvec2 paths = surfacePaths(s, rbPaths);
   bool reflects = paths.x && here.x, refracts = paths.y && here.y;
-  bool full[2];
+  bvec3 full = bvec3(false);
   float work = 0.0;
   for (int path = 0; path < 2; ++path) {
     uint item = path == 0 ? RB_ITEM_REFLECTIONS : RB_ITEM_REFRACTIONS, rate = itemRate(sel, item);
     bool selected = (path == 0 ? reflects : refracts) && itemSelected(sel, item);
-    full[path] = selected && rate == RB_RATE_FULL;
+    full[item] = selected && rate == RB_RATE_FULL;
     if (selected) work += predictedPixelWork(s.objectId, item, rate);
   }
-  if (reflects || refracts) objectCosts[s.objectId].pixels = 0u;
-  countCut(reflects || refracts ? 1u : 0u, work);
-  if (measuringItems())
-    addItemCounts(s.objectId, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u, full[0] ? 0xFFFFFFFFu : 0u, full[1] ? 0xFFFFFFFFu : 0u));
+  leavePixel(s.objectId, reflects || refracts, full, work);
 }
 
 void main() {

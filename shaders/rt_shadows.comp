@@ -12,7 +12,7 @@
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
-#include "include/stage_clock.glsl"
+#include "include/deadline_cut.glsl"
 
 // Ray-traced shadows: one any-hit ray per light from the exact surface point (offset along
 // the geometric normal), alpha masks respected, for the pixels of objects whose shadow item
@@ -75,9 +75,8 @@ void traceShadows(ivec2 pixel) {
 }
 
 // Past the deadline: where the pixel would have been traced (or probed), -1 in the light's
-// first mask layer tells the lighting pass that the maps stand (shadowMaskWritten); a full
-// rate's pixel, counted at selection, is taken off its item's count (a wrapping add), so that
-// its cost and benefit are learned over the pixels traced; its object learns nothing this frame.
+// first mask layer tells the lighting pass that the maps stand (shadowMaskWritten), and what
+// the stage learns does without it (include/deadline_cut.glsl's leavePixel).
 void leaveShadows(ivec2 pixel) {
   uint objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
   bool left = false, full = false;
@@ -90,12 +89,8 @@ void leaveShadows(ivec2 pixel) {
     full = left && selected && rate == RB_RATE_FULL;
     if (left && selected) work = predictedPixelWork(objectId, RB_ITEM_SHADOWS, rate);
   }
-  if (left) {
-    imageStore(shadowMask, ivec3(pixel, 0), vec4(-1.0));
-    objectCosts[objectId].pixels = 0u;
-  }
-  countCut(left ? 1u : 0u, work);
-  if (measuringItems()) addItemCounts(full ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0xFFFFFFFFu, 0u, 0u));
+  if (left) imageStore(shadowMask, ivec3(pixel, 0), vec4(-1.0));
+  leavePixel(objectId, left, bvec3(full, false, false), work);
 }
 
 void main() {

@@ -23,9 +23,9 @@
 //     only), which the time scale takes off the frame's prediction before it learns from it.
 // The effects pass counts y + its time since z.
 // The clock's unit is the device's: the CPU learns ticks per millisecond from y and the
-// timestamps of the same passes (selection_stage.cpp).
-// The includer enables GL_EXT_shader_realtime_clock and GL_KHR_shader_subgroup_basic, _ballot
-// and _arithmetic, and includes bindings.glsl.
+// timestamps of the same passes (selection_stage.cpp). What a trace pass does past its deadline
+// is include/deadline_cut.glsl's.
+// The includer enables GL_EXT_shader_realtime_clock and includes bindings.glsl.
 #ifndef RB_STAGE_CLOCK_GLSL
 #define RB_STAGE_CLOCK_GLSL
 
@@ -49,36 +49,6 @@ void stampStageSpan() {
 void stampEffectsStart() {
   if (gl_WorkGroupID.x == 0u && gl_LocalInvocationIndex == 0u && stageClock.x != 0u)
     atomicCompSwap(stageClock.z, 0u, deviceClock() - stageClock.x + 1u);
-}
-
-// Whether the stage is past its deadline, the same for the whole subgroup (one clock read
-// each): `effects` for the effects pass, else the shadow pass.
-bool pastDeadline(bool effects) {
-  uint deadline = effects ? frame.stageDeadline.x : frame.stageDeadline.y;
-  if (deadline == 0u || stageClock.x == 0u) return false;
-  uint since = subgroupBroadcastFirst(deviceClock()) - stageClock.x;
-  uint began = stageClock.z;  // this pass's start, effects only (0: workgroup 0 has not begun)
-  uint spent = !effects ? since : stageClock.y + (began == 0u ? 0u : since - (began - 1u));
-  return spent > deadline;
-}
-
-// The work the selection predicted for one pixel of item `effect` of the object traced at `rate`
-// (0 where its cost was never learned, and for the object policies, which learn none per item).
-float predictedPixelWork(uint objectId, uint effect, uint rate) {
-  if (!measuringItems()) return 0.0;
-  float perPixel = itemCosts[objectId * RB_ITEMS_PER_OBJECT + effect].workPerPixel;
-  return rate == RB_RATE_FULL ? perPixel : perPixel * RB_TRACED_PIXEL_COST(rate);
-}
-
-// Counts this lane's `pixels` the deadline left to their fallbacks and the `work` the selection
-// predicted for them: one atomic each a subgroup.
-void countCut(uint pixels, float work) {
-  uint sum = subgroupAdd(pixels);
-  float predicted = subgroupAdd(work);
-  if (subgroupElect() && sum != 0u) {
-    atomicAdd(deadlineCut.x, sum);
-    atomicAdd(deadlineCut.y, uint(predicted * RB_CUT_WORK_UNITS + 0.5));
-  }
 }
 
 #endif

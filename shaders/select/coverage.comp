@@ -1,9 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_realtime_clock : require
-#extension GL_KHR_shader_subgroup_basic : require
-#extension GL_KHR_shader_subgroup_ballot : require
-#extension GL_KHR_shader_subgroup_arithmetic : require
 // Coverage: per object, the pixels it covers in the object-ID buffer and the sums of their
 // coordinates (for A and the centroid behind P), and per 8x8 tile the objects it shows.
 // One invocation per tile sums its pixels in registers for up to RB_TILE_OBJECT_WORDS - 1

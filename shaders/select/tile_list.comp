@@ -1,9 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_realtime_clock : require
-#extension GL_KHR_shader_subgroup_basic : require
-#extension GL_KHR_shader_subgroup_ballot : require
-#extension GL_KHR_shader_subgroup_arithmetic : require
 // Lists, for each trace pass, the chunks of the 8x8 tiles where it may trace (include/tile_pixel.glsl):
 // a tile holding a pixel whose shadow item is selected, or probed where the probe traces this
 // frame (include/probe.glsl), goes to the shadow pass's list with as many of its chunks as the

@@ -127,9 +127,9 @@ struct RenderSettings {
   // quantile of their measured over predicted trace time (cost_model.h's headroom): higher
   // holds T more often and uses less of it (0.5..0.99; 0.5: the median error, about none).
   float budgetConfidence = 0.9f;
-  // Budgeted policies, with learnTimeScale: the trace passes and the fill stop tracing once the
-  // stage has run for T on the device's clock, and the pixels left keep their fallbacks
-  // (FrameTiming::deadlineCutPixels); the selection's prediction decides what is traced, the
+  // Budgeted policies, with learnTimeScale: the trace passes stop tracing once the stage has run
+  // for about T on the device's clock (the fill is never cut), and the pixels left keep their
+  // fallbacks (FrameTiming::deadlineCutPixels); the selection's prediction decides what is traced, the
   // deadline bounds the stage where the prediction was wrong (docs/SELECTION.md, "The deadline").
   bool stageDeadline = true;
   // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
