@@ -157,7 +157,7 @@ void leaveEffects(Surface s, Selection sel, bvec2 here) {
     full[item] = selected && rate == RB_RATE_FULL;
     if (selected) work += predictedPixelWork(s.objectId, item, rate);
   }
-  leavePixel(s.objectId, reflects || refracts, full, work);
+  leavePixel(s.objectId, reflects || refracts, full, work, false);
 }
 
 void main() {

@@ -90,7 +90,7 @@ void leaveShadows(ivec2 pixel) {
     if (left && selected) work = predictedPixelWork(objectId, RB_ITEM_SHADOWS, rate);
   }
   if (left) imageStore(shadowMask, ivec3(pixel, 0), vec4(-1.0));
-  leavePixel(objectId, left, bvec3(full, false, false), work);
+  leavePixel(objectId, left, bvec3(full, false, false), work, true);
 }
 
 void main() {

@@ -354,6 +354,29 @@ TEST(CostModel, FramesThatTraceNothingGiveTheFixedCostAndTheScaleFitsTheRest) {
   EXPECT_NEAR(k.traceFixedMs(), fixed, 1e-4) << "frames that traced something leave the fixed cost";
 }
 
+// A frame the deadline cut short traced less than the work it counts (the object policies know
+// no work per cut pixel): its scale is a lower bound, so the scale learns it where it is above
+// the one used, and the one used where it is below, never a censored sample's low median.
+TEST(CostModel, AFrameCutShortBoundsTheScaleFromBelow) {
+  const double used = 1e-5, work = 2e5;  // 2 ms predicted
+  select::TimeScale cut(640, 360), uncensored(640, 360);
+  for (select::TimeScale* s : {&cut, &uncensored}) s->learn(CostUnit::PaperCost, {used, 0.0, 0.5, 0.2, false});  // fixed 0.5
+  for (int f = 0; f < 7; ++f) {
+    StageMeasurement m{used, work, 0.5 + 1.0, 0.2, false, 2.0};
+    uncensored.learn(CostUnit::PaperCost, m);
+    m.cutShort = true;
+    cut.learn(CostUnit::PaperCost, m);
+  }
+  EXPECT_DOUBLE_EQ(uncensored.learned(CostUnit::PaperCost), 0.5 * used) << "taken at its word, half the work's time";
+  EXPECT_DOUBLE_EQ(cut.learned(CostUnit::PaperCost), used) << "cut short: at least the scale it was selected with";
+  for (int f = 0; f < 7; ++f) {
+    StageMeasurement m{used, work, 0.5 + 3.0, 0.2, false, 2.0};
+    m.cutShort = true;
+    cut.learn(CostUnit::PaperCost, m);
+  }
+  EXPECT_DOUBLE_EQ(cut.learned(CostUnit::PaperCost), 1.5 * used) << "past the prediction even cut short: the bound is learned";
+}
+
 // Frames that trace little of their budget (the probe's few tiles) time the fixed cost's
 // jitter, not the scale: they teach neither the scale nor the headroom. A frame that took far
 // more than it was given teaches both, however little was predicted.

@@ -1,7 +1,8 @@
 // The ray-tracing stage's deadline (RenderSettings::stageDeadline, shaders/include/stage_clock.glsl):
 // the pixels past it keep exactly the fallbacks `none` shows; a selection priced far too cheap
 // holds T with it and not without it; the device clock's rate is learned from the passes'
-// timestamps, and each pass's deadline leaves the passes after it their recent time.
+// timestamps, each pass's deadline leaves the passes after it their recent time, and the
+// reserve after the deadline is learned from the frames it cut.
 #include <algorithm>
 
 #include <gtest/gtest.h>
@@ -15,7 +16,7 @@ namespace {
 
 TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
   select::StageDeadline d;
-  EXPECT_EQ(d.ticks(4.0), 0u) << "no deadline before the clock's rate is known";
+  EXPECT_EQ(d.ticks(4.0, 4.0), 0u) << "no deadline before the clock's rate is known";
   d.learn(1000, 0.01);  // too short a span to say anything
   EXPECT_FALSE(d.calibrated());
   d.learn(2'000'000, 2.0);
@@ -23,21 +24,51 @@ TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
   d.learn(1'100'000, 1.0);  // one noisy frame: the median holds
   ASSERT_TRUE(d.calibrated());
   EXPECT_DOUBLE_EQ(d.ticksPerMs(), 1e6);
-  EXPECT_EQ(d.ticks(4.0), uint32_t(4.0 * (1.0 - select::StageDeadline::kDrainShare) * 1e6));
-  EXPECT_EQ(d.ticks(5000.0), 0u) << "past half the clock's 32-bit range the span is ambiguous";
-  EXPECT_EQ(d.ticks(0.0), 0u);
+  EXPECT_EQ(d.ticks(4.0, 4.0), uint32_t(4.0 * (1.0 - select::StageDeadline::kDrainShare) * 1e6));
+  EXPECT_EQ(d.ticks(5000.0, 5000.0), 0u) << "past half the clock's 32-bit range the span is ambiguous";
+  EXPECT_EQ(d.ticks(0.0, 0.0), 0u);
   // The effects pass's deadline leaves the fill its recent time, the shadow pass's the effects'
   // and the fill's, down to a half and a quarter of T.
-  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(4.0)) << "no pass time learned yet";
-  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0));
-  for (int f = 0; f < 4; ++f) d.learnPassTimes(1.0, 0.5);
-  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(3.5));
-  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(2.5));
-  for (int f = 0; f < 4; ++f) d.learnPassTimes(10.0, 3.0);
-  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(2.0));
-  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(1.0));
+  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(4.0, 4.0)) << "no pass time learned yet";
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0, 4.0));
+  for (int f = 0; f < 4; ++f) {
+    d.learnEffects(1.0);
+    d.learnFill(0.5);
+  }
+  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(3.5, 4.0));
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(2.5, 4.0));
+  for (int f = 0; f < 4; ++f) {
+    d.learnEffects(10.0);
+    d.learnFill(3.0);
+  }
+  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(2.0, 4.0));
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(1.0, 4.0));
   d.restart();
-  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0)) << "a restarted selection's passes are another's";
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0, 4.0)) << "a restarted selection's passes are another's";
+}
+
+// The reserve after the deadline is what the cut frames needed to end at T: a stage that runs
+// `after` ms past its deadline ends at T - reserve + after; the reserve becomes `after`, within
+// its bounds, and a preempted frame does not move it.
+TEST(StageDeadline, TheReserveIsWhatCutFramesNeededToEndAtT) {
+  select::StageDeadline d;
+  const double T = 10.0, least = select::StageDeadline::kDrainShare * T, most = select::StageDeadline::kMaxReserveShare * T;
+  const auto cutFrame = [&](double after) { d.learnCut(T - d.reserveMs(T) + after, T, d.reserveMs(T)); };
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), least) << "no frame was cut yet";
+  for (int f = 0; f < 4; ++f) cutFrame(1.5);
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), 1.5);
+  cutFrame(40.0);  // one preempted frame: the median holds
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), 1.5);
+  for (int f = 0; f < 7; ++f) cutFrame(5.0);
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), most) << "at most kMaxReserveShare of T";
+  for (int f = 0; f < 7; ++f) cutFrame(0.1);
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), least) << "cut frames that ended under T give it back";
+  d.learn(1'000'000, 1.0);
+  for (int f = 0; f < 7; ++f) cutFrame(1.0);
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), 1.0);
+  EXPECT_EQ(d.ticks(T, T), uint32_t((T - 1.0) * 1e6));
+  d.restart();
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), least) << "a restarted selection's reserve is another's";
 }
 
 // Every pixel past the deadline (1 tick: all of them) shows what `none` shows: the shadow maps

@@ -27,14 +27,15 @@ float predictedPixelWork(uint objectId, uint effect, uint rate) {
   return rate == RB_RATE_FULL ? perPixel : perPixel * RB_TRACED_PIXEL_COST(rate);
 }
 
-// Counts this lane's `pixels` the deadline left to their fallbacks and the `work` the selection
-// predicted for them: one atomic each a subgroup.
-void countCut(uint pixels, float work) {
+// Counts this lane's `pixels` the deadline left to their fallbacks (the shadow pass's also on
+// their own) and the `work` the selection predicted for them: one atomic each a subgroup.
+void countCut(uint pixels, float work, bool shadows) {
   uint sum = subgroupAdd(pixels);
   float predicted = subgroupAdd(work);
   if (subgroupElect() && sum != 0u) {
     atomicAdd(deadlineCut.x, sum);
     atomicAdd(deadlineCut.y, uint(predicted * RB_CUT_WORK_UNITS + 0.5));
+    if (shadows) atomicAdd(deadlineCut.z, sum);
   }
 }
 
@@ -42,10 +43,10 @@ void countCut(uint pixels, float work) {
 // its object learns nothing this frame (the object policies count its pixels at selection), the
 // items in `full`, whose full rate counted it at selection, take it off their count (a wrapping
 // add) so that their cost and benefit are learned over the pixels traced, and the cut counts it
-// with the `work` the selection predicted for it.
-void leavePixel(uint objectId, bool left, bvec3 full, float work) {
+// with the `work` the selection predicted for it (`shadows`: the shadow pass's pixel).
+void leavePixel(uint objectId, bool left, bvec3 full, float work, bool shadows) {
   if (left) objectCosts[objectId].pixels = 0u;
-  countCut(left ? 1u : 0u, work);
+  countCut(left ? 1u : 0u, work, shadows);
   if (measuringItems()) addItemCounts(any(full) ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(full) * 0xFFFFFFFFu);
 }
 

@@ -20,7 +20,8 @@
 // and in TileListBlock::deadlineCut, reset with it, what the deadline left to the fallbacks:
 //   x the pixels the trace passes would have traced or probed (FrameTiming::deadlineCutPixels),
 //   y the work the selection predicted for them, in 1/RB_CUT_WORK_UNITS of its units (items
-//     only), which the time scale takes off the frame's prediction before it learns from it.
+//     only), which the time scale takes off the frame's prediction before it learns from it,
+//   z of x, the shadow pass's (the effects pass's time is learned where it cut none).
 // The effects pass counts y + its time since z.
 // The clock's unit is the device's: the CPU learns ticks per millisecond from y and the
 // timestamps of the same passes (selection_stage.cpp). What a trace pass does past its deadline

@@ -155,6 +155,9 @@ struct StageMeasurement {
   double priorWork = 0.0;  // of `work`, the part priced by the prior (items or objects never traced)
   bool scaleSettled = true;  // the scale it was selected with had TimeScale::settled's observations
   uint64_t priorRays = 0;    // the rays the items' prior counts at the pixels traced (RB_ITEM_PRIOR_RAYS)
+  // The stage's deadline cut the frame and `work` still counts what it left out: its measured
+  // time is a lower bound on what the whole selection costs (TimeScale::learn).
+  bool cutShort = false;
 };
 
 // The last kSize observations of a quantity and their median (the lower middle of an even

@@ -119,6 +119,7 @@ struct SelectionStage::Impl {
     float traceBudgetMs = 0.0f;  // ... and the part of T it left for the work
     float selectBudgetMs = 0.0f;  // ... of which the selection's (the rest: `benefit`'s probe)
     bool belowFixedCost = false;  // T at or below the stage's fixed cost: nothing traced
+    double deadlineReserveMs = 0.0;  // the deadline's reserve (StageDeadline::reserveMs)
   };
 
   const vk::Context& ctx;
@@ -189,6 +190,7 @@ struct SelectionStage::Impl {
     slot.workPerRay = float(timeScale.priorWorkPerRay(costUnitOf(policy)));
     slot.traceFixedMs = timeScale.traceFixedMs();
     slot.belowFixedCost = belowFixedCost(s);
+    slot.deadlineReserveMs = deadline.reserveMs(s.budgetMs);
     // Room for the prediction's recent errors (cost_model.h's headroom).
     slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float((double(s.budgetMs) - timeScale.fixedMs()) / timeScale.headroom(s.budgetConfidence));
     // `benefit` keeps a share of the trace budget for the probe of what it leaves out.
@@ -377,8 +379,11 @@ struct SelectionStage::Impl {
       for (Pass p : {Pass::Coverage, Pass::Select, Pass::TraceShadows}) ms += t.passMs[size_t(p)].value_or(0.0);
       deadline.learn(header[21], ms);
     }
-    if (slot.selected && t.deadlineCutPixels == 0)
-      deadline.learnPassTimes(t.passMs[size_t(Pass::TraceEffects)].value_or(0.0), t.passMs[size_t(Pass::FillEffects)].value_or(0.0));
+    if (slot.selected) {
+      if (t.deadlineCutPixels == header[26]) deadline.learnEffects(t.passMs[size_t(Pass::TraceEffects)].value_or(0.0));
+      deadline.learnFill(t.passMs[size_t(Pass::FillEffects)].value_or(0.0));
+      if (t.deadlineCutPixels > 0) deadline.learnCut(t.rtStageMs(), s.budgetMs, slot.deadlineReserveMs);
+    }
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
       t.budgetBelowFixedCost = true;
@@ -420,18 +425,18 @@ struct SelectionStage::Impl {
     t.measuredTraceMs = t.traceMs();
     if (!s.learnTimeScale) return;
     double predictedWork = predictedWorkMs / slot.msPerUnit;
-    if (t.deadlineCutPixels > 0) {
-      // The deadline cut the frame short: what it traced was predicted at the selection's work
-      // less the cut pixels' (include/stage_clock.glsl). The object policies predict no work
-      // per pixel of an item: their cut frames teach nothing.
-      if (policy != Policy::Benefit) return;
+    // The deadline cut the frame short: what the items traced was predicted at the selection's
+    // work less the cut pixels' (include/deadline_cut.glsl). The object policies predict no work
+    // per pixel: their cut frames bound the scale from below (StageMeasurement::cutShort).
+    const bool cut = t.deadlineCutPixels > 0, cutShort = cut && policy != Policy::Benefit;
+    if (cut && !cutShort) {
       predictedWork -= double(header[25]) / RB_CUT_WORK_UNITS;
       if (predictedWork <= 0.0) return;
     }
     timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWork, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
                                          r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced,
                                          double(std::bit_cast<float>(r[9])) / slot.msPerUnit, slot.scaleSettled,
-                                         uint64_t(header[8])});  // the items' prior's rays (tile list header)
+                                         uint64_t(header[8]), cutShort});  // the items' prior's rays (tile list header)
   }
 
   std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads

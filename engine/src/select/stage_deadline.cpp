@@ -15,9 +15,9 @@ void StageDeadline::learn(uint32_t spanTicks, double spanMs) {
   ticksPerMs_.add(double(spanTicks) / spanMs);
 }
 
-uint32_t StageDeadline::ticks(double budgetMs) const {
+uint32_t StageDeadline::ticks(double atMs, double budgetMs) const {
   if (!calibrated() || !(budgetMs > 0.0)) return 0;
-  const double t = budgetMs * (1.0 - kDrainShare) * ticksPerMs();
+  const double t = (atMs - reserveMs(budgetMs)) * ticksPerMs();
   // Spans are differences of the clock's low 32 bits: half its range keeps them unambiguous.
   if (!(t >= 1.0) || t >= double(1u << 31)) return 0;
   return uint32_t(t);

@@ -20,38 +20,49 @@ class StageDeadline {
   void learn(uint32_t spanTicks, double spanMs);
   bool calibrated() const { return !ticksPerMs_.empty(); }
   double ticksPerMs() const { return ticksPerMs_.value(); }
-  // T in device-clock ticks after the stage began, less the share kept for what runs after the
-  // deadline (the subgroups under way, the leave-outs of the rest); 0, no deadline, before the
-  // clock was calibrated or where T is past the clock's 32-bit span.
-  uint32_t ticks(double budgetMs) const;
-  // A frame's effects pass and fill, where the deadline cut nothing.
-  void learnPassTimes(double effectsMs, double fillMs) {
-    effectsMs_.add(effectsMs);
-    fillMs_.add(fillMs);
+  // `atMs` after the stage began, less the reserve for what runs past a deadline under T, in
+  // device-clock ticks; 0, no deadline, before the clock was calibrated or where T is past the
+  // clock's 32-bit span.
+  uint32_t ticks(double atMs, double budgetMs) const;
+  // What the stage runs past a deadline: the subgroups under way finish their pixels, the rest
+  // of the pass's invocations note what they leave out, the passes after it run. The reserve
+  // each frame the deadline cut needed to end at T (the one it had and its time past T) is
+  // learned as their recent median, within [kDrainShare, kMaxReserveShare] of T (kDrainShare
+  // until a frame was cut): the leave-outs of a pass over the whole screen cost 1-3 ms on
+  // lavapipe, which a fixed 3% of T left `paper` over T in most of its cut frames.
+  double reserveMs(double budgetMs) const {
+    const double least = kDrainShare * budgetMs;
+    return needed_.empty() ? least : std::clamp(needed_.value(), least, kMaxReserveShare * budgetMs);
   }
-  // A restarted selection: the passes' times were another selection's.
+  void learnCut(double stageMs, double budgetMs, double reserveMs) { needed_.add(reserveMs + stageMs - budgetMs); }
+  // The effects pass where the deadline cut none of its pixels, the fill every frame (it is
+  // never cut).
+  void learnEffects(double effectsMs) { effectsMs_.add(effectsMs); }
+  void learnFill(double fillMs) { fillMs_.add(fillMs); }
+  // A restarted selection: the passes' times and the reserve were another selection's.
   void restart() {
     effectsMs_.clear();
     fillMs_.clear();
+    needed_.clear();
   }
   // The effects pass's deadline: T less the fill's recent time (at least kEffectsShare of T).
   // The fill is never cut: it is what makes a reduced rate's pixels worth their cost (without
   // it, 15 of 16 pixels of an item at 1/16 keep the fallback), and its time follows its pixels.
-  uint32_t effectsTicks(double budgetMs) const { return ticks(std::max(budgetMs - fillMs_.value(), kEffectsShare * budgetMs)); }
+  uint32_t effectsTicks(double budgetMs) const {
+    return ticks(std::max(budgetMs - fillMs_.value(), kEffectsShare * budgetMs), budgetMs);
+  }
   // The shadow pass's deadline: T less the effects' and the fill's recent time (at least
   // kShadowShare of T), so that shadows that ran far past their prediction (a camera jump's
   // uncertain shadow-map pixels) are cut, not the reflections and refractions after them.
   uint32_t shadowTicks(double budgetMs) const {
-    return ticks(std::max(budgetMs - effectsMs_.value() - fillMs_.value(), kShadowShare * budgetMs));
+    return ticks(std::max(budgetMs - effectsMs_.value() - fillMs_.value(), kShadowShare * budgetMs), budgetMs);
   }
 
-  // The share of T the passes keep after the deadline: the subgroups already tracing finish
-  // their pixels, and the rest of the passes' invocations note what they leave out.
-  static constexpr double kDrainShare = 0.03;
+  static constexpr double kDrainShare = 0.03, kMaxReserveShare = 0.2;
   static constexpr double kEffectsShare = 0.5, kShadowShare = 0.25;
 
  private:
-  RecentMedian ticksPerMs_, effectsMs_, fillMs_;
+  RecentMedian ticksPerMs_, effectsMs_, fillMs_, needed_;
 };
 
 }  // namespace raybudget::select
