@@ -31,16 +31,10 @@ TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
   // and the fill's, down to a half and a quarter of T.
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(4.0, 4.0)) << "no pass time learned yet";
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0, 4.0));
-  for (int f = 0; f < 4; ++f) {
-    d.learnEffects(1.0);
-    d.learnFill(0.5);
-  }
+  for (int f = 0; f < 4; ++f) d.learnPassTimes(1.0, 0.5);
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(3.5, 4.0));
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(2.5, 4.0));
-  for (int f = 0; f < 4; ++f) {
-    d.learnEffects(10.0);
-    d.learnFill(3.0);
-  }
+  for (int f = 0; f < 4; ++f) d.learnPassTimes(10.0, 3.0);
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(2.0, 4.0));
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(1.0, 4.0));
   d.restart();
@@ -59,11 +53,14 @@ TEST(StageDeadline, TheReserveIsWhatCutFramesNeededToEndAtT) {
   EXPECT_DOUBLE_EQ(d.reserveMs(T), 1.5);
   cutFrame(40.0);  // one preempted frame: the median holds
   EXPECT_DOUBLE_EQ(d.reserveMs(T), 1.5);
-  for (int f = 0; f < 7; ++f) cutFrame(5.0);
+  for (int f = 0; f < 7; ++f) cutFrame(8.0);
   EXPECT_DOUBLE_EQ(d.reserveMs(T), most) << "at most kMaxReserveShare of T";
+  d.learn(1'000'000, 1.0);
+  EXPECT_EQ(d.shadowTicks(T), uint32_t((T - most) * 1e6));
+  for (int f = 0; f < 7; ++f) d.learnPassTimes(4.0, 2.0);
+  EXPECT_EQ(d.shadowTicks(T), 1u) << "a reserve past the pass's share cuts it at once (its leave-outs alone)";
   for (int f = 0; f < 7; ++f) cutFrame(0.1);
   EXPECT_DOUBLE_EQ(d.reserveMs(T), least) << "cut frames that ended under T give it back";
-  d.learn(1'000'000, 1.0);
   for (int f = 0; f < 7; ++f) cutFrame(1.0);
   EXPECT_DOUBLE_EQ(d.reserveMs(T), 1.0);
   EXPECT_EQ(d.ticks(T, T), uint32_t((T - 1.0) * 1e6));

@@ -380,8 +380,8 @@ struct SelectionStage::Impl {
       deadline.learn(header[21], ms);
     }
     if (slot.selected) {
-      if (t.deadlineCutPixels == header[26]) deadline.learnEffects(t.passMs[size_t(Pass::TraceEffects)].value_or(0.0));
-      deadline.learnFill(t.passMs[size_t(Pass::FillEffects)].value_or(0.0));
+      if (t.deadlineCutPixels == header[26])
+        deadline.learnPassTimes(t.passMs[size_t(Pass::TraceEffects)].value_or(0.0), t.passMs[size_t(Pass::FillEffects)].value_or(0.0));
       if (t.deadlineCutPixels > 0) deadline.learnCut(t.rtStageMs(), s.budgetMs, slot.deadlineReserveMs);
     }
     if (slot.stageSkipped) {
