@@ -128,8 +128,8 @@ int main(int argc, char** argv) {
         for (const ObjectMetrics& m : renderer.objectMetrics()) visible += m.pixels > 0;
         std::vector<double> cov, sel;
         for (size_t f = 3; f < t.size(); ++f) {
-          cov.push_back(t[f].passMs[size_t(Pass::Coverage)].value_or(0.0));
-          sel.push_back(t[f].passMs[size_t(Pass::Select)].value_or(0.0));
+          cov.push_back(t[f].ms(Pass::Coverage));
+          sel.push_back(t[f].ms(Pass::Select));
           sorted += t[f].selectionSorted;
         }
         if (!row.binds) fitsTotalMs = t.back().predictedTraceMs;  // the next row's policy, binding

@@ -248,6 +248,7 @@ struct FrameTiming {
   std::optional<bool> costsMatchCpu;
   std::array<std::optional<double>, kPassCount> passMs{};  // GPU milliseconds
   std::array<PassSkip, kPassCount> skipped{};               // why each pass without a time was left out
+  double ms(Pass p) const { return passMs[size_t(p)].value_or(0.0); }  // 0 where the pass did not run
   double totalMs() const;
   double traceMs() const;    // the trace passes (shadows, effects) and the fill of reflections and refractions at reduced rates
   double rtStageMs() const;  // the ray-tracing stage T bounds: coverage + select + trace

@@ -117,12 +117,12 @@ double FrameTiming::totalMs() const {
 
 double FrameTiming::traceMs() const {
   double ms = 0.0;
-  for (Pass p : {Pass::TraceShadows, Pass::TraceEffects, Pass::FillEffects}) ms += passMs[size_t(p)].value_or(0.0);
+  for (Pass p : {Pass::TraceShadows, Pass::TraceEffects, Pass::FillEffects}) ms += this->ms(p);
   return ms;
 }
 
 double FrameTiming::rtStageMs() const {
-  return passMs[size_t(Pass::Coverage)].value_or(0.0) + passMs[size_t(Pass::Select)].value_or(0.0) + traceMs();
+  return ms(Pass::Coverage) + ms(Pass::Select) + traceMs();
 }
 
 void validateSettings(const RenderSettings& s) {

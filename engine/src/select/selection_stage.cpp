@@ -372,16 +372,11 @@ struct SelectionStage::Impl {
     t.fillChunks = slot.selected ? header[11] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
     t.deadlineCutPixels = slot.selected ? header[24] : 0u;
-    // The device clock's rate: its span from coverage's start to the shadow pass's end (the
-    // select pass's without one) against the same passes' timestamps (stage_deadline.h).
-    if (slot.selected && header[20] != 0u) {
-      double ms = 0.0;
-      for (Pass p : {Pass::Coverage, Pass::Select, Pass::TraceShadows}) ms += t.passMs[size_t(p)].value_or(0.0);
-      deadline.learn(header[21], ms);
-    }
     if (slot.selected) {
-      if (t.deadlineCutPixels == header[26])
-        deadline.learnPassTimes(t.passMs[size_t(Pass::TraceEffects)].value_or(0.0), t.passMs[size_t(Pass::FillEffects)].value_or(0.0));
+      // The device clock's rate: its span from coverage's start to the shadow pass's end (the
+      // select pass's without one) against the same passes' timestamps (stage_deadline.h).
+      if (header[20] != 0u) deadline.learn(header[21], t.ms(Pass::Coverage) + t.ms(Pass::Select) + t.ms(Pass::TraceShadows));
+      if (t.deadlineCutPixels == header[26]) deadline.learnPassTimes(t.ms(Pass::TraceEffects), t.ms(Pass::FillEffects));
       if (t.deadlineCutPixels > 0) deadline.learnCut(t.rtStageMs(), s.budgetMs, slot.deadlineReserveMs);
     }
     if (slot.stageSkipped) {

@@ -30,7 +30,7 @@ class StageDeadline {
   // learned as their recent median, within [kDrainShare, kMaxReserveShare] of T (kDrainShare
   // until a frame was cut): the leave-outs of a pass over most of the screen cost 0.5-3 ms on
   // lavapipe, which a fixed 3% of T left `paper` over T in most of its cut frames, and 20%
-  // left `benefit-rates` 0.7 ms over T = 2.4 ms on AlphaBlendModeTest.
+  // left `benefit-rates` 0.7 ms over T = 2.4 ms on AlphaBlendModeTest (one run, the machine busy).
   double reserveMs(double budgetMs) const {
     const double least = kDrainShare * budgetMs;
     return needed_.empty() ? least : std::clamp(needed_.value(), least, kMaxReserveShare * budgetMs);
