@@ -2,11 +2,13 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_ARB_shader_clock : require
+#extension GL_EXT_shader_realtime_clock : require
 #include "include/bindings.glsl"
 #include "include/gbuffer.glsl"
-#include "include/item_stats.glsl"
+#include "include/deadline_cut.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
 #include "include/tile_pixel.glsl"
@@ -23,7 +25,8 @@
 // 30-frame orbit at 640x360 on lavapipe: 0.80 of its time without). The fill ran inside the effects pass
 // before, from the tile's traced pixels in shared memory behind a barrier (which lavapipe runs
 // as coroutines): as a pass of its own it costs about the same and reads across tiles
-// (docs/SELECTION.md, "Ray rates"). The stage's deadline does not cut it (include/stage_clock.glsl).
+// (docs/SELECTION.md, "Ray rates"). The stage's deadline cuts it only at about T itself
+// (include/stage_clock.glsl): a subgroup past it fills nothing and counts the pixels it leaves.
 layout(local_size_x = RB_TRACE_GROUP_SIZE) in;
 
 #define RB_FILL_MEASURE_STRIDE 4u
@@ -33,7 +36,13 @@ void main() {
   bool measured = measuringItems() && (gl_WorkGroupID.x + frame.sizeLightsFrame.w) % RB_FILL_MEASURE_STRIDE == 0u;
   uint start = measured ? clockNow() : 0u;
   uint objectId;
-  bvec2 filled = fillEffects(pixel, objectId);
+  bool past = fillPastDeadline(), left;
+  bvec2 filled = fillEffects(pixel, past, objectId, left);
+  if (past) {  // the whole subgroup: one atomic
+    uint leftHere = subgroupAdd(left ? 1u : 0u);
+    if (subgroupElect() && leftHere != 0u) atomicAdd(deadlineCut.w, leftHere);
+    return;
+  }
   if (!measured) return;
   bool filling = any(filled);
   uint share = clockShare(start, clockNow(), subgroupAdd(filling ? 1u : 0u));

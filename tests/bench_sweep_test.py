@@ -18,8 +18,8 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCENE = ROOT.parent / "shared" / "scenes" / "ci" / "CornellBox"
 
 FRAME_COLUMNS = ["scene", "path", "policy", "budget_index", "budget_ms", "repeat", "order", "frame", "coverage_ms", "select_ms",
-                 "trace_ms", "rt_stage_ms", "shadow_maps_ms", "env_fallback_ms", "frame_ms", "predicted_trace_ms", "trace_budget_ms",
-                 "candidates_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound", "selection_changes", "item_option_changes", "partial_share", "deadline_cut_pixels", "rmse",
+                 "trace_ms", "trace_shadows_ms", "trace_effects_ms", "fill_effects_ms", "rt_stage_ms", "shadow_maps_ms", "env_fallback_ms", "frame_ms", "predicted_trace_ms", "trace_budget_ms",
+                 "candidates_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound", "selection_changes", "item_option_changes", "partial_share", "deadline_cut_pixels", "fill_cut_pixels", "rmse",
                  "psnr", "image", "flip"]
 SELECTION = ["selected_objects", "rays", "selected_value", "predicted_trace_ms"]
 
@@ -62,6 +62,9 @@ def main(raybudget, out):
         parts = sum(float(r[k]) for k in ("coverage_ms", "select_ms") if r[k]) + float(r["trace_ms"])
         if abs(stage - parts) > 1e-3 * max(1.0, stage):
             fail(f"rt_stage_ms {stage} is not coverage + select + trace ({parts})")
+        passes = sum(float(r[k]) for k in ("trace_shadows_ms", "trace_effects_ms", "fill_effects_ms") if r[k])
+        if abs(float(r["trace_ms"]) - passes) > 1e-3 * max(1.0, stage):
+            fail(f"trace_ms {r['trace_ms']} is not its passes' sum ({passes})")
     for r in by_policy["all"]:
         if float(r["flip"]) != 0.0 or float(r["rmse"]) != 0.0:
             fail(f"`all` against the reference: flip {r['flip']}, rmse {r['rmse']} (repeat {r['repeat']}, frame {r['frame']})")

@@ -1,6 +1,7 @@
 // The ray-tracing stage's deadline (RenderSettings::stageDeadline, shaders/include/stage_clock.glsl):
 // the pixels past it keep exactly the fallbacks `none` shows; a selection priced far too cheap
-// holds T with it and not without it; the device clock's rate is learned from the passes'
+// holds T with it and not without it; past the fill's own deadline the pixels a reduced rate
+// skipped keep their fallbacks; the device clock's rate is learned from the passes'
 // timestamps, each pass's deadline leaves the passes after it their recent time, and the
 // reserve after the deadline is learned from the frames it cut.
 #include <algorithm>
@@ -37,8 +38,20 @@ TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
   for (int f = 0; f < 4; ++f) d.learnPassTimes(10.0, 3.0);
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(2.0, 4.0));
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(1.0, 4.0));
+  // The fill's deadline: T, whatever the reserve; a cut fill's frame is learned with the fill's
+  // recent time in place of its cut one.
+  EXPECT_EQ(d.fillTicks(4.0), 4'000'000u);
+  for (int f = 0; f < 7; ++f) d.learnCut(5.0, 4.0, 1.0);
+  EXPECT_DOUBLE_EQ(d.reserveMs(4.0), 2.0);
+  EXPECT_EQ(d.fillTicks(4.0), 4'000'000u);
+  EXPECT_DOUBLE_EQ(d.stageWithWholeFill(4.0, 1.0), 6.0) << "a fill cut at 1 ms where 3 ms was recent";
+  EXPECT_DOUBLE_EQ(d.stageWithWholeFill(4.0, 3.5), 4.0) << "a fill that ran longer than its recent time";
   d.restart();
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0, 4.0)) << "a restarted selection's passes are another's";
+  // The fill's time left by the trace passes is the second largest of its last 7.
+  for (double fill : {0.2, 0.2, 0.2, 0.2, 0.2, 0.6, 1.0}) d.learnPassTimes(1.0, fill);
+  EXPECT_EQ(d.effectsTicks(4.0), d.ticks(3.4, 4.0)) << "one long fill does not move it";
+  EXPECT_EQ(d.shadowTicks(4.0), d.ticks(2.4, 4.0));
 }
 
 // The reserve after the deadline is what the cut frames needed to end at T: a stage that runs
@@ -96,6 +109,64 @@ TEST(StageDeadline, PixelsPastItKeepTheFallbacksNoneShows) {
     EXPECT_TRUE(std::all_of(img.tracedMask.begin(), img.tracedMask.end(), [](uint32_t m) { return m == 0u; })) << "nothing traced";
     EXPECT_EQ(test::largestLdrDifference(img, fallback), 0) << "rate " << int(rate);
   }
+}
+
+// The fill's deadline (at about T) cuts the fill of reflections and refractions a reduced rate
+// skipped: past it (1 tick: every pixel) the pixels the rate traced show what they show with the
+// fill, and the ones it skipped show exactly what `none` shows (screen-space reflections off,
+// which read the previous frame and so differ between the two; ray-traced shadows off, whose fill
+// runs in the lighting pass); the count says how many were left, and the fill, where it runs,
+// changes some of them.
+TEST(StageDeadline, TheFillPastItsDeadlineLeavesTheSkippedPixelsTheirFallbacks) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  auto settings = [](Policy policy) {
+    RenderSettings s = test::settingsFor(policy, 160, 96);
+    s.screenSpaceReflections = false;
+    s.rayTracing.shadows = false;
+    s.rayTracing.rate = ItemRate::Quarter;
+    s.budgetMs = 1000.0f;  // every item fits
+    return s;
+  };
+  Renderer reference(scene, settings(Policy::None));
+  const Camera camera = defaultCamera(scene, reference.aspect());
+  (void)test::renderStill(reference, camera, 3);
+  const FrameImages fallback = reference.readback(true);
+  auto render = [&](uint32_t fillDeadlineTicks, std::vector<FrameTiming>& t) {
+    testing::Checks checks;
+    checks.fillDeadlineTicks = fillDeadlineTicks;
+    Renderer renderer(scene, settings(Policy::Benefit), checks);
+    t = test::renderStill(renderer, camera, 3);
+    test::expectValidationClean(renderer.validationMessages());
+    return renderer.readback(true);
+  };
+  std::vector<FrameTiming> cutFrames, filledFrames;
+  const FrameImages cut = render(1, cutFrames), filled = render(0, filledFrames);
+  ASSERT_EQ(cutFrames.size(), 3u);
+  ASSERT_EQ(filledFrames.size(), 3u);
+  for (size_t f = 0; f < 3; ++f) {
+    EXPECT_GT(cutFrames[f].selectedObjects, 0u) << "the selection must hold something for the fill to cut";
+    EXPECT_GT(cutFrames[f].fillCutPixels, 0u) << "frame " << f;
+    EXPECT_EQ(cutFrames[f].deadlineCutPixels, 0u) << "the trace passes keep their deadlines";
+    EXPECT_EQ(filledFrames[f].fillCutPixels, 0u) << "a fill within T is not cut";
+  }
+  size_t traced = 0, skipped = 0, filledDiffers = 0, cutDiffers = 0;
+  for (size_t p = 0; p < cut.tracedMask.size(); ++p) {
+    const bool same = std::equal(cut.ldrRgba8.begin() + 4 * p, cut.ldrRgba8.begin() + 4 * p + 4,
+                                 (cut.tracedMask[p] != 0u ? filled : fallback).ldrRgba8.begin() + 4 * p);
+    cutDiffers += same ? 0 : 1;
+    if (cut.tracedMask[p] != 0u) {
+      ++traced;
+      continue;
+    }
+    ++skipped;
+    filledDiffers += std::equal(filled.ldrRgba8.begin() + 4 * p, filled.ldrRgba8.begin() + 4 * p + 4, fallback.ldrRgba8.begin() + 4 * p) ? 0 : 1;
+  }
+  EXPECT_GT(traced, 0u);
+  EXPECT_GT(skipped, 0u);
+  EXPECT_EQ(cutDiffers, 0u) << "traced pixels as with the fill, skipped ones as `none`";
+  EXPECT_GT(filledDiffers, 0u) << "the fill must change skipped pixels, or the test shows nothing";
+  std::printf("fill cut: %u pixels left of the last frame; %zu traced, %zu not, %zu of them filled otherwise\n", cutFrames.back().fillCutPixels,
+              traced, skipped, filledDiffers);
 }
 
 // A selection priced at a twentieth of its time: without the deadline the stage runs far past

@@ -80,7 +80,7 @@ layout(set = 0, binding = 34, std430) buffer TileListBlock {
   uvec4 fillDispatch;    // the fill's (fill_effects.comp): x groups, y 1, z 1, w 0
   uvec4 tileCounts;      // the tiles listed for the shadow pass (x) and the effect pass (y); zw 0
   uvec4 stageClock;      // the stage's time on the device clock, for its deadline (include/stage_clock.glsl)
-  uvec4 deadlineCut;     // what the deadline left to the fallbacks: x pixels, y their predicted work, z the shadow pass's pixels; w 0
+  uvec4 deadlineCut;     // what the deadline left to the fallbacks: x pixels, y their predicted work, z the shadow pass's pixels; w the pixels the fill left
   uint tiles[];          // from RB_SHADOW_CHUNKS, RB_EFFECT_CHUNKS and RB_FILL_CHUNKS each list's chunks
                          // (tile_pixel.glsl's chunkWord)
 };

@@ -8,16 +8,24 @@
 #include "include/item_stats.glsl"
 #include "include/stage_clock.glsl"
 
-// Whether the stage is past its deadline, the same for the whole subgroup (one clock read
-// each): `effects` for the effects pass, else the shadow pass.
-bool pastDeadline(bool effects) {
-  uint deadline = effects ? frame.stageDeadline.x : frame.stageDeadline.y;
+// Whether the stage has run past `deadline` ticks, the same for the whole subgroup (one clock
+// read each): `afterEffects` for the effects pass and the fill after it, whose time counts from
+// the effects pass's start (the fallback and lighting passes before it are not the stage's),
+// else the shadow pass.
+bool stagePast(uint deadline, bool afterEffects) {
   if (deadline == 0u || stageClock.x == 0u) return false;
   uint since = subgroupBroadcastFirst(deviceClock()) - stageClock.x;
-  uint began = stageClock.z;  // this pass's start, effects only (0: workgroup 0 has not begun)
-  uint spent = !effects ? since : stageClock.y + (began == 0u ? 0u : since - (began - 1u));
+  uint began = stageClock.z;  // the effects pass's start (0: its workgroup 0 has not begun)
+  uint spent = !afterEffects ? since : stageClock.y + (began == 0u ? 0u : since - (began - 1u));
   return spent > deadline;
 }
+
+// Whether a trace pass is past its deadline: `effects` for the effects pass, else the shadow pass.
+bool pastDeadline(bool effects) { return stagePast(effects ? frame.stageDeadline.x : frame.stageDeadline.y, effects); }
+
+// Whether the fill of reflections and refractions is past its deadline (about T itself): it is
+// cut only where the stage would else end past T.
+bool fillPastDeadline() { return stagePast(frame.stageDeadline.z, true); }
 
 // The work the selection predicted for one pixel of item `effect` of the object traced at `rate`
 // (0 where its cost was never learned, and for the object policies, which learn none per item).

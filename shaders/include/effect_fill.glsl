@@ -64,8 +64,11 @@ void addToPath(ivec2 pixel, int path, vec3 change) {
 }
 
 // Fills the pixel's paths (x reflection, y refraction) that their items' reduced rates skipped
-// this frame; returns them, and the pixel's object.
-bvec2 fillEffects(ivec2 pixel, out uint objectId) {
+// this frame; returns them, and the pixel's object. `past`: the fill is past its deadline
+// (include/deadline_cut.glsl), so it fills nothing and `left` says whether an item's rate
+// skipped the pixel (the fill's pixels the deadline left).
+bvec2 fillEffects(ivec2 pixel, bool past, out uint objectId, out bool left) {
+  left = false;
   objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
   if (objectId == RB_NO_OBJECT) return bvec2(false);
   Selection sel = selectionAt(objectId, pixel);
@@ -73,6 +76,8 @@ bvec2 fillEffects(ivec2 pixel, out uint objectId) {
   bool skipped[2] = bool[2](itemSelected(sel, RB_ITEM_REFLECTIONS) && !rateTraces(rates[0], pixel),
                             itemSelected(sel, RB_ITEM_REFRACTIONS) && !rateTraces(rates[1], pixel));
   if (!skipped[0] && !skipped[1]) return bvec2(false);
+  left = past;
+  if (past) return bvec2(false);
   Surface s;
   if (!readFillSurface(pixel, objectId, s)) return bvec2(false);
   bvec2 paths = surfacePaths(s, RB_RT_REFLECTIONS | RB_RT_REFRACTIONS);

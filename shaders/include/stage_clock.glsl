@@ -6,8 +6,9 @@
 // at 2-10x its prediction). The effects pass stops at T less the fill's recent time (x), the
 // shadow pass at T less the effects' and the fill's (y: select/stage_deadline.h), so that
 // shadows that ran past their prediction are cut rather than the reflections and refractions
-// after them. The fill is not cut: without it 15 of 16 pixels of an item at 1/16 keep the
-// fallback, a far worse image per millisecond saved than any traced pixel left out.
+// after them. The fill is cut only at about T itself (z), where the stage would else end past
+// it: without the fill 15 of 16 pixels of an item at 1/16 keep the fallback, a far worse image
+// per millisecond saved than any traced pixel left out.
 // The stage is not contiguous on the queue: the fallback and lighting passes run between the
 // shadow pass and the effects pass. Its time is counted in TileListBlock::stageClock, reset to
 // 0 before coverage (coverage_pass.cpp):
@@ -21,7 +22,8 @@
 //   x the pixels the trace passes would have traced or probed (FrameTiming::deadlineCutPixels),
 //   y the work the selection predicted for them, in 1/RB_CUT_WORK_UNITS of its units (items
 //     only), which the time scale takes off the frame's prediction before it learns from it,
-//   z of x, the shadow pass's (the effects pass's time is learned where it cut none).
+//   z of x, the shadow pass's (the effects pass's time is learned where it cut none),
+//   w the pixels the fill would have filled past its deadline (FrameTiming::fillCutPixels).
 // The effects pass counts y + its time since z.
 // The clock's unit is the device's: the CPU learns ticks per millisecond from y and the
 // timestamps of the same passes (selection_stage.cpp). What a trace pass does past its deadline

@@ -128,8 +128,9 @@ struct RenderSettings {
   // holds T more often and uses less of it (0.5..0.99; 0.5: the median error, about none).
   float budgetConfidence = 0.9f;
   // Budgeted policies, with learnTimeScale: the trace passes stop tracing once the stage has run
-  // for about T on the device's clock (the fill is never cut), and the pixels left keep their
-  // fallbacks (FrameTiming::deadlineCutPixels); the selection's prediction decides what is traced, the
+  // for about T on the device's clock, less the recent time of the fill after them, and the
+  // pixels left keep their fallbacks (FrameTiming::deadlineCutPixels); the fill stops at about T
+  // itself (FrameTiming::fillCutPixels). The selection's prediction decides what is traced, the
   // deadline bounds the stage where the prediction was wrong (docs/SELECTION.md, "The deadline").
   bool stageDeadline = true;
   // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
@@ -208,6 +209,9 @@ struct FrameTiming {
   // Pixels the stage's deadline (RenderSettings::stageDeadline) left to their fallbacks: per
   // trace pass, those it would have traced (or probed) after the deadline passed
   uint32_t deadlineCutPixels = 0;
+  // Pixels a reduced rate skipped that the fill of reflections and refractions left to their
+  // fallbacks past its own deadline, at about T (the stage would else have ended past T)
+  uint32_t fillCutPixels = 0;
   uint32_t shadowMapViews = 0;  // shadow-map layers and cube faces rendered (0: every map was current)
   uint32_t shadowMapDraws = 0;  // draw calls into them (the casters inside each view)
   uint32_t shadowMapTexels = 0; // texels of the rendered views (each map's side from its screen coverage)

@@ -14,6 +14,10 @@ struct Checks {
   // place of the one learned from T (RenderSettings::stageDeadline), whatever the policy; 1
   // leaves every pixel the trace passes would trace to its fallback.
   uint32_t stageDeadlineTicks = 0;
+  // Nonzero: the fill's deadline (of reflections and refractions a reduced rate skipped) in
+  // device-clock ticks, in place of the one at about T; 1 leaves every pixel it would fill to
+  // its fallback.
+  uint32_t fillDeadlineTicks = 0;
 };
 
 }  // namespace raybudget::testing

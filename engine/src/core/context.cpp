@@ -69,7 +69,8 @@ struct Context::Impl {
   };
 
   RenderSettings settings;
-  uint32_t deadlineTicks = 0;  // testing::Checks::stageDeadlineTicks (0: the one learned from T)
+  uint32_t deadlineTicks = 0;      // testing::Checks::stageDeadlineTicks (0: the one learned from T)
+  uint32_t fillDeadlineTicks = 0;  // testing::Checks::fillDeadlineTicks (0: the one at about T)
   bool stageSkipped = false;  // the frame being recorded leaves the ray-tracing stage out (SelectionStage::skipsStage)
   SceneEffects effects;  // what the scene can show at all: no pass, no pipeline for the rest
   bool ssrUseful;        // a material is smooth enough for screen-space reflections
@@ -109,6 +110,7 @@ struct Context::Impl {
   Impl(const HostDevice& host, const Scene& s, const RenderSettings& rs, const testing::Checks& checks)
       : settings(rs),
         deadlineTicks(checks.stageDeadlineTicks),
+        fillDeadlineTicks(checks.fillDeadlineTicks),
         effects(raybudget::sceneEffects(s, rs.rayTracing.maxRoughness)),
         ssrUseful(raybudget::sceneEffects(s, RB_SSR_MAX_ROUGHNESS).reflections),
         sunDirection(sunOf(s)),
@@ -202,7 +204,10 @@ struct Context::Impl {
     u.previousViewProj = previousViewProj.value_or(u.viewProj);
     u.previousCamera = glm::vec4(previousCamera, previousViewProj ? 1.0f : 0.0f);
     u.ssr = glm::vec4(slot.ssr == PassSkip::None ? 1.0f : 0.0f, RB_SSR_MAX_ROUGHNESS, ssrReach, 0.0f);
-    u.stageDeadline = glm::uvec4(deadlineTicks != 0 ? glm::uvec2(deadlineTicks) : selection.deadlineTicks(settings), 0u, 0u);
+    glm::uvec3 deadlines = selection.deadlineTicks(settings);
+    if (deadlineTicks != 0) deadlines = {deadlineTicks, deadlineTicks, deadlines.z};
+    if (fillDeadlineTicks != 0) deadlines.z = fillDeadlineTicks;
+    u.stageDeadline = glm::uvec4(deadlines, 0u);
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 

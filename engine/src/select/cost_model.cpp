@@ -196,11 +196,19 @@ double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height) {
 }
 
 double RecentMedian::value() const {
-  const size_t n = std::min(count_, kSize);
+  const size_t n = size();
   if (n == 0) return 0.0;
   std::array<double, kSize> sorted = values_;
   std::sort(sorted.begin(), sorted.begin() + n);
   return sorted[(n - 1) / 2];
+}
+
+double RecentMedian::secondLargest() const {
+  const size_t n = size();
+  if (n == 0) return 0.0;
+  std::array<double, kSize> sorted = values_;
+  std::sort(sorted.begin(), sorted.begin() + n);
+  return sorted[n >= 3 ? n - 2 : n - 1];
 }
 
 double TimeScale::msPerUnit(CostUnit unit) const {

@@ -169,6 +169,8 @@ class RecentMedian {
   bool empty() const { return count_ == 0; }
   size_t size() const { return std::min(count_, kSize); }
   double value() const;  // 0 when empty
+  // The second largest (the largest of one or two): what all but one outlier stayed under.
+  double secondLargest() const;
   void add(double x) { values_[count_++ % kSize] = x; }
   // A saved value, as if it had been observed for a whole window.
   void fill(double x) {

@@ -372,12 +372,16 @@ struct SelectionStage::Impl {
     t.fillChunks = slot.selected ? header[11] : 0u;
     t.raysTraced = slot.selected ? header[3] : 0u;
     t.deadlineCutPixels = slot.selected ? header[24] : 0u;
+    t.fillCutPixels = slot.selected ? header[27] : 0u;
     if (slot.selected) {
       // The device clock's rate: its span from coverage's start to the shadow pass's end (the
       // select pass's without one) against the same passes' timestamps (stage_deadline.h).
       if (header[20] != 0u) deadline.learn(header[21], t.ms(Pass::Coverage) + t.ms(Pass::Select) + t.ms(Pass::TraceShadows));
-      if (t.deadlineCutPixels == header[26]) deadline.learnPassTimes(t.ms(Pass::TraceEffects), t.ms(Pass::FillEffects));
-      if (t.deadlineCutPixels > 0) deadline.learnCut(t.rtStageMs(), s.budgetMs, slot.deadlineReserveMs);
+      const bool fillCut = t.fillCutPixels > 0;
+      if (t.deadlineCutPixels == header[26] && !fillCut) deadline.learnPassTimes(t.ms(Pass::TraceEffects), t.ms(Pass::FillEffects));
+      if (t.deadlineCutPixels > 0)
+        deadline.learnCut(fillCut ? deadline.stageWithWholeFill(t.rtStageMs(), t.ms(Pass::FillEffects)) : t.rtStageMs(), s.budgetMs,
+                          slot.deadlineReserveMs);
     }
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
@@ -535,9 +539,10 @@ void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot,
   impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames);
 }
 
-glm::uvec2 SelectionStage::deadlineTicks(const RenderSettings& s) const {
-  if (!isBudgeted(s.policy) || !s.learnTimeScale || !s.stageDeadline) return glm::uvec2(0u);
-  return {impl_->deadline.effectsTicks(s.budgetMs), impl_->deadline.shadowTicks(s.budgetMs)};
+glm::uvec3 SelectionStage::deadlineTicks(const RenderSettings& s) const {
+  if (!isBudgeted(s.policy) || !s.learnTimeScale || !s.stageDeadline) return glm::uvec3(0u);
+  const StageDeadline& d = impl_->deadline;
+  return {d.effectsTicks(s.budgetMs), d.shadowTicks(s.budgetMs), d.fillTicks(s.budgetMs)};
 }
 
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {

@@ -50,9 +50,9 @@ class SelectionStage {
   // temporal fill, shared/selection.h's RB_FILL_QUALITY_STILL).
   void recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames);
   // The stage's deadlines for the frame's uniforms in device-clock ticks (stage_deadline.h), the
-  // effects pass's (x) and the shadow pass's (y): 0, none, unless a budgeted policy learns its
-  // time scale with RenderSettings::stageDeadline.
-  glm::uvec2 deadlineTicks(const RenderSettings& settings) const;
+  // effects pass's (x), the shadow pass's (y) and the fill's (z): 0, none, unless a budgeted
+  // policy learns its time scale with RenderSettings::stageDeadline.
+  glm::uvec3 deadlineTicks(const RenderSettings& settings) const;
   // After the trace passes: the copy of the tile list's header (tiles and rays traced).
   void recordStats(VkCommandBuffer cmd, uint32_t slot) const;
   // After the slot's fence: the frame's selection stats into `t` (its pass times read), and

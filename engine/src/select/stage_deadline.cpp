@@ -17,9 +17,14 @@ void StageDeadline::learn(uint32_t spanTicks, double spanMs) {
 }
 
 uint32_t StageDeadline::ticks(double atMs, double budgetMs) const {
-  if (!calibrated() || !(budgetMs > 0.0)) return 0;
+  if (!(budgetMs > 0.0)) return 0;
   // A reserve that takes the pass's whole share leaves it its leave-outs alone: one tick.
-  const double t = std::max((atMs - reserveMs(budgetMs)) * ticksPerMs(), 1.0);
+  return clockTicks(atMs - reserveMs(budgetMs));
+}
+
+uint32_t StageDeadline::clockTicks(double ms) const {
+  if (!calibrated()) return 0;
+  const double t = std::max(ms * ticksPerMs(), 1.0);
   // Spans are differences of the clock's low 32 bits: half its range keeps them unambiguous.
   if (!std::isfinite(t) || t >= double(1u << 31)) return 0;
   return uint32_t(t);
