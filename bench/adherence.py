@@ -16,7 +16,7 @@ between frames; this is the steady case, a camera moving as in a game.
 
     .venv-bench/bin/python bench/adherence.py [--scenes ...] [--frames 300] [--warmup 20]
         [--fractions 0.1,0.25,0.5,1.0] [--policies benefit] [--extra "--budget-confidence 0.5"]
-        [--out results/adherence]
+        [--out results/adherence] [--aggregate-only]
 """
 import argparse
 import csv
@@ -30,10 +30,20 @@ import run  # the benchmark's paths and scene list
 SLACK = 1.05
 
 
-def render(raybudget, scene, out, args):
-    subprocess.run([raybudget, "render", str(scene), "--out", str(out)] + args, check=True, capture_output=True)
+def render(raybudget, scene, out, args, reuse=False):
+    """The run's stats.csv rows; `reuse`: those of a run already in `out`, if there is one."""
+    if not (reuse and (out / "stats.csv").is_file()):
+        subprocess.run([raybudget, "render", str(scene), "--out", str(out)] + args, check=True, capture_output=True)
     with open(out / "stats.csv") as f:
         return list(csv.DictReader(f))
+
+
+def fixed_stage_ms(frames):
+    """The stage's fixed cost t0 from a run under a budget nothing fits: the median stage time of
+    the frames that ran it after the first (cold) one. Once the renderer has learned t0 from them
+    it leaves the stage out (budget_below_fixed_cost), and those frames time nothing."""
+    ran = [float(r["rt_stage_ms"]) for r in frames[1:] if float(r["rt_stage_ms"]) > 0.0]
+    return statistics.median(ran) if ran else 0.0
 
 
 def quantile(values, q):
@@ -53,6 +63,7 @@ def main(argv):
     p.add_argument("--extra", default="", help="more raybudget render options for the budgeted runs")
     p.add_argument("--out", default="results/adherence")
     p.add_argument("--raybudget", default=str(run.ROOT / "build" / "tools" / "raybudget"))
+    p.add_argument("--aggregate-only", action="store_true", help="read the runs already in --out where there are any")
     a = p.parse_args(argv)
     scenes = [pathlib.Path(s) for s in a.scenes] if a.scenes else run.GENERATED
     w, h = a.size.split("x")
@@ -66,11 +77,11 @@ def main(argv):
     for scene in scenes:
         for path in a.paths.split(","):
             camera = ["--camera", path]
-            full = render(a.raybudget, scene, out / f"{scene.stem}-{path}-all", common + camera + ["--policy", "all"])[a.warmup:]
+            full = render(a.raybudget, scene, out / f"{scene.stem}-{path}-all", common + camera + ["--policy", "all"], a.aggregate_only)[a.warmup:]
             full_ms = statistics.mean(float(r["rt_stage_ms"]) for r in full)
-            fixed = render(a.raybudget, scene, out / f"{scene.stem}-{path}-fixed", common[:4] + ["--frames", "30"] + camera
-                           + ["--policy", "density", "--budget-ms", "0.01"])
-            fixed_ms = statistics.median(float(r["rt_stage_ms"]) for r in fixed[10:])
+            fixed_ms = fixed_stage_ms(render(a.raybudget, scene, out / f"{scene.stem}-{path}-fixed",
+                                             common[:4] + ["--frames", "30"] + camera + ["--policy", "density", "--budget-ms", "0.01"],
+                                             a.aggregate_only))
             for policy in a.policies.split(","):
                 for fraction in [float(x) for x in a.fractions.split(",")]:
                     budget = fraction * full_ms
@@ -78,7 +89,7 @@ def main(argv):
                         continue
                     frames = render(a.raybudget, scene, out / f"{scene.stem}-{path}-{policy}-{fraction}",
                                     common + camera + ["--policy", policy, "--budget-ms", f"{budget:.4f}", "--optimal-bound"]
-                                    + a.extra.split())[a.warmup:]
+                                    + a.extra.split(), a.aggregate_only)[a.warmup:]
                     within = statistics.mean(float(r["rt_stage_ms"]) <= SLACK * budget for r in frames)
                     binding = [float(r["rt_stage_ms"]) / budget for r in frames
                                if float(r["candidates_ms"]) > float(r["trace_budget_ms"])]
