@@ -195,20 +195,20 @@ double priorMsPerUnit(CostUnit unit, uint32_t width, uint32_t height) {
   return unit == CostUnit::PaperCost ? kPriorMsPerRay * double(width) * double(height) : kPriorMsPerRay / RB_PRIOR_WORK_PER_RAY;
 }
 
-double RecentMedian::value() const {
+double RecentMedian::sortedAt(size_t (*index)(size_t n)) const {
   const size_t n = size();
   if (n == 0) return 0.0;
   std::array<double, kSize> sorted = values_;
   std::sort(sorted.begin(), sorted.begin() + n);
-  return sorted[(n - 1) / 2];
+  return sorted[index(n)];
+}
+
+double RecentMedian::value() const {
+  return sortedAt([](size_t n) { return (n - 1) / 2; });
 }
 
 double RecentMedian::secondLargest() const {
-  const size_t n = size();
-  if (n == 0) return 0.0;
-  std::array<double, kSize> sorted = values_;
-  std::sort(sorted.begin(), sorted.begin() + n);
-  return sorted[n >= 3 ? n - 2 : n - 1];
+  return sortedAt([](size_t n) { return n >= 3 ? n - 2 : n - 1; });
 }
 
 double TimeScale::msPerUnit(CostUnit unit) const {

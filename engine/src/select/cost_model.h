@@ -183,6 +183,9 @@ class RecentMedian {
   void clear() { count_ = 0; }
 
  private:
+  // The observations sorted, at `index` of their count (0 when empty).
+  double sortedAt(size_t (*index)(size_t n)) const;
+
   std::array<double, kSize> values_{};
   size_t count_ = 0;
 };
