@@ -146,8 +146,12 @@ bvec2 pathsHere(Selection sel, ivec2 pixel) {
 
 // Past the deadline: the paths the pixel would have traced keep the fallback, and what the stage
 // learns does without them (include/deadline_cut.glsl's leavePixel).
-void leaveEffects(Surface s, Selection sel, bvec2 here) {
-  bvec2 paths = surfacePaths(s, rbPaths);
+void leaveEffects(ivec2 pixel, uint objectId, Selection sel, bvec2 here) {
+  // The channels that decide the paths, not the whole surface (two fetches of seven, and no
+  // layers): past the deadline, a pixel's leave-out is time the stage spends past T.
+  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
+  if (rti.a > 0.5) return;  // unlit: traced nothing
+  bvec2 paths = materialPaths(rti.r, rti.g, texelFetch(gBaseMetal, pixel, 0).a, rbPaths);
   bool reflects = paths.x && here.x, refracts = paths.y && here.y;
   bvec3 full = bvec3(false);
   float work = 0.0;
@@ -155,9 +159,9 @@ void leaveEffects(Surface s, Selection sel, bvec2 here) {
     uint item = path == 0 ? RB_ITEM_REFLECTIONS : RB_ITEM_REFRACTIONS, rate = itemRate(sel, item);
     bool selected = (path == 0 ? reflects : refracts) && itemSelected(sel, item);
     full[item] = selected && rate == RB_RATE_FULL;
-    if (selected) work += predictedPixelWork(s.objectId, item, rate);
+    if (selected) work += predictedPixelWork(objectId, item, rate);
   }
-  leavePixel(s.objectId, reflects || refracts, full, work, false);
+  leavePixel(objectId, reflects || refracts, full, work, false);
 }
 
 void main() {
@@ -171,8 +175,11 @@ void main() {
   Selection sel = selectionAt(objectId, pixel);
   bvec2 here = pathsHere(sel, pixel);
   if (!any(here)) return;  // fill_effects.comp fills what a reduced rate skipped here
+  if (cut) {
+    leaveEffects(pixel, objectId, sel, here);
+    return;
+  }
   Surface s;
   if (!readSurface(pixel, s) || s.unlit) return;
-  if (cut) leaveEffects(s, sel, here);
-  else traceEffects(pixel, s, sel, here);
+  traceEffects(pixel, s, sel, here);
 }
