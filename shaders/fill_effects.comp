@@ -38,9 +38,8 @@ void main() {
   uint objectId;
   bool past = fillPastDeadline(), left;
   bvec2 filled = fillEffects(pixel, past, objectId, left);
-  if (past) {  // the whole subgroup: one atomic
-    uint leftHere = subgroupAdd(left ? 1u : 0u);
-    if (subgroupElect() && leftHere != 0u) atomicAdd(deadlineCut.w, leftHere);
+  if (past) {  // the whole subgroup
+    countFillCut(left);
     return;
   }
   if (!measured) return;

@@ -149,9 +149,10 @@ bvec2 pathsHere(Selection sel, ivec2 pixel) {
 void leaveEffects(ivec2 pixel, uint objectId, Selection sel, bvec2 here) {
   // The channels that decide the paths, not the whole surface (two fetches of seven, and no
   // layers): past the deadline, a pixel's leave-out is time the stage spends past T.
-  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
-  if (rti.a > 0.5) return;  // unlit: traced nothing
-  bvec2 paths = materialPaths(rti.r, rti.g, texelFetch(gBaseMetal, pixel, 0).a, rbPaths);
+  Surface s;
+  s.objectId = objectId;
+  if (!readEffectChannels(pixel, s)) return;  // unlit: traced nothing
+  bvec2 paths = surfacePaths(s, rbPaths);
   bool reflects = paths.x && here.x, refracts = paths.y && here.y;
   bvec3 full = bvec3(false);
   float work = 0.0;

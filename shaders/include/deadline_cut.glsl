@@ -47,6 +47,12 @@ void countCut(uint pixels, float work, bool shadows) {
   }
 }
 
+// Counts this lane's pixel the fill left past its deadline (`left`): one atomic a subgroup.
+void countFillCut(bool left) {
+  uint sum = subgroupAdd(left ? 1u : 0u);
+  if (subgroupElect() && sum != 0u) atomicAdd(deadlineCut.w, sum);
+}
+
 // A pixel of `objectId` past the deadline (`left`: one its pass would have traced or probed):
 // its object learns nothing this frame (the object policies count its pixels at selection), the
 // items in `full`, whose full rate counted it at selection, take it off their count (a wrapping

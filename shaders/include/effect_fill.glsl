@@ -16,13 +16,11 @@
 // Whether the frame traces the surface's reflection (x) and transmission (y) path where its
 // item is traced: `paths` (RB_RT_* bits) hold it, the effect is on, and the surface is smooth
 // enough (transmissive).
-bvec2 materialPaths(float roughness, float transmission, float metallic, uint paths) {
+bvec2 surfacePaths(Surface s, uint paths) {
   uint effects = frame.rayTracing.x & paths;
-  return bvec2((effects & RB_RT_REFLECTIONS) != 0u && roughness <= maxTracedRoughness(),
-               (effects & RB_RT_REFRACTIONS) != 0u && transmission * (1.0 - metallic) > 0.0);
+  return bvec2((effects & RB_RT_REFLECTIONS) != 0u && s.roughness <= maxTracedRoughness(),
+               (effects & RB_RT_REFRACTIONS) != 0u && s.transmission * (1.0 - s.metallic) > 0.0);
 }
-// The same from a surface read from the G-buffer.
-bvec2 surfacePaths(Surface s, uint paths) { return materialPaths(s.roughness, s.transmission, s.metallic, paths); }
 
 // The weighted mean change, shrunk towards none (the fallback) by its spread: m |m|^2 / (|m|^2 +
 // variance), so neighbours that agree are filled in whole and ones that disagree (a small

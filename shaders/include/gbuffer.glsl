@@ -58,6 +58,18 @@ bool readSurface(ivec2 pixel, out Surface s) {
   return true;
 }
 
+// The channels that say which effects the surface shows (metallic, roughness, transmission, IOR,
+// unlit): two of readSurface's seven fetches. Returns whether the surface is lit.
+bool readEffectChannels(ivec2 pixel, inout Surface s) {
+  s.metallic = texelFetch(gBaseMetal, pixel, 0).a;
+  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
+  s.roughness = rti.r;
+  s.transmission = rti.g;
+  s.ior = rti.b;
+  s.unlit = rti.a > 0.5;
+  return !s.unlit;
+}
+
 // The part of the surface a reduced rate's fill reads at a pixel it skipped (object,
 // position, normal, and the channels that say which effects the surface shows): four of the
 // seven fetches, where a skipped pixel's fetches are most of what it costs on lavapipe.
@@ -65,14 +77,9 @@ bool readFillSurface(ivec2 pixel, uint objectId, out Surface s) {
   s.objectId = objectId;
   s.position = surfacePosition(pixel);
   s.normal = surfaceNormal(pixel);
-  s.metallic = texelFetch(gBaseMetal, pixel, 0).a;
-  vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
-  s.roughness = rti.r;
-  s.transmission = rti.g;
-  s.ior = rti.b;
-  s.unlit = rti.a > 0.5;
+  bool lit = readEffectChannels(pixel, s);
   s.layers = noLayers(s.normal, s.ior);  // not read by a fill
-  return !s.unlit;
+  return lit;
 }
 
 // The geometric normal (towards the viewer) a texel of the G-buffer's position target holds in w.
