@@ -79,7 +79,7 @@ for f in Path(SCENE_DIR).glob("court.*"):
     shutil.copy(f, WORK / f.name)
 original = json.loads((WORK / "court.gltf").read_text())
 original_bin = (WORK / "court.bin").read_bytes()
-budgeted = ["--size", f"{SIZE[0]}x{SIZE[1]}", "--policy", "benefit", "--budget-ms", "10", "--fixed-time-scale", "--validation"]
+budgeted = ["--size", f"{SIZE[0]}x{SIZE[1]}", "--policy", "benefit", "--budget-ms", "6", "--fixed-time-scale", "--validation"]
 
 # 1. The scripted session.
 editor(["court.gltf", "--script", str(Path(SCRIPT_DIR) / "raise_mirror_k.script")] + budgeted, WORK)

@@ -159,6 +159,63 @@ TEST(ShadowMaps, WithoutItsBiasesALowSunAcnesTheGround) {
   EXPECT_GT(probe(groundAndBox("low0"), low, occluded, open, unbiased).litRoughness, 0.1f) << "no acne without the biases";
 }
 
+// The shadow classifier (`classified`, shadows only) at a reach of 4 texels, on a smooth
+// sphere resting on the ground under a low and a high sun, a spot and a point light: it traces
+// only about the sphere's shadow edges and terminator, and the image is full RT's. Its depth
+// tests out at the reach compare against the point's triangle plane there; against the point's
+// own depth, as the lighting pass's taps are, they sank below the slanted ground and the
+// curved sphere and called 33-97% of the pixels uncertain.
+TEST(ShadowMaps, TheClassifierFindsLitSlantsAndCurvesCertain) {
+  auto sun = [](float elevationDegrees) {
+    const float e = glm::radians(elevationDegrees), a = glm::radians(30.0f);
+    Light l = overheadSun();
+    l.direction = -glm::vec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
+    return l;
+  };
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.intensity = 80.0f;
+  spot.position = {-5.0f, 3.0f, 1.5f};
+  spot.direction = glm::normalize(glm::vec3(5.0f, -2.5f, -1.5f));
+  spot.outerConeAngle = 0.9f;
+  spot.innerConeAngle = 0.7f;
+  Light point;
+  point.type = LightType::Point;
+  point.intensity = 60.0f;
+  point.position = {-3.0f, 2.5f, 1.0f};
+  const std::pair<Light, const char*> lights[] = {{sun(20.0f), "low sun"}, {sun(60.0f), "high sun"}, {spot, "spot"}, {point, "point"}};
+  for (const auto& [light, name] : lights) {
+    Scene scene = test::sceneWithMesh(test::quad(10.0f));
+    scene.materials[0].metallic = 0.0f;
+    Material diffuse;
+    diffuse.metallic = 0.0f;
+    test::addObject(scene, test::icosphere(3), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f)), diffuse);
+    scene.lights = {light};
+    scene.usesDefaultSun = false;
+    RenderSettings s = test::settingsFor(Policy::All, kW, kH);
+    s.skyIntensity = 0.0f;
+    s.rayTracing.reflections = false;
+    s.rayTracing.refractions = false;
+    s.rayTracing.shadowUncertaintyTexels = 4.0f;
+    Camera cam;
+    cam.position = {4.0f, 3.0f, 4.0f};
+    cam.target = {0.0f, 0.5f, 0.0f};
+    cam.znear = 0.1f;
+    cam.zfar = 50.0f;
+    const test::RenderedFrames full = test::renderFrames(scene, s, {cam});
+    s.policy = Policy::Classified;
+    const test::RenderedFrames classified = test::renderFrames(scene, s, {cam});
+    s.policy = Policy::None;
+    const test::RenderedFrames raster = test::renderFrames(scene, s, {cam});
+    const uint64_t rays = classified.timings.at(0).raysTraced, fullRays = full.timings.at(0).raysTraced;
+    EXPECT_GT(rays, 0u) << name << ": no shadow edge found uncertain";
+    EXPECT_LT(rays, fullRays / 10) << name << ": lit ground or sphere found uncertain";
+    const double kept = test::meanLdrDifference(classified.images, full.images), fallback = test::meanLdrDifference(raster.images, full.images);
+    EXPECT_GT(fallback, 0.0) << name;
+    EXPECT_LE(kept, 0.01 * fallback) << name << ": classified " << kept << " against the maps' " << fallback;
+  }
+}
+
 TEST(ShadowMaps, AbsurdBiasesAreRefusedNamingTheSetting) {
   const Scene scene = groundAndBox("bad-bias");
   for (float v : {-1.0f, 17.0f, NAN, INFINITY}) {

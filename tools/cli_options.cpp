@@ -56,8 +56,9 @@ render options:
                         rougher ones keep the prefiltered environment (default 0.35)
   --shadow-uncertainty X
                         benefit and classified: shadow rays only where the shadow map is
-                        uncertain, its PCF result between lit and shadowed or its depth tests
-                        X texels around disagreeing, 0..64 (default 2; 0: PCF alone)
+                        uncertain, its PCF result between lit and shadowed, its depth tests
+                        X texels around disagreeing with the surface's plane there, or the
+                        surface meeting the light edge-on, 0..64 (default 2; 0: PCF alone)
   --no-shadow-classifier
                         benefit and classified: every pixel of a traced shadow item traces
   --full-shadow-rays    benefit and classified: shadow rays run to the light, not ending just

@@ -15,88 +15,159 @@ vec2 insideUsed(vec2 uv, float share, vec2 texel, float margin) { return clamp(u
 // Cube-map face addressing (the Vulkan specification's table): the face a direction
 // leaves through (+X -X +Y -Y +Z -Z: 0..5) and where on it, in [0, 1]^2. The shadow pass
 // renders each face with the matching view (scene_gpu.cpp).
-vec2 cubeFaceUv(vec3 d, out float face) {
+float cubeFace(vec3 d) {
   vec3 a = abs(d);
-  float ma, sc, tc;
-  if (a.x >= a.y && a.x >= a.z) {
-    face = d.x > 0.0 ? 0.0 : 1.0;
-    ma = a.x;
-    sc = d.x > 0.0 ? -d.z : d.z;
+  if (a.x >= a.y && a.x >= a.z) return d.x > 0.0 ? 0.0 : 1.0;
+  return a.y >= a.z ? (d.y > 0.0 ? 2.0 : 3.0) : (d.z > 0.0 ? 4.0 : 5.0);
+}
+
+// Where `d` meets the plane of `face` (on it or beyond its edges), in its [0, 1]^2, and the
+// distance along the face's axis (`major`; not positive: behind the face).
+vec2 cubeUvOnFace(vec3 d, float face, out float major) {
+  float sc, tc;
+  if (face < 2.0) {
+    major = face == 0.0 ? d.x : -d.x;
+    sc = face == 0.0 ? -d.z : d.z;
     tc = -d.y;
-  } else if (a.y >= a.z) {
-    face = d.y > 0.0 ? 2.0 : 3.0;
-    ma = a.y;
+  } else if (face < 4.0) {
+    major = face == 2.0 ? d.y : -d.y;
     sc = d.x;
-    tc = d.y > 0.0 ? d.z : -d.z;
+    tc = face == 2.0 ? d.z : -d.z;
   } else {
-    face = d.z > 0.0 ? 4.0 : 5.0;
-    ma = a.z;
-    sc = d.z > 0.0 ? d.x : -d.x;
+    major = face == 4.0 ? d.z : -d.z;
+    sc = face == 4.0 ? d.x : -d.x;
     tc = -d.y;
   }
-  return 0.5 * vec2(sc, tc) / ma + 0.5;
+  return 0.5 * vec2(sc, tc) / major + 0.5;
+}
+
+vec2 cubeFaceUv(vec3 d, out float face) {
+  face = cubeFace(d);
+  float major;
+  return cubeUvOnFace(d, face, major);
 }
 
 // Four bilinear depth-compare taps half a texel (times `spread`) around `uv` (in [0, 1]^2 of
-// the map) in `layer`'s used corner, against `ref`.
-float pcf(sampler2DArrayShadow maps, vec2 uv, float layer, float share, float ref, float spread) {
+// the map) in `layer`'s used corner, each against `ref` plus `slope` (the reference's change
+// per unit of the used corner's coordinates; zero: one reference for all four).
+float pcf(sampler2DArrayShadow maps, vec2 uv, float layer, float share, float ref, vec2 slope, float spread) {
   vec2 texel = 1.0 / vec2(textureSize(maps, 0).xy);
   float sum = 0.0;
-  for (int i = 0; i < 4; ++i) sum += texture(maps, vec4(insideUsed(uv * share + kPcfOffsets[i] * texel * spread, share, texel, 0.5), layer, ref));
+  for (int i = 0; i < 4; ++i) {
+    vec2 offset = kPcfOffsets[i] * texel * spread;
+    sum += texture(maps, vec4(insideUsed(uv * share + offset, share, texel, 0.5), layer, ref + dot(slope, offset)));
+  }
   return sum * 0.25;
 }
 
-// Directional and spot lights: one layer of the 2D array each. `spread` scales the taps'
-// distance from the point (1: the PCF kernel, half a texel).
-float shadowFromMap(GpuLight light, vec3 position, vec3 normal, float spread) {
-  float layer = light.spotShadow.z;
-  if (layer < 0.0) return 1.0;
-  bool spot = uint(light.directionType.w) == RB_LIGHT_SPOT;
-  float texelWorld = light.shadowParams.x * (spot ? max(length(position - light.positionRange.xyz), 1e-3) : 1.0);
-  vec4 p = light.shadowViewProj * vec4(position + normal * texelWorld * light.shadowParams.w, 1.0);
-  if (p.w <= 0.0) return 1.0;
+// The point a lookup of `light`'s map takes for a surface point: moved along the normal by the
+// normal offset (shadowParams.w texels, a texel's world size where the point is).
+float texelWorldAt(GpuLight light, vec3 position) {
+  bool directional = uint(light.directionType.w) == RB_LIGHT_DIRECTIONAL;
+  return light.shadowParams.x * (directional ? 1.0 : max(length(position - light.positionRange.xyz), 1e-3));
+}
+vec3 lookupPoint(GpuLight light, vec3 position, vec3 normal) { return position + normal * texelWorldAt(light, position) * light.shadowParams.w; }
+
+// Where the lookup point `q` lies in `light`'s map: the layer, [0, 1]^2 of the map and the depth
+// it is compared against. A point light's cube face is `face` where it is not negative, else
+// the one q's direction leaves through (set). False where the map does not hold q (outside
+// the map, before its near plane or past its far one): the map's word there is "lit".
+// Directional and spot lights: one layer of the 2D array each. Point lights: six layers (a
+// cube's faces) each; the reference depth is what the face's 90-degree perspective projection
+// wrote for this point, which depends only on the distance along the face's axis.
+bool mapCoords(GpuLight light, vec3 q, inout float face, out float layer, out vec2 uv, out float ref) {
+  layer = light.spotShadow.z;
+  if (uint(light.directionType.w) == RB_LIGHT_POINT) {
+    vec3 v = q - light.positionRange.xyz;
+    if (face < 0.0) face = cubeFace(v);
+    float n = light.shadowParams.y, f = light.shadowParams.z, major;
+    uv = cubeUvOnFace(v, face, major);
+    ref = f / (f - n) - f * n / ((f - n) * major);
+    layer = layer * 6.0 + face;
+    return major > n && major < f;
+  }
+  vec4 p = light.shadowViewProj * vec4(q, 1.0);
+  uv = vec2(-1.0);
+  ref = 1.0;
+  if (p.w <= 0.0) return false;
   p.xyz /= p.w;
-  vec2 uv = p.xy * 0.5 + 0.5;
-  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || p.z > 1.0) return 1.0;
-  return pcf(shadowMaps, uv, layer, light.spotShadow.w, p.z, spread);
+  uv = p.xy * 0.5 + 0.5;
+  ref = p.z;
+  return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) && p.z <= 1.0;
 }
-float shadowFromMap(GpuLight light, vec3 position, vec3 normal) { return shadowFromMap(light, position, normal, 1.0); }
 
-// Point lights: six layers (a cube's faces) each. The reference depth is what the face's
-// 90-degree perspective projection wrote for this point: it depends only on the largest axis
-// of the light-to-point vector, which also picks the face. Taps stay on that face (within
-// half a texel of its edge), where a hardware cube lookup would filter across the seam.
-float shadowFromCube(GpuLight light, vec3 position, vec3 normal, float spread) {
-  float cube = light.spotShadow.z;
-  if (cube < 0.0) return 1.0;
-  float distanceToLight = length(position - light.positionRange.xyz);
-  vec3 v = position + normal * light.shadowParams.x * distanceToLight * light.shadowParams.w - light.positionRange.xyz;
-  float n = light.shadowParams.y, f = light.shadowParams.z;
-  float d = max(abs(v.x), max(abs(v.y), abs(v.z)));
-  if (d >= f || d <= n) return 1.0;
-  float ref = f / (f - n) - f * n / ((f - n) * d);
-  float face;
-  vec2 uv = cubeFaceUv(v, face);
-  return pcf(pointShadows, uv, cube * 6.0 + face, light.spotShadow.w, ref, spread);
+// The map's visibility around the lookup point's coordinates (PCF), against `ref` plus `slope`.
+float mapVisibility(GpuLight light, float layer, vec2 uv, float ref, vec2 slope, float spread) {
+  return uint(light.directionType.w) == RB_LIGHT_POINT ? pcf(pointShadows, uv, layer, light.spotShadow.w, ref, slope, spread)
+                                                       : pcf(shadowMaps, uv, layer, light.spotShadow.w, ref, slope, spread);
 }
-float shadowFromCube(GpuLight light, vec3 position, vec3 normal) { return shadowFromCube(light, position, normal, 1.0); }
 
-// The fallback's visibility of `light` at the point, its taps `spread` times as far out as
-// the lighting pass's PCF (spread 1: the lighting pass's lookup).
-float shadowFromLight(GpuLight light, vec3 position, vec3 normal, float spread) {
-  return uint(light.directionType.w) == RB_LIGHT_POINT ? shadowFromCube(light, position, normal, spread) : shadowFromMap(light, position, normal, spread);
+// The fallback's visibility of `light` at the point (the lighting pass's lookup). Taps stay on
+// a point light's face (within half a texel of its edge), where a hardware cube lookup would
+// filter across the seam.
+float shadowFromLight(GpuLight light, vec3 position, vec3 normal) {
+  if (light.spotShadow.z < 0.0) return 1.0;
+  float face = -1.0, layer, ref;
+  vec2 uv;
+  if (!mapCoords(light, lookupPoint(light, position, normal), face, layer, uv, ref)) return 1.0;
+  return mapVisibility(light, layer, uv, ref, vec2(0.0), 1.0);
 }
-float shadowFromLight(GpuLight light, vec3 position, vec3 normal) { return shadowFromLight(light, position, normal, 1.0); }
+
+// A frame of the plane with normal n (Duff et al. 2017, "Building an orthonormal basis,
+// revisited").
+void planeAxes(vec3 n, out vec3 t1, out vec3 t2) {
+  float s = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (s + n.z), b = n.x * n.y * a;
+  t1 = vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
+  t2 = vec3(b, s + n.y * n.y * a, -n.y);
+}
+
+// A triangle whose plane the light meets this close to edge-on, or from behind (the cosine of
+// the light's angle to its geometric normal), is left uncertain: the shadow terminator, where a
+// smooth shading normal faces a light its triangle does not, and where a plane's depth changes
+// by 16 texels' worth or more per texel of the map.
+#define RB_SHADOW_EDGE_ON 0.0625
+
+// Whether four depth tests `reach` texels away diagonally agree with the map's certain
+// `visibility` (0 or 1) at the surface point `position` with geometric normal `ng`: each
+// against the depth of the point's triangle plane where it looks (the receiver plane depth
+// bias of Isidoro's "Shadow mapping: GPU-based tips and techniques", GDC 2006, from two texel
+// steps along the plane instead of screen derivatives). Against the point's own depth, as the
+// lighting pass's taps are, the taps two texels out sank below a curved surface or a plane the
+// light sees at a slant by more than the shadow pass's slope bias covers, and called most of
+// it uncertain: 2-10x the shadow rays on the bench scenes, with a larger error against full RT.
+bool wideTapsAgree(GpuLight light, vec3 position, vec3 ng, float reach, float visibility) {
+  bool directional = uint(light.directionType.w) == RB_LIGHT_DIRECTIONAL;
+  vec3 toLight = directional ? -light.directionType.xyz : normalize(light.positionRange.xyz - position);
+  if (dot(ng, toLight) < RB_SHADOW_EDGE_ON) return false;
+  float face = -1.0, layer, ref0;
+  vec2 uv0;
+  if (!mapCoords(light, position, face, layer, uv0, ref0)) return true;  // the map's "lit", as the lighting pass takes it
+  vec3 t1, t2;
+  planeAxes(ng, t1, t2);
+  float step = texelWorldAt(light, position), ref1, ref2, l;
+  vec2 uv1, uv2;
+  mapCoords(light, position + t1 * step, face, l, uv1, ref1);
+  mapCoords(light, position + t2 * step, face, l, uv2, ref2);
+  // Texel steps along the plane in the used corner's coordinates (a face-on plane's: a texel
+  // each), and the plane's depth per unit of them: steps^T slope = the steps' depths.
+  mat2 steps = mat2((uv1 - uv0) * light.spotShadow.w, (uv2 - uv0) * light.spotShadow.w);
+  if (determinant(steps) == 0.0) return false;
+  vec2 slope = vec2(ref1 - ref0, ref2 - ref0) * inverse(steps);
+  return mapVisibility(light, layer, uv0, ref0, slope, 2.0 * reach) == visibility;
+}
 
 // The shadow classifier: whether the shadow map decides the point for certain, with its
 // visibility. Uncertain: the PCF result strictly between lit and shadowed (a shadow edge
 // within about a texel), or four depth tests `reach` texels away (diagonally) disagree with
 // it (an edge within the reach: where a map's resolution, bias or missing contact shadows
-// err), or the light has no map. reach 0 checks the PCF result alone.
-bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, float reach, out float visibility) {
+// err), or the point's triangle meets the light edge-on or from behind, or the light has no
+// map. reach 0 checks the PCF result alone. `normal` is the shading normal the lighting pass
+// looks the map up with, `ng` the triangle's.
+bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, vec3 ng, float reach, out float visibility) {
   visibility = shadowFromLight(light, position, normal);
   if (light.spotShadow.z < 0.0 || (visibility > 0.0 && visibility < 1.0)) return false;
-  return reach <= 0.0 || shadowFromLight(light, position, normal, 2.0 * reach) == visibility;
+  return reach <= 0.0 || wideTapsAgree(light, position, ng, reach, visibility);
 }
 
 // Where a shadow ray from `origin` towards `light` may end (`dist`: the light, or 1e30 for a

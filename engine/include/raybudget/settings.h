@@ -56,7 +56,8 @@ struct RayTracingSettings {
   float maxRoughness = 0.35f;
   // `benefit` and `classified`: a pixel traces a light's shadow ray only where the shadow
   // map is uncertain: its PCF result strictly between lit and shadowed, or its depth tests
-  // shadowUncertaintyTexels around the point disagree (0: the PCF result alone; 0..64).
+  // shadowUncertaintyTexels around the point disagree with the point's triangle plane there,
+  // or that triangle meets the light edge-on or from behind (0: the PCF result alone; 0..64).
   // Off: every pixel of a selected shadow item traces.
   bool classifyShadows = true;
   float shadowUncertaintyTexels = 2.0f;
