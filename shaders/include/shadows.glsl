@@ -60,8 +60,9 @@ float pcf(sampler2DArrayShadow maps, vec2 uv, float layer, float share, float re
   return sum * 0.25;
 }
 
-// The point a lookup of `light`'s map takes for a surface point: moved along the normal by the
-// normal offset (shadowParams.w texels, a texel's world size where the point is).
+// A texel's world size where `position` is (the map's used size; a directional light's the
+// same everywhere), and the point a lookup of the map takes for a surface point: moved along
+// the normal by the normal offset (shadowParams.w texels).
 float texelWorldAt(GpuLight light, vec3 position) {
   bool directional = uint(light.directionType.w) == RB_LIGHT_DIRECTIONAL;
   return light.shadowParams.x * (directional ? 1.0 : max(length(position - light.positionRange.xyz), 1e-3));
@@ -134,8 +135,9 @@ void planeAxes(vec3 n, out vec3 t1, out vec3 t2) {
 // bias of Isidoro's "Shadow mapping: GPU-based tips and techniques", GDC 2006, from two texel
 // steps along the plane instead of screen derivatives). Against the point's own depth, as the
 // lighting pass's taps are, the taps two texels out sank below a curved surface or a plane the
-// light sees at a slant by more than the shadow pass's slope bias covers, and called most of
-// it uncertain: 2-10x the shadow rays on the bench scenes, with a larger error against full RT.
+// light sees at a slant by more than the shadow pass's slope bias covers, and called much of
+// it uncertain: 3.2x the shadow rays over the benchmark's views, with twice the FLIP against
+// full RT (docs/SELECTION.md).
 bool wideTapsAgree(GpuLight light, vec3 position, vec3 ng, float reach, float visibility) {
   bool directional = uint(light.directionType.w) == RB_LIGHT_DIRECTIONAL;
   vec3 toLight = directional ? -light.directionType.xyz : normalize(light.positionRange.xyz - position);
