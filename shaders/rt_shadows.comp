@@ -56,7 +56,7 @@ void traceShadows(ivec2 pixel) {
     float dist, scale;
     float visible = 0.0, mapped = 0.0;
     if (lightSample(lights[i], p, L, dist, scale) && dot(s.normal, L) > 0.0) {
-      if (classify && shadowMapCertain(lights[i], s.position, s.normal, ng, frame.exposure.y, mapped)) visible = mapped;
+      if (classify && shadowMapCertain(lights[i], s.position, s.normal, ng, L, frame.exposure.y, mapped)) visible = mapped;
       else {
         if (reduced && !classify) mapped = shadowFromLight(lights[i], s.position, s.normal);
         visible = traceVisibility(origin, L, shorten ? shadowRayEnd(lights[i], origin, L, dist) : dist, work);

@@ -130,7 +130,8 @@ void planeAxes(vec3 n, out vec3 t1, out vec3 t2) {
 #define RB_SHADOW_EDGE_ON 0.0625
 
 // Whether four depth tests `reach` texels away diagonally agree with the map's certain
-// `visibility` (0 or 1) at the surface point `position` with geometric normal `ng`: each
+// `visibility` (0 or 1) at the surface point `position` with geometric normal `ng` and `L`
+// towards the light (rt_common.glsl's lightSample): each
 // against the depth of the point's triangle plane where it looks (the receiver plane depth
 // bias of Isidoro's "Shadow mapping: GPU-based tips and techniques", GDC 2006, from two texel
 // steps along the plane instead of screen derivatives). Against the point's own depth, as the
@@ -138,10 +139,8 @@ void planeAxes(vec3 n, out vec3 t1, out vec3 t2) {
 // light sees at a slant by more than the shadow pass's slope bias covers, and called much of
 // it uncertain: 3.2x the shadow rays over the benchmark's views, with twice the FLIP against
 // full RT (docs/SELECTION.md).
-bool wideTapsAgree(GpuLight light, vec3 position, vec3 ng, float reach, float visibility) {
-  bool directional = uint(light.directionType.w) == RB_LIGHT_DIRECTIONAL;
-  vec3 toLight = directional ? -light.directionType.xyz : normalize(light.positionRange.xyz - position);
-  if (dot(ng, toLight) < RB_SHADOW_EDGE_ON) return false;
+bool wideTapsAgree(GpuLight light, vec3 position, vec3 ng, vec3 L, float reach, float visibility) {
+  if (dot(ng, L) < RB_SHADOW_EDGE_ON) return false;
   float face = -1.0, layer, ref0;
   vec2 uv0;
   if (!mapCoords(light, position, face, layer, uv0, ref0)) return true;  // the map's "lit", as the lighting pass takes it
@@ -165,11 +164,11 @@ bool wideTapsAgree(GpuLight light, vec3 position, vec3 ng, float reach, float vi
 // it (an edge within the reach: where a map's resolution, bias or missing contact shadows
 // err), or the point's triangle meets the light edge-on or from behind, or the light has no
 // map. reach 0 checks the PCF result alone. `normal` is the shading normal the lighting pass
-// looks the map up with, `ng` the triangle's.
-bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, vec3 ng, float reach, out float visibility) {
+// looks the map up with, `ng` the triangle's, `L` the direction towards the light.
+bool shadowMapCertain(GpuLight light, vec3 position, vec3 normal, vec3 ng, vec3 L, float reach, out float visibility) {
   visibility = shadowFromLight(light, position, normal);
   if (light.spotShadow.z < 0.0 || (visibility > 0.0 && visibility < 1.0)) return false;
-  return reach <= 0.0 || wideTapsAgree(light, position, ng, reach, visibility);
+  return reach <= 0.0 || wideTapsAgree(light, position, ng, L, reach, visibility);
 }
 
 // Where a shadow ray from `origin` towards `light` may end (`dist`: the light, or 1e30 for a
