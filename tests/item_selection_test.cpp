@@ -234,18 +234,10 @@ TEST(Items, TheShadowClassifierSavesRaysAndKeepsTheImage) {
   RenderSettings s = settingsFor(Policy::All, 320, 192);
   s.rayTracing.reflections = false;
   s.rayTracing.refractions = false;
-  const Camera cam = defaultCamera(scene, 320.0f / 192.0f);
-  const test::RenderedFrames full = test::renderFrames(scene, s, {cam});
-  s.policy = Policy::Classified;
-  const test::RenderedFrames classified = test::renderFrames(scene, s, {cam});
-  s.policy = Policy::None;
-  const test::RenderedFrames raster = test::renderFrames(scene, s, {cam});
-  ASSERT_EQ(full.timings.size(), 1u);
-  ASSERT_EQ(classified.timings.size(), 1u);
-  EXPECT_LT(classified.timings[0].raysTraced, full.timings[0].raysTraced / 2) << "most shadow-map lookups are certain";
-  const double kept = test::meanLdrDifference(classified.images, full.images), fallback = test::meanLdrDifference(raster.images, full.images);
-  EXPECT_GT(fallback, 0.0);
-  EXPECT_LT(kept, 0.25 * fallback) << "classified " << kept << " against the shadow maps' " << fallback;
+  const test::ClassifierFrame c = test::classifierAgainstFullRt(scene, s, defaultCamera(scene, 320.0f / 192.0f));
+  EXPECT_LT(c.rays, c.fullRays / 2) << "most shadow-map lookups are certain";
+  EXPECT_GT(c.fallback, 0.0);
+  EXPECT_LT(c.kept, 0.25 * c.fallback) << "classified " << c.kept << " against the shadow maps' " << c.fallback;
 }
 
 TEST(Items, BadClassifierSettingsAreRefusedNamingTheSetting) {

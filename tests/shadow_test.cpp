@@ -192,7 +192,7 @@ TEST(ShadowMaps, TheClassifierFindsLitSlantsAndCurvesCertain) {
     test::addObject(scene, test::icosphere(3), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f)), diffuse);
     scene.lights = {light};
     scene.usesDefaultSun = false;
-    RenderSettings s = test::settingsFor(Policy::All, kW, kH);
+    RenderSettings s = test::settingsFor(Policy::Classified, kW, kH);
     s.skyIntensity = 0.0f;
     s.rayTracing.reflections = false;
     s.rayTracing.refractions = false;
@@ -202,17 +202,11 @@ TEST(ShadowMaps, TheClassifierFindsLitSlantsAndCurvesCertain) {
     cam.target = {0.0f, 0.5f, 0.0f};
     cam.znear = 0.1f;
     cam.zfar = 50.0f;
-    const test::RenderedFrames full = test::renderFrames(scene, s, {cam});
-    s.policy = Policy::Classified;
-    const test::RenderedFrames classified = test::renderFrames(scene, s, {cam});
-    s.policy = Policy::None;
-    const test::RenderedFrames raster = test::renderFrames(scene, s, {cam});
-    const uint64_t rays = classified.timings.at(0).raysTraced, fullRays = full.timings.at(0).raysTraced;
-    EXPECT_GT(rays, 0u) << name << ": no shadow edge found uncertain";
-    EXPECT_LT(rays, fullRays / 10) << name << ": lit ground or sphere found uncertain";
-    const double kept = test::meanLdrDifference(classified.images, full.images), fallback = test::meanLdrDifference(raster.images, full.images);
-    EXPECT_GT(fallback, 0.0) << name;
-    EXPECT_LE(kept, 0.01 * fallback) << name << ": classified " << kept << " against the maps' " << fallback;
+    const test::ClassifierFrame c = test::classifierAgainstFullRt(scene, s, cam);
+    EXPECT_GT(c.rays, 0u) << name << ": no shadow edge found uncertain";
+    EXPECT_LT(c.rays, c.fullRays / 10) << name << ": lit ground or sphere found uncertain";
+    EXPECT_GT(c.fallback, 0.0) << name;
+    EXPECT_LE(c.kept, 0.01 * c.fallback) << name << ": classified " << c.kept << " against the maps' " << c.fallback;
   }
 }
 

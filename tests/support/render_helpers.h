@@ -115,6 +115,26 @@ inline RenderedFrames renderFrames(const Scene& scene, const RenderSettings& s, 
   return r;
 }
 
+// The shadow classifier against full RT on one frame: `classified` with `s`, `all` and `none`
+// alike (the policy replaced): its rays, full RT's, and the mean LDR difference from full RT
+// of the classified image (`kept`) and of the shadow maps' (`fallback`).
+struct ClassifierFrame {
+  uint64_t rays, fullRays;
+  double kept, fallback;
+};
+inline ClassifierFrame classifierAgainstFullRt(const Scene& scene, RenderSettings s, const Camera& camera) {
+  s.policy = Policy::All;
+  const RenderedFrames full = renderFrames(scene, s, {camera});
+  s.policy = Policy::Classified;
+  const RenderedFrames classified = renderFrames(scene, s, {camera});
+  s.policy = Policy::None;
+  const RenderedFrames raster = renderFrames(scene, s, {camera});
+  EXPECT_EQ(full.timings.size(), 1u);
+  EXPECT_EQ(classified.timings.size(), 1u);
+  return {classified.timings.at(0).raysTraced, full.timings.at(0).raysTraced, meanLdrDifference(classified.images, full.images),
+          meanLdrDifference(raster.images, full.images)};
+}
+
 // Making a renderer with `settings` is refused with a raybudget::Error that names `setting`.
 inline void expectRefusedNaming(const Scene& scene, const RenderSettings& settings, const std::string& setting) {
   try {
