@@ -8,7 +8,7 @@ what an earlier run into OUT measured is kept but for the scenes measured again.
 
 usage: bench/fallbacks.py [--out DIR] [--scenes FILE...] [--size WxH] [--timing-size WxH]
                           [--frames N] [--warmup N] [--timing-frames N] [--only flip|timings]
-                          [--configs NAME...] [--extra 'OPTIONS']
+                          [--configs NAME...] [--extra 'OPTIONS'] [--replay-paths DIR]
 
 `none` renders no rays and `all` no budget, so their images, and the FLIP between them, do
 not depend on the machine's speed; the timings do. Needs flip-evaluator (.venv-bench).
@@ -40,11 +40,22 @@ def flags(config):
     return [OFF[f] for f in OFF if f not in CONFIGS[config]]
 
 
+def replayed_paths(a, name):
+    """The camera paths an earlier run into a.replay_paths recorded for scene `name` (sweep --replay-paths)."""
+    if not a.replay_paths:
+        return []
+    for config in CONFIGS:
+        folder = pathlib.Path(a.replay_paths) / "raw" / name / config.lstrip("+") / "paths"
+        if folder.is_dir():
+            return ["--replay-paths", str(folder)]
+    sys.exit(f"fallbacks.py: {a.replay_paths} recorded no camera paths for {name}")
+
+
 def sweep(a, scene, config, out):
     w, h = a.size.split("x")
     cmd = [a.raybudget, "sweep", str(scene), "--out", str(out), "--width", w, "--height", h, "--frames", str(a.frames),
            "--warmup", str(a.warmup), "--repeats", "1", "--policies", "benefit", "--budget-list", "1", "--no-classified",
-           "--order-seed", "0"] + flags(config) + a.extra.split()
+           "--order-seed", "0"] + flags(config) + replayed_paths(a, scene.stem) + a.extra.split()
     proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if proc.returncode != 0:
         print(proc.stdout[-2000:], file=sys.stderr)
@@ -80,6 +91,7 @@ def main(argv):
     p.add_argument("--only", choices=["flip", "timings"], help="one half (the other's files are kept)")
     p.add_argument("--configs", nargs="*", choices=list(CONFIGS), help="measure only these configurations (default all)")
     p.add_argument("--extra", default="", help="more options for every render, e.g. --extra='--shadow-normal-offset 3'")
+    p.add_argument("--replay-paths", help="an earlier run's OUT: its sweeps' cameras instead of today's paths (like for like)")
     p.add_argument("--raybudget", default=str(run.ROOT / "build" / "tools" / "raybudget"))
     a = p.parse_args(argv)
     out = pathlib.Path(a.out)

@@ -4,7 +4,9 @@
 does not, that every repeat is imaged, that the stage time covers its passes, and that the
 summary, oracle, headline and plots are written. Then order independence: with the time
 scale at its prior (no timing feedback), every configuration selects the same objects
-frame by frame whether its repeat's order is shuffled or not, and alone.
+frame by frame whether its repeat's order is shuffled or not, and alone; and a sweep that
+replays the canonical sweep's camera paths (--replay-paths) selects alike and writes the same
+paths.
 
 usage: bench_sweep_test.py RAYBUDGET OUT_DIR   (exit 77: skipped, the ci scenes are absent)
 """
@@ -109,10 +111,14 @@ def main(raybudget, out):
     return 0
 
 
-def sweep_selections(raybudget, scene, out, *args):
-    cmd = [raybudget, "sweep", str(scene), "--out", str(out), "--width", "96", "--height", "64", "--frames", "3", "--warmup", "2",
+def sweep_selections(raybudget, scene, out, *args, frames="3", expect_error=None):
+    cmd = [raybudget, "sweep", str(scene), "--out", str(out), "--width", "96", "--height", "64", "--frames", frames, "--warmup", "2",
            "--paths", "orbit", "--prior-time-scale", "--validation", *args]
     run = subprocess.run(cmd, capture_output=True, text=True)
+    if expect_error is not None:
+        if run.returncode == 0 or expect_error not in run.stdout + run.stderr:
+            fail(f"{' '.join(cmd)} should fail with '{expect_error}': exit {run.returncode}, {run.stdout[-1000:]} {run.stderr[-1000:]}")
+        return None, None
     if run.returncode != 0:
         fail(f"{' '.join(cmd)} exited {run.returncode}: {run.stdout[-2000:]} {run.stderr[-2000:]}")
     with open(out / "frames.csv") as f:
@@ -137,6 +143,15 @@ def check_order_independence(raybudget, scene, out):
             fail(f"density at 0.4 ms alone selected {v}, inside the sweep {canonical.get(k)} (frame {k})")
     if len({tuple(v) for v in canonical.values()}) < 2:
         fail("every configuration selected alike: the test shows nothing")
+    recorded = out / "canonical" / "paths"
+    replayed, _ = sweep_selections(raybudget, scene, out / "replayed", "--policies", "density,random", "--budget-list", "0.05,0.4",
+                                   "--repeats", "2", "--order-seed", "0", "--replay-paths", str(recorded))
+    if replayed != canonical:
+        fail("the sweep replaying the canonical sweep's camera paths selected otherwise")
+    if (out / "replayed" / "paths" / "orbit.json").read_text() != (recorded / "orbit.json").read_text():
+        fail("the replayed sweep wrote other cameras than it read")
+    sweep_selections(raybudget, scene, out / "replay-short", "--policies", "density", "--budget-list", "0.4", "--repeats", "1",
+                     "--replay-paths", str(recorded), frames="2", expect_error="holds 3 cameras, --frames asks for 2")
 
 
 if __name__ == "__main__":

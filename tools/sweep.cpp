@@ -14,6 +14,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "cli_options.h"
+#include "path_json.h"
 #include "raybudget/raybudget.h"
 
 namespace raybudget::cli {
@@ -51,6 +52,9 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --no-classified       leave out `classified` (every item, shadows where the map is uncertain),
                         which otherwise runs in every repeat beside all and none
   --paths LIST          comma-separated camera paths: orbit, flythrough (default both)
+  --replay-paths DIR    each path's cameras from DIR/NAME.json, as an earlier sweep wrote them
+                        (its OUT/paths): like-for-like runs after the paths change; --frames
+                        must equal the file's
   --device NAME, --validation
 )";
 
@@ -70,15 +74,13 @@ std::vector<Camera> cameraPath(const std::string& name, const Camera& start, uin
   return path;
 }
 
-void writePathJson(const std::filesystem::path& file, const std::string& name, const std::vector<Camera>& path) {
-  std::ofstream out(file);
-  auto vec = [](const glm::vec3& v) { return "[" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + "]"; };
-  out << "{\n  \"path\": \"" << name << "\",\n  \"frames\": [\n";
-  for (size_t i = 0; i < path.size(); ++i)
-    out << "    {\"position\": " << vec(path[i].position) << ", \"target\": " << vec(path[i].target) << ", \"up\": " << vec(path[i].up)
-        << ", \"yfov\": " << path[i].yfov << "}" << (i + 1 < path.size() ? "," : "") << "\n";
-  out << "  ]\n}\n";
-  if (!out) throw Error("cannot write " + file.string());
+// The cameras an earlier sweep recorded for `name` (--replay-paths), as many as --frames.
+std::vector<Camera> replayedPath(const SweepCommand& c, const std::string& name, const Camera& start) {
+  const std::filesystem::path file = std::filesystem::path(c.replayPaths) / (name + ".json");
+  std::vector<Camera> path = readPathJson(file, start);
+  if (path.size() != c.frames)
+    throw Error(file.string() + " holds " + std::to_string(path.size()) + " cameras, --frames asks for " + std::to_string(c.frames));
+  return path;
 }
 
 std::vector<float> linearRgb(const FrameImages& img) {
@@ -294,6 +296,8 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
       for (const std::string& p : c.paths)
         if (p != "orbit" && p != "flythrough") throw Error("--paths takes orbit and flythrough, got '" + p + "'");
       if (c.paths.empty()) throw Error("--paths needs at least one path");
+    } else if (a == "--replay-paths") {
+      c.replayPaths = value();
     } else sceneArgument(a, c.scene, std::string("\n") + kSweepUsage);
   }
   if (c.scene.empty()) throw Error(std::string("sweep needs a scene file\n") + kSweepUsage);
@@ -331,7 +335,8 @@ int runSweep(const SweepCommand& c) {
   const Camera start = pathStartCamera(scene, renderer.aspect());
   for (size_t pathIndex = 0; pathIndex < c.paths.size(); ++pathIndex) {
     const std::string& pathName = c.paths[pathIndex];
-    const std::vector<Camera> path = cameraPath(pathName, start, c.frames, flythroughShape(scene, start));
+    const std::vector<Camera> path = c.replayPaths.empty() ? cameraPath(pathName, start, c.frames, flythroughShape(scene, start))
+                                                           : replayedPath(c, pathName, start);
     writePathJson(out / "paths" / (pathName + ".json"), pathName, path);
     sweep.newPath();
     // Calibration, not recorded: the reference images (`all`, deterministic), the full-RT

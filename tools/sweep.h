@@ -44,6 +44,7 @@ struct SweepCommand {
   bool classified = true;  // run `classified` beside all and none
   RenderSettings image;  // the options shared with render (cli::parseImageOption); the rest default
   std::vector<std::string> paths{"orbit", "flythrough"};
+  std::string replayPaths;  // a folder of an earlier sweep's path files, whose cameras run instead
 };
 
 // Parses a budgeted policy's name: paper, density, nearest, random, benefit, benefit with a
