@@ -56,7 +56,7 @@ void main() {
     layers.clearcoatNormal = perturbNormal(surfaceN, texture(textures[nonuniformEXT(m.layerTextures.z)], uv).xyz, m.clearcoat.z, uv);
   }
 
-  outNormal = vec4(N, 0.0);
+  outNormal = vec4(N, !gl_FrontFacing && (flags & RB_MATERIAL_DOUBLE_SIDED) == 0u ? 1.0 : 0.0);  // w: seen from inside
   outBaseMetal = vec4(base.rgb, metallic);
   outRoughTransIor = vec4(roughness, m.metallicRoughnessTransmissionIor.z, m.metallicRoughnessTransmissionIor.w,
                           (flags & RB_MATERIAL_UNLIT) != 0u ? 1.0 : 0.0);

@@ -246,6 +246,42 @@ TEST(RtReflections, AGlossySurfaceReflectsTheSkyAsTheFallbackDoes) {
   EXPECT_LE(off, plane / 100) << off << " of " << plane << " plane pixels differ by more than 5%; brightest " << brightest;
 }
 
+// The camera inside a closed one-sided sphere of glossy copper under the sky: every traced
+// mirror ray meets the sphere's inside, whose light is the sky reflected once more by copper
+// (the sun is shut out). The fallback, seeing the back of a one-sided surface, takes the mirror
+// ray to meet the model's own inside alike: as bright as the traced reflection within 10% over
+// the frame, and per pixel within 40% (the sky it reads once more lies in the mirror direction,
+// the traced ray's where it meets the wall). Read as if it saw the sky, the fallback was 44%
+// brighter, 54% off per pixel.
+TEST(RtReflections, SeenFromInsideAModelTheFallbackReflectsTheModelNotTheSky) {
+  Scene scene;
+  Material copper = test::mirror(0.15f);
+  copper.baseColorFactor = glm::vec4(0.95f, 0.64f, 0.54f, 1.0f);
+  test::addObject(scene, test::icosphere(3), glm::scale(glm::mat4(1.0f), glm::vec3(3.0f)), copper);
+  scene.lights = {defaultSun()};
+  Camera cam;
+  cam.position = {0.0f, 0.5f, 1.0f};
+  cam.target = {0.5f, 0.0f, -2.0f};
+  const FrameImages traced = renderScene(scene, Policy::All, cam, 96, 64, false, 1.0f);
+  const FrameImages raster = renderScene(scene, Policy::None, cam, 96, 64, false, 1.0f);
+  double tracedSum = 0.0, rasterSum = 0.0, difference = 0.0;
+  size_t inside = 0;
+  for (uint32_t y = 0; y < 64; ++y)
+    for (uint32_t x = 0; x < 96; ++x) {
+      if (traced.objectIds[y * 96 + x] != 0u) continue;
+      ++inside;
+      const glm::vec3 t = hdr(traced, x, y), r = hdr(raster, x, y);
+      tracedSum += t.r + t.g + t.b;
+      rasterSum += r.r + r.g + r.b;
+      difference += std::abs(t.r - r.r) + std::abs(t.g - r.g) + std::abs(t.b - r.b);
+    }
+  ASSERT_EQ(inside, 96u * 64u) << "the sphere's inside fills the frame";
+  ASSERT_GT(tracedSum, 0.0);
+  std::printf("inside the sphere: traced %.1f, fallback %.1f, difference %.3f of the traced\n", tracedSum, rasterSum, difference / tracedSum);
+  EXPECT_LT(std::abs(rasterSum - tracedSum) / tracedSum, 0.1);
+  EXPECT_LT(difference / tracedSum, 0.4);
+}
+
 // White light through a cube of tinted glass: KHR_materials_volume attenuation over the
 // 1-unit path halves red (attenuation colour 0.5 at distance 1) and keeps green.
 TEST(RtRefractions, VolumeAttenuatesAlongThePathThroughTheCube) {

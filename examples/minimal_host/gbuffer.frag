@@ -12,7 +12,7 @@ layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inColor;
 
-layout(location = 0) out vec4 outNormal;         // world shading normal
+layout(location = 0) out vec4 outNormal;         // world shading normal; w: 1 seen from inside
 layout(location = 1) out vec4 outBaseMetal;      // base colour, metallic
 layout(location = 2) out vec4 outRoughTransIor;  // roughness, transmission, IOR, unlit
 layout(location = 3) out vec4 outEmissive;
@@ -31,7 +31,7 @@ vec2 octEncode(vec3 n) {
 void main() {
   vec3 N = normalize(inNormal);
   if (!gl_FrontFacing && push.ids.z != 0u) N = -N;  // two-sided surfaces face the viewer
-  outNormal = vec4(N, 0.0);
+  outNormal = vec4(N, !gl_FrontFacing && push.ids.z == 0u ? 1.0 : 0.0);  // the back of a one-sided surface
   outBaseMetal = vec4(push.baseColor.rgb * inColor.rgb, clamp(push.material.x, 0.0, 1.0));
   outRoughTransIor = vec4(clamp(push.material.y, 0.0, 1.0), push.material.z, push.material.w, push.emissiveUnlit.w);
   outEmissive = vec4(push.emissiveUnlit.rgb, 0.0);

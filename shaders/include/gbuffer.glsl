@@ -14,6 +14,7 @@ struct Surface {
   float transmission;
   float ior;
   bool unlit;
+  bool seenFromInside;    // the back of a one-sided surface: the camera is inside its model
   vec3 emissive;
   uint objectId;
   uint materialId;
@@ -39,7 +40,9 @@ bool readSurface(ivec2 pixel, out Surface s) {
   s.objectId = texelFetch(gObjectId, pixel, 0).r;
   if (s.objectId == RB_NO_OBJECT) return false;
   s.position = surfacePosition(pixel);
-  s.normal = surfaceNormal(pixel);
+  vec4 normal = texelFetch(gNormal, pixel, 0);
+  s.normal = normalize(normal.xyz);
+  s.seenFromInside = normal.w > 0.5;
   vec4 bm = texelFetch(gBaseMetal, pixel, 0);
   s.baseColor = bm.rgb;
   s.metallic = bm.a;
@@ -77,6 +80,7 @@ bool readFillSurface(ivec2 pixel, uint objectId, out Surface s) {
   s.objectId = objectId;
   s.position = surfacePosition(pixel);
   s.normal = surfaceNormal(pixel);
+  s.seenFromInside = false;  // not read by a fill
   bool lit = readEffectChannels(pixel, s);
   s.layers = noLayers(s.normal, s.ior);  // not read by a fill
   return lit;
@@ -93,6 +97,10 @@ void readExactSurface(ivec2 pixel, out vec3 position, out vec3 geometricNormal) 
 }
 
 vec3 surfaceGeometricNormal(ivec2 pixel) { return geometricNormalIn(texelFetch(gPosition, pixel, 0)); }
+
+// The shading normal N turned to the viewer's side of the surface (geometric normal ng, towards
+// the viewer): where the camera sees a one-sided surface from behind, its normal faces away.
+vec3 viewerSideNormal(vec3 N, vec3 ng) { return dot(N, ng) < 0.0 ? -N : N; }
 
 // The mirror direction of the view direction V (towards the viewer) about the shading normal
 // N, turned back above the surface (geometric normal ng) where a normal map tilted it below:
