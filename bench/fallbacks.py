@@ -33,7 +33,7 @@ CONFIGS = {  # name: the fallbacks switched on
     "+ssr": ["ssr"],
     "all": ["transmission", "probes", "ssr"],
 }
-TIMED_PASSES = ["shadow_maps", "environment", "reflection_probes", "behind_glass", "ssr", "env_fallback", "lighting"]
+TIMED_PASSES = ["shadow_maps", "environment", "reflection_probes", "behind_glass", "ssr", "lighting"]
 
 
 def flags(config):

@@ -10,8 +10,5 @@ layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return;
-  vec3 hdr = imageLoad(directImage, pixel).rgb + indirectLight(pixel);
-  hdr = max(hdr, vec3(0.0));
-  imageStore(hdrImage, pixel, vec4(hdr, 1.0));
-  imageStore(ldrImage, pixel, vec4(displayColor(hdr), 1.0));
+  storeComposed(pixel, imageLoad(directImage, pixel).rgb, indirectLight(pixel));
 }

@@ -92,7 +92,7 @@ void traceEffects(ivec2 pixel, Surface s, Selection sel, bvec2 here) {
   tracedPathWeights(s, p, ng, N, V, specularWeight, transmitWeight);
   uint depth = clamp(frame.rayTracing.y, 1u, uint(RB_RT_MAX_DEPTH));
   vec3 R = mirrorDirection(V, N, ng);
-  // The fallback's paths, as the env_fallback pass computed them.
+  // The fallback's paths, as the lighting pass computed them.
   vec3 rasterV = normalize(frame.cameraPositionNear.xyz - s.position);
   vec3 fallback[2] = vec3[2](envReflection(s, rasterV, pixel, ng), envTransmission(s, rasterV));
   // Path 0 reflects, path 1 transmits; one traceRadiance call site keeps the shader (and

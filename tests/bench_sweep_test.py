@@ -20,7 +20,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCENE = ROOT.parent / "shared" / "scenes" / "ci" / "CornellBox"
 
 FRAME_COLUMNS = ["scene", "path", "policy", "budget_index", "budget_ms", "repeat", "order", "frame", "coverage_ms", "select_ms",
-                 "trace_ms", "trace_shadows_ms", "trace_effects_ms", "fill_effects_ms", "rt_stage_ms", "shadow_maps_ms", "env_fallback_ms", "frame_ms", "predicted_trace_ms", "trace_budget_ms",
+                 "trace_ms", "trace_shadows_ms", "trace_effects_ms", "fill_effects_ms", "rt_stage_ms", "shadow_maps_ms", "frame_ms", "predicted_trace_ms", "trace_budget_ms",
                  "candidates_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound", "selection_changes", "item_option_changes", "partial_share", "deadline_cut_pixels", "fill_cut_pixels", "rmse",
                  "psnr", "image", "flip"]
 SELECTION = ["selected_objects", "rays", "selected_value", "predicted_trace_ms"]

@@ -27,10 +27,12 @@ TEST(FrameTiming, EveryPassIsTimedAndTheEnvironmentOnlyOnce) {
   for (size_t i = 0; i < r.timings.size(); ++i) {
     const FrameTiming& t = r.timings[i];
     EXPECT_EQ(t.frame, i) << "timings arrive in frame order";
-    for (Pass p : {Pass::GBuffer, Pass::Lighting, Pass::EnvFallback, Pass::Compose}) {
+    for (Pass p : {Pass::GBuffer, Pass::Lighting}) {
       ASSERT_TRUE(t.passMs[size_t(p)].has_value()) << passName(p) << " frame " << i;
       EXPECT_GE(*t.passMs[size_t(p)], 0.0);
     }
+    EXPECT_EQ(t.skipped[size_t(Pass::Compose)], PassSkip::ComposedInLighting) << "nothing traced: the lighting pass composes";
+    EXPECT_FALSE(t.passMs[size_t(Pass::Compose)].has_value());
     EXPECT_EQ(t.passMs[size_t(Pass::Environment)].has_value(), i == 0) << "the static environment is built once";
     EXPECT_EQ(t.passMs[size_t(Pass::ShadowMaps)].has_value(), i == 0) << "the shadow maps of a static scene are rendered once";
   }

@@ -440,6 +440,43 @@ TEST(RtPolicy, NoneTracesNothingAndAllWithoutEffectsEqualsNone) {
   test::expectValidationClean(renderer.validationMessages());
 }
 
+// Where no reflection or refraction is traced the lighting pass composes the frame, else the
+// compose pass does: a mirror under the sky alone (no light, so no shadow to trace) traced
+// with `all` changes the mirror's pixels and no other, bit for bit in the HDR and display
+// images, whichever pass composed them.
+TEST(RtPolicy, TheLightingPassComposesAsTheComposePassDoes) {
+  Scene scene;
+  test::addObject(scene, test::quad(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(-1.2f, 0.0f, 0.0f)), test::mirror());
+  Material diffuse;
+  diffuse.baseColorFactor = glm::vec4(0.8f, 0.5f, 0.3f, 1.0f);
+  diffuse.roughness = 0.9f;
+  test::addObject(scene, test::icosphere(2), glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.5f, 0.0f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)), diffuse);
+  Camera cam;
+  cam.position = {0.0f, 3.0f, 4.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  std::vector<FrameTiming> noneTimings, allTimings;
+  const FrameImages none = renderScene(scene, Policy::None, cam, 96, 64, false, 1.0f, &noneTimings);
+  const FrameImages all = renderScene(scene, Policy::All, cam, 96, 64, false, 1.0f, &allTimings);
+  ASSERT_EQ(noneTimings[0].skipped[size_t(Pass::Compose)], PassSkip::ComposedInLighting);
+  ASSERT_TRUE(allTimings[0].passMs[size_t(Pass::Compose)].has_value()) << "the mirror's reflection is traced: the compose pass runs";
+  size_t mirror = 0, other = 0, otherDiffering = 0, mirrorDiffering = 0;
+  for (size_t p = 0; p < size_t(96) * 64; ++p) {
+    const bool same = std::equal(none.hdrRgba16.begin() + p * 4, none.hdrRgba16.begin() + p * 4 + 4, all.hdrRgba16.begin() + p * 4) &&
+                      std::equal(none.ldrRgba8.begin() + p * 4, none.ldrRgba8.begin() + p * 4 + 4, all.ldrRgba8.begin() + p * 4);
+    if (all.objectIds[p] == 0u) {
+      ++mirror;
+      mirrorDiffering += !same;
+    } else {
+      ++other;
+      otherDiffering += !same;
+    }
+  }
+  ASSERT_GT(mirror, 200u);
+  ASSERT_GT(other, 2000u);
+  EXPECT_GT(mirrorDiffering, 20u) << "where the traced mirror reflects the sphere (the fallback sees the sky alike)";
+  EXPECT_EQ(otherDiffering, 0u) << "the sphere and the sky are composed alike by either pass";
+}
+
 // The trace passes run over the tile list only: exactly the 8x8 tiles holding pixels of
 // selected objects (with `all`, every object on screen), and none when the camera sees
 // only sky: an empty indirect dispatch.

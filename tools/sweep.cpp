@@ -181,7 +181,7 @@ class Sweep {
          << (budgeted ? cfg.budgetMs : 0.0f) << ',' << kind.repeat << ',' << kind.order << ',' << f << ',' << passCell(t, Pass::Coverage) << ','
          << passCell(t, Pass::Select) << ',' << t.traceMs() << ',' << passCell(t, Pass::TraceShadows) << ',' << passCell(t, Pass::TraceEffects) << ','
          << passCell(t, Pass::FillEffects) << ',' << t.rtStageMs() << ',' << passCell(t, Pass::ShadowMaps) << ','
-         << passCell(t, Pass::EnvFallback) << ',' << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
+         << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
          << t.selectedObjects << ',' << t.raysTraced << ',' << t.selectedValue << ',' << t.optimalValueBound << ',' << t.selectionChanges << ','
          << t.itemOptionChanges << ',' << t.partialShare << ',' << t.deadlineCutPixels << ',' << t.fillCutPixels << ',';
     if (rmse >= 0.0) {
@@ -316,7 +316,7 @@ int runSweep(const SweepCommand& c) {
   const std::filesystem::path out(c.out);
   std::filesystem::create_directories(out / "paths");
   std::ofstream csv(out / "frames.csv");
-  csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,trace_shadows_ms,trace_effects_ms,fill_effects_ms,rt_stage_ms,shadow_maps_ms,env_fallback_ms,frame_ms,"
+  csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,trace_shadows_ms,trace_effects_ms,fill_effects_ms,rt_stage_ms,shadow_maps_ms,frame_ms,"
          "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,partial_share,deadline_cut_pixels,fill_cut_pixels,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
   calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,ms_per_item_work_unit,stage_overhead_ms,trace_fixed_ms,ms_per_ray,ms_per_item_ray,budgets_ms\n";

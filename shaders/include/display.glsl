@@ -1,5 +1,5 @@
 // The display transform: exposure, the ACES filmic fit of Narkowicz (2015), sRGB encoding.
-// The compose pass writes the PNG with it; the item error the trace passes measure is taken
+// The frame's display image is written with it (storeComposed); the item error the trace passes measure is taken
 // in the same space (GpuItemCost::error), since that is what a viewer and FLIP compare.
 #ifndef RB_DISPLAY_GLSL
 #define RB_DISPLAY_GLSL
@@ -14,6 +14,14 @@ vec3 linearToSrgb(vec3 c) {
 }
 
 vec3 displayColor(vec3 hdr) { return linearToSrgb(acesNarkowicz(max(hdr, vec3(0.0)) * frame.exposure.x)); }
+
+// The frame's pixel from its direct and indirect light: linear HDR (for EXR) and the display
+// image (for the PNG). The compose pass's, or the lighting pass's where no trace pass follows it.
+void storeComposed(ivec2 pixel, vec3 direct, vec3 indirect) {
+  vec3 hdr = max(direct + indirect, vec3(0.0));
+  imageStore(hdrImage, pixel, vec4(hdr, 1.0));
+  imageStore(ldrImage, pixel, vec4(displayColor(hdr), 1.0));
+}
 
 // The display-space difference of two linear HDR colours: the mean absolute difference of
 // their encoded channels, 0..1.

@@ -2,7 +2,7 @@
 // the screen-space reflection, else the surroundings (the reflection probe around the
 // surface, else the sky; split-sum specular), and through the surface the opaque frame behind it (screen-space transmission,
 // else the surroundings; Snell, with
-// KHR_materials_volume attenuation over the thickness). The env_fallback pass writes their
+// KHR_materials_volume attenuation over the thickness). The lighting pass writes their
 // sum; the trace pass keeps the path it does not trace as this exactly, and measures the
 // path it traces against it.
 #ifndef RB_ENV_FALLBACK_GLSL

@@ -65,6 +65,7 @@
 // The lighting pass's argument (DrawPush.objectMaterial.x) when it lights the opaque frame
 // that transmissive surfaces show behind them: shadow maps only, nothing measured.
 #define RB_PASS_BEHIND_GLASS 1u
+#define RB_PASS_COMPOSE 2u  // lighting: also compose the frame (no trace pass of reflections or refractions follows)
 // The behind-glass image's alpha where no surface was drawn (view distance, half float).
 #define RB_BEHIND_GLASS_SKY 65000.0
 

@@ -156,8 +156,7 @@ enum class Pass : uint32_t {
   ShadowMaps,
   Environment,
   TraceShadows,
-  EnvFallback,
-  Lighting,
+  Lighting,  // direct light, and the raster fallback for reflections and refractions
   TraceEffects,
   Compose,
   BehindGlass,  // the opaque frame lit and mip-mapped for glass to show, then the transmissive draws
@@ -192,6 +191,7 @@ enum class PassSkip : uint8_t {
   NoSmoothMaterial,                // screen-space reflections: no material smooth enough for them
   BudgetBelowFixedCost,            // coverage, select, trace: T at or below the stage's learned fixed cost
   FullRate,                        // fill effects: every item traced at full ray rate
+  ComposedInLighting,              // compose: no reflection or refraction traced, the lighting pass composed the frame
 };
 const char* passSkipText(PassSkip skip);
 

@@ -11,7 +11,6 @@
 #include "behind_glass_comp.h"
 #include "compose_comp.h"
 #include "fill_effects_comp.h"
-#include "env_fallback_comp.h"
 #include "lighting_comp.h"
 #include "passes/descriptors.h"
 #include "passes/environment.h"
@@ -92,7 +91,6 @@ struct Context::Impl {
   std::optional<glm::mat4> previousViewProj;  // the last recorded frame's (none before the first)
   glm::vec3 previousCamera{0.0f};             // its camera position
   passes::ScreenPass lighting;
-  passes::ScreenPass envFallback;
   passes::ScreenPass compose;
   passes::ScreenPass behindGlassCopy;
   passes::TileListPass traceShadows;
@@ -132,7 +130,6 @@ struct Context::Impl {
         screenReflections(ctx, layouts),
         ssrReach(std::max(glm::length(s.boundsMax - s.boundsMin), 1e-3f)),
         lighting(ctx, layouts, kSpirv_lighting_comp),
-        envFallback(ctx, layouts, kSpirv_env_fallback_comp),
         compose(ctx, layouts, kSpirv_compose_comp),
         behindGlassCopy(ctx, layouts, kSpirv_behind_glass_comp),
         traceShadows(ctx, layouts, scene.tracer->shader(passes::TraceShader::Shadows), passes::TileList::Shadows),
@@ -343,8 +340,6 @@ struct Context::Impl {
   void recordBehindGlass(const passes::FrameContext& fc, const glm::uvec4& rect) {
     VkCommandBuffer cmd = fc.cmd;
     constexpr uint32_t kStride = 2;  // half resolution
-    envFallback.recordOver(fc, RB_PASS_BEHIND_GLASS, rect, kStride);
-    computeToCompute(cmd);
     lighting.recordOver(fc, RB_PASS_BEHIND_GLASS, rect, kStride);
     // Cleared to 0 (in front of everything: the environment) outside the rectangle.
     const vk::Image& img = targets.behindGlass;
@@ -443,13 +438,12 @@ struct Context::Impl {
     // Shadows at a reduced ray rate are filled in the lighting pass (shaders/include/shadow_fill.glsl),
     // reflections and refractions in a pass of their own after the effects pass (fill_effects.comp).
     run(Pass::TraceShadows, traceSkip(RB_RT_SHADOWS, effects.shadows), [&] { traceShadows.recordOverTiles(fc); });
-    if (traced & RB_RT_SHADOWS) computeToCompute(cmd);
-    // The environment fallback first: the lighting pass reads it to measure the display error
-    // of the traced shadows (RB_RT_MEASURE_ITEMS).
-    timed(Pass::EnvFallback, [&] { envFallback.record(fc); });
+    // The lighting pass also writes the environment fallback for reflections and refractions,
+    // and where no reflection or refraction is traced after it, the composed frame.
     computeToCompute(cmd);
-    timed(Pass::Lighting, [&] { lighting.record(fc); });
     const PassSkip effectsSkip = traceSkip(RB_RT_REFLECTIONS | RB_RT_REFRACTIONS, effects.reflections || effects.refractions);
+    const bool composeInLighting = effectsSkip != PassSkip::None;
+    timed(Pass::Lighting, [&] { lighting.record(fc, composeInLighting ? RB_PASS_COMPOSE : 0u); });
     if (effectsSkip == PassSkip::None) computeToCompute(cmd);
     run(Pass::TraceEffects, effectsSkip, [&] { traceEffects.recordOverTiles(fc); });
     computeToCompute(cmd);
@@ -458,7 +452,7 @@ struct Context::Impl {
       fillEffects.recordOverTiles(fc);
       computeToCompute(cmd);
     });
-    timed(Pass::Compose, [&] { compose.record(fc); });
+    run(Pass::Compose, composeInLighting ? PassSkip::ComposedInLighting : PassSkip::None, [&] { compose.record(fc); });
     selection.recordStats(cmd, s);
   }
 
@@ -633,7 +627,7 @@ uint64_t Context::allocatedBytes() const { return impl_->ctx.allocatedBytes(); }
 
 std::vector<std::string> Context::builtPipelines() const {
   const Impl& r = *impl_;
-  std::vector<std::string> out = {"gbuffer", "coverage", "select", "environment", "env_fallback", "lighting", "compose"};
+  std::vector<std::string> out = {"gbuffer", "coverage", "select", "environment", "lighting", "compose"};
   if (r.shadowMaps) out.push_back("shadow_maps");
   if (r.probes.built()) out.push_back("reflection_probes");
   if (r.screenReflections.built()) out.push_back("ssr");

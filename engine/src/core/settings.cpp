@@ -84,6 +84,7 @@ const char* passSkipText(PassSkip skip) {
     case PassSkip::NoPreviousFrame: return "no earlier frame to reflect";
     case PassSkip::EveryPixelTracesReflections: return "every smooth pixel traces its reflection";
     case PassSkip::NoSmoothMaterial: return "no material smooth enough for screen-space reflections";
+    case PassSkip::ComposedInLighting: return "no reflection or refraction is traced: the lighting pass composed the frame";
   }
   return "?";
 }
@@ -97,7 +98,6 @@ const char* passName(Pass pass) {
     case Pass::Environment: return "environment";
     case Pass::TraceShadows: return "trace_shadows";
     case Pass::TraceEffects: return "trace_effects";
-    case Pass::EnvFallback: return "env_fallback";
     case Pass::Lighting: return "lighting";
     case Pass::Compose: return "compose";
     case Pass::BehindGlass: return "behind_glass";

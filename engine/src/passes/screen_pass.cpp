@@ -10,7 +10,9 @@ namespace raybudget::passes {
 ScreenPass::ScreenPass(const vk::Context& ctx, PassLayouts& layouts, vk::Spirv shader)
     : layout_(layouts.create({shader})), pipeline_(vk::createComputePipeline(ctx, layout_.pipelineLayout, shader)) {}
 
-void ScreenPass::record(const FrameContext& fc) const { recordOver(fc, 0, glm::uvec4(0, 0, fc.targets.width, fc.targets.height), 1); }
+void ScreenPass::record(const FrameContext& fc, uint32_t mode) const {
+  recordOver(fc, mode, glm::uvec4(0, 0, fc.targets.width, fc.targets.height), 1);
+}
 
 void ScreenPass::recordOver(const FrameContext& fc, uint32_t mode, const glm::uvec4& rect, uint32_t stride) const {
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
