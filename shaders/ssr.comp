@@ -15,7 +15,8 @@ layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 
 
 const int kMaxSteps = 80;
 
-float pyramidDepth(ivec2 cell, int level) { return texelFetch(depthPyramid, cell, level).r; }
+// Level 0 is the G-buffer's depth itself; the pyramid's mip m holds level m + 1.
+float pyramidDepth(ivec2 cell, int level) { return level == 0 ? texelFetch(gDepth, cell, 0).r : texelFetch(depthPyramid, cell, level - 1).r; }
 
 // Marches p(t) = origin + dir * t, t in [tStart, 1], in (pixel x, pixel y, depth) space;
 // returns the t where it first passes behind the nearest depth of a level-0 texel, or -1.
@@ -77,7 +78,7 @@ vec4 reflectionAt(Surface s, vec3 ng, out float hitDistance) {
   vec3 s0 = vec3((c0.xy / c0.w * 0.5 + 0.5) * size, c0.z / c0.w), s1 = vec3((c1.xy / c1.w * 0.5 + 0.5) * size, c1.z / c1.w);
   vec3 dir = s1 - s0;
   float pixels = max(abs(dir.x), abs(dir.y));
-  int levels = textureQueryLevels(depthPyramid);
+  int levels = textureQueryLevels(depthPyramid) + 1;
   float t = pixels > 1.0 ? marchHiZ(s0, dir, 1.5 / pixels, levels) : -1.0;
   if (t < 0.0) return vec4(0.0);
   vec3 p = s0 + dir * t;

@@ -63,9 +63,12 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   t.hdr = image2d(ctx, kHdrFormat, width, height, storage | VK_IMAGE_USAGE_SAMPLED_BIT);  // sampled: the next frame's reflections
   const uint32_t ssrW = needs.screenReflections ? width : 1, ssrH = needs.screenReflections ? height : 1;
   t.ssr = image2d(ctx, kHdrFormat, ssrW, ssrH, storage);
+  // The pyramid's levels 1.. (level 0 is the G-buffer's depth): mip m holds level m + 1.
   const uint32_t levels = std::min<uint32_t>(uint32_t(std::floor(std::log2(double(std::max(ssrW, ssrH))))) + 1, RB_HIZ_LEVELS);
-  t.depthPyramid = image2d(ctx, VK_FORMAT_R32_SFLOAT, ssrW, ssrH, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 1, false, levels);
-  for (uint32_t l = 0; l < levels; ++l) t.depthPyramidLevels.push_back(vk::createView(ctx, t.depthPyramid, VK_IMAGE_VIEW_TYPE_2D, l, 1, 0, 1));
+  const uint32_t pyramidMips = std::max(levels, 2u) - 1;
+  t.depthPyramid = image2d(ctx, VK_FORMAT_R32_SFLOAT, std::max(ssrW / 2, 1u), std::max(ssrH / 2, 1u),
+                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, 1, false, pyramidMips);
+  for (uint32_t l = 0; l < pyramidMips; ++l) t.depthPyramidLevels.push_back(vk::createView(ctx, t.depthPyramid, VK_IMAGE_VIEW_TYPE_2D, l, 1, 0, 1));
   t.ldr = image2d(ctx, kLdrFormat, width, height, storage);
   const uint32_t maskLayers = 2 * std::max(lightCount, 1u);
   t.shadowMask = image2d(ctx, VK_FORMAT_R32_SFLOAT, width, height, storage, maskLayers);

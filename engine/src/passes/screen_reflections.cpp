@@ -30,7 +30,8 @@ void ScreenReflectionPass::record(const FrameContext& fc) {
   };
   vkCmdBindPipeline(fc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pyramid_);
   layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  for (uint32_t level = 0; level < t.depthPyramidLevels.size(); ++level) {
+  // Levels 1.. into the pyramid's mips 0..: level 0 is the G-buffer's depth.
+  for (uint32_t level = 1; level <= t.depthPyramidLevels.size(); ++level) {
     gpu::DrawPush push{};
     push.objectMaterial.x = level;
     layout_.push(fc, push);
