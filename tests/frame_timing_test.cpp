@@ -215,7 +215,7 @@ TEST(PassPlan, TheEffectsPipelineHoldsOnlyThePathsTheSceneShows) {
 // A fallback the scene or its settings cannot use keeps no full-size image: the device memory a
 // renderer holds drops by at least that image's size when it is switched off or has nothing to
 // show (screen-space transmission's half-resolution copy, screen-space reflections' image and
-// depth pyramid, the shadow maps).
+// depth pyramid, the shadow maps, the G-buffer's layers target).
 TEST(PassPlan, AFallbackTheSceneCannotUseHoldsNoFullSizeImage) {
   constexpr int64_t kW = 640, kH = 360;
   auto heldBytes = [&](const Scene& scene, const std::function<void(RenderSettings&)>& change) {
@@ -234,9 +234,13 @@ TEST(PassPlan, AFallbackTheSceneCannotUseHoldsNoFullSizeImage) {
   const int64_t glassOn = heldBytes(glassy, same), glassOff = heldBytes(glassy, [](RenderSettings& s) { s.screenSpaceTransmission = false; });
   EXPECT_GE(glassOn - glassOff, kW / 2 * kH / 2 * 8) << "the behind-glass copy (RGBA16F, half size)";
   const int64_t ssrOn = heldBytes(mirrors, same), ssrOff = heldBytes(mirrors, [](RenderSettings& s) { s.screenSpaceReflections = false; });
-  EXPECT_GE(ssrOn - ssrOff, kW * kH * (8 + 4)) << "the reflections' image (RGBA16F) and depth pyramid (R32F)";
+  const int64_t ssrBytes = kW * kH * 8 + kW / 2 * kH / 2 * 4;
+  EXPECT_GE(ssrOn - ssrOff, ssrBytes) << "the reflections' image (RGBA16F) and depth pyramid from half size (R32F)";
   const int64_t rough = heldBytes(twoTriangles(), same);
-  EXPECT_GE(ssrOn - rough, kW * kH * (8 + 4)) << "a scene with nothing smooth has no reflection images";
+  EXPECT_GE(ssrOn - rough, ssrBytes) << "a scene with nothing smooth has no reflection images";
+  Material coated;
+  coated.clearcoat = 1.0f;
+  EXPECT_GE(heldBytes(twoTrianglesOf(coated), same) - rough, kW * kH * 16 - 4096) << "a scene without layered materials draws no layers target (a 1x1 stands in)";
   EXPECT_GE(glassOn - rough, kW / 2 * kH / 2 * 8) << "a scene without glass has no behind-glass copy";
   Material unlitGlass = glass;
   unlitGlass.unlit = true;  // traces nothing, but is drawn over the opaque frame behind it like any glass

@@ -125,6 +125,8 @@ struct FrameOutputs {
 
 // The images of the core's own G-buffer raster (recordFrame without a host G-buffer), in
 // core::GBuffer's formats, SHADER_READ_ONLY_OPTIMAL after such a frame: for read-back.
+// `layers` is 1x1 and not drawn where no material of the scene has layers (the emissive
+// target's alpha is 0 on every pixel).
 struct OwnGBuffer {
   VkImage depth, normal, baseMetal, roughTransIor, emissive, objectId, materialId, position, layers;
 };

@@ -49,7 +49,7 @@ FrameTargets createFrameTargets(const vk::Context& ctx, uint32_t width, uint32_t
   // exact surface point, which depth reconstruction cannot give to within a few ulps.
   t.position = image2d(ctx, kPositionFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   // Clearcoat, sheen and specular per pixel (gbuffer.glsl's readLayers; zero: none).
-  t.layers = image2d(ctx, kLayersFormat, width, height, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  t.layers = image2d(ctx, kLayersFormat, needs.layers ? width : 1, needs.layers ? height : 1, attach | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   {
     vk::ImageDesc d;
     d.format = kLayersFormat;

@@ -29,6 +29,7 @@ struct TargetNeeds {
   bool screenReflections = true;      // a surface smooth enough for screen-space reflections, the fallback on
   bool fillHistory = false;           // reduced ray rates for reflections or refractions: their fill (shaders/include/fill_history.glsl)
   bool shadowHistory = false;         // reduced ray rates for shadows: their fill (shaders/include/shadow_history.glsl)
+  bool layers = true;                 // a material with layers: the G-buffer's layers target is drawn (else read nowhere)
 };
 
 struct FrameTargets {

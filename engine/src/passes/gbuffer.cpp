@@ -70,10 +70,12 @@ void GBufferPass::record(const FrameContext& fc, Draws draws) const {
   // Only the object ID (RB_NO_OBJECT) and the depth are cleared: every reader reads the other
   // targets where the ID names an object, whose draw wrote them. Not clearing five targets of
   // up to 16 bytes a pixel saves 2.5 ms of a 21 ms G-buffer at 1280x720 on lavapipe.
+  // Without layered materials every pixel's emissive alpha says it has none, so nothing reads the
+  // layers target: it is not drawn (1x1; 3 of AlphaBlendModeTest's 18 ms G-buffer at 1280x720).
   std::vector<VkRenderingAttachmentInfo> colors;
   for (const vk::Image* img : t.gbufferColors()) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    a.imageView = img->view;
+    a.imageView = img == &t.layers && !t.needs.layers ? VkImageView(VK_NULL_HANDLE) : VkImageView(img->view);
     a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     a.loadOp = !over && img->desc.format != kIdFormat ? VK_ATTACHMENT_LOAD_OP_DONT_CARE : load;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;

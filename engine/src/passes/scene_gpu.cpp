@@ -202,7 +202,10 @@ SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSet
     if (m.alphaMode == AlphaMode::Mask) flags |= RB_MATERIAL_ALPHA_MASK;
     if (m.unlit) flags |= RB_MATERIAL_UNLIT;
     const bool customF0 = m.specularColor != glm::vec3(1.0f) || m.specularColorTexture >= 0;
-    if (m.clearcoat > 0.0f || m.sheenColor != glm::vec3(0.0f) || m.specular != 1.0f || m.specularTexture >= 0 || customF0) flags |= RB_MATERIAL_LAYERS;
+    if (m.clearcoat > 0.0f || m.sheenColor != glm::vec3(0.0f) || m.specular != 1.0f || m.specularTexture >= 0 || customF0) {
+      flags |= RB_MATERIAL_LAYERS;
+      gpu.hasLayers = true;
+    }
     for (int t : {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture, m.clearcoatTexture, m.clearcoatRoughnessTexture,
                   m.clearcoatNormalTexture, m.sheenColorTexture, m.sheenRoughnessTexture, m.specularTexture, m.specularColorTexture})
       if (t >= 0 && scene.textures[size_t(t)].uvTransform != glm::mat3(1.0f)) flags |= RB_MATERIAL_UV_TRANSFORM;

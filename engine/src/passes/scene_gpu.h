@@ -65,6 +65,7 @@ struct SceneGpu {
   ShadowViews shadows;
   uint32_t lightCount = 0;
   bool hasTransmission = false;
+  bool hasLayers = false;  // a material with clearcoat, sheen or specular (RB_MATERIAL_LAYERS)
 };
 
 SceneGpu uploadScene(const vk::Context& ctx, const Scene& scene, const RenderSettings& settings);
