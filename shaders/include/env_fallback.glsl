@@ -7,9 +7,6 @@
 // path it traces against it.
 #ifndef RB_ENV_FALLBACK_GLSL
 #define RB_ENV_FALLBACK_GLSL
-#ifndef RB_INSIDE_MODE
-#define RB_INSIDE_MODE 2
-#endif
 #include "include/environment.glsl"
 
 // The split-sum weights of the surface's reflection and transmission (brdf.glsl).

@@ -41,12 +41,6 @@ vec2 cubeUvOnFace(vec3 d, float face, out float major) {
   return 0.5 * vec2(sc, tc) / major + 0.5;
 }
 
-vec2 cubeFaceUv(vec3 d, out float face) {
-  face = cubeFace(d);
-  float major;
-  return cubeUvOnFace(d, face, major);
-}
-
 // Four bilinear depth-compare taps half a texel (times `spread`) around `uv` (in [0, 1]^2 of
 // the map) in `layer`'s used corner, each against `ref` plus `slope` (the reference's change
 // per unit of the used corner's coordinates; zero: one reference for all four).
@@ -207,13 +201,13 @@ float shadowRayEnd(GpuLight light, vec3 origin, vec3 L, float dist) {
   float t;      // where the nearest blocker depth is, along the ray
   float texel;  // a texel's world size at the receiver
   if (type == RB_LIGHT_POINT) {
-    vec3 v = origin - light.positionRange.xyz;
-    vec3 a = abs(v);
+    // The face the origin lies on and where (outside the cube's near and far planes: the full ray).
+    float face = -1.0, faceLayer, ref;
+    vec2 uv;
+    if (!mapCoords(light, origin, face, faceLayer, uv, ref)) return dist;
+    vec3 a = abs(origin - light.positionRange.xyz);
     float w0 = max(a.x, max(a.y, a.z));
-    if (w0 >= f || w0 <= n) return dist;
-    float face;
-    vec2 uv = cubeFaceUv(v, face);
-    float d = nearestDepthInLayer(pointShadowDepths, uv * light.spotShadow.w, layer * 6.0 + face, light.spotShadow.w);
+    float d = nearestDepthInLayer(pointShadowDepths, uv * light.spotShadow.w, faceLayer, light.spotShadow.w);
     if (d >= 1.0) return dist;
     // The major axis's component shrinks linearly along the ray.
     float along = a.x >= max(a.y, a.z) ? abs(L.x) : (a.y >= a.z ? abs(L.y) : abs(L.z));
