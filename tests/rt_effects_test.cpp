@@ -619,9 +619,10 @@ TEST(RtPolicy, EachTracePassRunsOverTheTilesOfItsOwnItems) {
 }
 
 // The trace passes run a tile's pixels in chunks of 4, as many as its items' rate traces, and
-// the fill those its items' rate skips: every item at one fixed rate on the court (room for all
-// of them), each listed tile runs 16 chunks at full rate, 8 at 1/2, 4 at 1/4 and 1 at 1/16, in
-// both trace passes, and the fill 0, 8, 12 and 15 of each tile of the effect pass's.
+// the fill one chunk (an invocation per 4x4 block) of each tile where a rate skips pixels: every
+// item at one fixed rate on the court (room for all of them), each listed tile runs 16 chunks
+// at full rate, 8 at 1/2, 4 at 1/4 and 1 at 1/16, in both trace passes, and the fill none at
+// full rate and one of each tile of the effect pass's at the others.
 TEST(RtPolicy, TracePassesRunTheChunksOfATileItsRateTraces) {
   const Scene scene = loadScene(test::defaultScenePath());
   for (const ItemRate rate : {ItemRate::Full, ItemRate::Half, ItemRate::Quarter, ItemRate::Sixteenth}) {
@@ -641,7 +642,7 @@ TEST(RtPolicy, TracePassesRunTheChunksOfATileItsRateTraces) {
     EXPECT_GT(t.back().effectTiles, 0u);
     EXPECT_EQ(t.back().shadowChunks, perTile * t.back().shadowTiles) << int(rate);
     EXPECT_EQ(t.back().effectChunks, perTile * t.back().effectTiles) << int(rate);
-    EXPECT_EQ(t.back().fillChunks, (16u - perTile) * t.back().effectTiles) << int(rate);
+    EXPECT_EQ(t.back().fillChunks, rate == ItemRate::Full ? 0u : t.back().effectTiles) << int(rate);
     test::expectValidationClean(renderer.validationMessages());
   }
 }

@@ -47,9 +47,9 @@ void countCut(uint pixels, float work, bool shadows) {
   }
 }
 
-// Counts this lane's pixel the fill left past its deadline (`left`): one atomic a subgroup.
-void countFillCut(bool left) {
-  uint sum = subgroupAdd(left ? 1u : 0u);
+// Counts this lane's `left` pixels the fill left past its deadline: one atomic a subgroup.
+void countFillCut(uint left) {
+  uint sum = subgroupAdd(left);
   if (subgroupElect() && sum != 0u) atomicAdd(deadlineCut.w, sum);
 }
 

@@ -58,20 +58,96 @@ void gatherChanges(ivec2 pixel, FillCentre c, uint rate, bool want[2], inout vec
   }
 }
 
+// 1/16's lattice of traced pixels as the fill of a 4x4 block of the screen reads it
+// (fill_effects.comp): the block's pixels fall into at most four of the lattice's cells, and
+// each cell's four corner points are read once for its pixels (two history loads, the position
+// on the view ray and the decoded normal each), where the pixels one at a time read and decoded
+// four each (60 a block: the larger part of the fill's time at 1/16 on lavapipe). What a corner
+// holds is what currentHistory gives a pixel of its object.
+struct LatticeSource {
+  uint objectId;  // RB_NO_OBJECT: off the screen, or nothing traced there this frame
+  uint fresh;     // bit p: path p was traced there this frame (age 0)
+  vec3 change0, change1;
+  vec3 position;  // on the point's view ray at the distance its history holds
+  vec3 normal;
+};
+
+LatticeSource latticeSource(ivec2 q) {
+  LatticeSource s = LatticeSource(RB_NO_OBJECT, 0u, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), frame.sizeLightsFrame.xy))) return s;
+  uint layer = (frame.sizeLightsFrame.w & 1u) * 2u;
+  uvec4 where = imageLoad(fillHistory, ivec3(q, layer + 1u));
+  if (where.z != frame.sizeLightsFrame.w + 1u) return s;
+  uvec4 terms = imageLoad(fillHistory, ivec3(q, layer));
+  s.fresh = ((terms.w & 0xFFu) == 0u ? 1u : 0u) | (((terms.w >> 8u) & 0xFFu) == 0u ? 2u : 0u);
+  if (s.fresh == 0u) return s;
+  s.objectId = where.x;
+  vec2 a = unpackHalf2x16(terms.x), b = unpackHalf2x16(terms.y), c = unpackHalf2x16(terms.z);
+  s.change0 = vec3(a, b.x);
+  s.change1 = vec3(b.y, c);
+  s.position = frame.cameraPositionNear.xyz + viewDirection(q) * uintBitsToFloat(where.y);
+  s.normal = octDecode(unpackSnorm2x16(where.w));
+  return s;
+}
+
+// A lattice cell: its corner at `below` and the three to the right and down (4 pixels apart),
+// read when a pixel first needs them. Separate members, not an array: indexed at run time,
+// lavapipe keeps an array in memory (a quarter of the fill's time at 1/16).
+struct LatticeCell {
+  ivec2 below;
+  bool read;
+  LatticeSource s00, s10, s01, s11;
+};
+
+LatticeCell latticeCell(ivec2 below) {
+  LatticeSource none = LatticeSource(RB_NO_OBJECT, 0u, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  return LatticeCell(below, false, none, none, none, none);
+}
+
+// Adds a corner `d` pixels from the pixel to the sums of the paths in `want` (gatherChanges'
+// weights and sums for 1/16).
+void addLatticeSource(LatticeSource src, ivec2 d, FillCentre c, bool want[2], inout vec3 sum[2], inout vec3 squares[2], inout float total[2]) {
+  if (src.objectId != c.objectId) return;
+  bool use[2] = bool[2](want[0] && (src.fresh & 1u) != 0u, want[1] && (src.fresh & 2u) != 0u);
+  if (!use[0] && !use[1]) return;
+  float w = exp(float(d.x * d.x + d.y * d.y) * -0.125) * fillSimilarity(c, src.position, src.normal);
+  vec3 change[2] = vec3[2](src.change0, src.change1);
+  for (int path = 0; path < 2; ++path)
+    if (use[path]) {
+      sum[path] += w * change[path];
+      squares[path] += w * change[path] * change[path];
+      total[path] += w;
+    }
+}
+
+// gatherChanges at 1/16 for a pixel of `cell`: the same sources in the same order, so the same sums.
+void gatherLattice(ivec2 pixel, FillCentre c, bool want[2], inout LatticeCell cell, inout vec3 sum[2], inout vec3 squares[2], inout float total[2]) {
+  if (!cell.read) {
+    cell.s00 = latticeSource(cell.below);
+    cell.s10 = latticeSource(cell.below + ivec2(4, 0));
+    cell.s01 = latticeSource(cell.below + ivec2(0, 4));
+    cell.s11 = latticeSource(cell.below + ivec2(4, 4));
+    cell.read = true;
+  }
+  ivec2 d = cell.below - pixel;
+  addLatticeSource(cell.s00, d, c, want, sum, squares, total);
+  addLatticeSource(cell.s10, d + ivec2(4, 0), c, want, sum, squares, total);
+  addLatticeSource(cell.s01, d + ivec2(0, 4), c, want, sum, squares, total);
+  addLatticeSource(cell.s11, d + ivec2(4, 4), c, want, sum, squares, total);
+}
+
 void addToPath(ivec2 pixel, int path, vec3 change) {
   if (path == 0) imageStore(reflectionImage, pixel, vec4(imageLoad(reflectionImage, pixel).rgb + change, 1.0));
   else imageStore(refractionImage, pixel, vec4(imageLoad(refractionImage, pixel).rgb + change, 1.0));
 }
 
 // Fills the pixel's paths (x reflection, y refraction) that their items' reduced rates skipped
-// this frame; returns them, and the pixel's object. `past`: the fill is past its deadline
-// (include/deadline_cut.glsl), so it fills nothing and `left` says whether an item's rate
-// skipped the pixel (the fill's pixels the deadline left).
-bvec2 fillEffects(ivec2 pixel, bool past, out uint objectId, out bool left) {
+// this frame; returns them. `objectId` (an object) and `sel` (its selection in the pixel's tile):
+// the pixel's; `cell`: 1/16's lattice cell that holds it. `past`: the fill is past its deadline (include/deadline_cut.glsl), so it fills
+// nothing and `left` says whether an item's rate skipped the pixel (the fill's pixels the
+// deadline left).
+bvec2 fillEffects(ivec2 pixel, uint objectId, Selection sel, bool past, inout LatticeCell cell, out bool left) {
   left = false;
-  objectId = all(lessThan(uvec2(pixel), frame.sizeLightsFrame.xy)) ? texelFetch(gObjectId, pixel, 0).r : RB_NO_OBJECT;
-  if (objectId == RB_NO_OBJECT) return bvec2(false);
-  Selection sel = selectionAt(objectId, pixel);
   uint rates[2] = uint[2](itemRate(sel, RB_ITEM_REFLECTIONS), itemRate(sel, RB_ITEM_REFRACTIONS));
   bool skipped[2] = bool[2](itemSelected(sel, RB_ITEM_REFLECTIONS) && !rateTraces(rates[0], pixel),
                             itemSelected(sel, RB_ITEM_REFRACTIONS) && !rateTraces(rates[1], pixel));
@@ -107,8 +183,14 @@ bvec2 fillEffects(ivec2 pixel, bool past, out uint objectId, out bool left) {
     float total[2] = float[2](0.0, 0.0);
     // Both paths from one gather where their rates agree.
     bool both = pending[0] && pending[1] && rates[0] == rates[1];
-    if (pending[0]) gatherChanges(pixel, c, rates[0], bool[2](true, both), sum, squares, total);
-    if (pending[1] && !both) gatherChanges(pixel, c, rates[1], bool[2](false, true), sum, squares, total);
+    if (pending[0]) {
+      if (rates[0] == RB_RATE_SIXTEENTH) gatherLattice(pixel, c, bool[2](true, both), cell, sum, squares, total);
+      else gatherChanges(pixel, c, rates[0], bool[2](true, both), sum, squares, total);
+    }
+    if (pending[1] && !both) {
+      if (rates[1] == RB_RATE_SIXTEENTH) gatherLattice(pixel, c, bool[2](false, true), cell, sum, squares, total);
+      else gatherChanges(pixel, c, rates[1], bool[2](false, true), sum, squares, total);
+    }
     for (int path = 0; path < 2; ++path)
       if (pending[path] && total[path] >= RB_FILL_MIN_WEIGHT) addToPath(pixel, path, shrunkMean(sum[path], squares[path], total[path]));
   }

@@ -1,6 +1,5 @@
-// The pixels of the passes dispatched over the tile lists (tile_list.comp): the trace passes
-// and the fill of reflections and refractions, over chunks of tiles. The includer includes
-// bindings.glsl.
+// The pixels of the trace passes dispatched over the tile lists (tile_list.comp), over chunks
+// of tiles. The includer includes bindings.glsl.
 #ifndef RB_TILE_PIXEL_GLSL
 #define RB_TILE_PIXEL_GLSL
 #include "include/rates.glsl"
@@ -33,16 +32,16 @@ uint rateRanks(uint rate) { return RB_TILE_SIZE * RB_TILE_SIZE / ratePeriod(rate
 // A chunk: RB_TRACE_CHUNK consecutive ranks of a tile, from rank 4c.
 uint chunkWord(uvec2 tile, uint c) { return tile.x | (tile.y << 12u) | (c << 24u); }
 
-// The pixel of a pass over chunks (`list`: RB_SHADOW_CHUNKS, RB_EFFECT_CHUNKS or
-// RB_FILL_CHUNKS), ivec2(-1) past the list's end. A trace pass's list holds a tile's chunks up
-// to the ranks its items' rates trace, the fill's those from the ranks the densest reduced rate
-// traces on, so invocations run only where some item may trace or be filled: a tile at 1/16
-// costs a trace pass 4, not 64, and two such tiles fill a SIMD batch of 8 lanes (over whole
-// tiles, the 60 invocations that returned at once were most of the shadow pass at 1/16, and
-// the four that traced left half of their batch idle); a tile traced at full rate costs the fill none.
+// The pixel of a trace pass over chunks (`list`: RB_SHADOW_CHUNKS or RB_EFFECT_CHUNKS),
+// ivec2(-1) past the list's end. A trace pass's list holds a tile's chunks up to the ranks its
+// items' rates trace, so invocations run only where some item may trace: a tile at 1/16 costs
+// a trace pass 4, not 64, and two such tiles fill a SIMD batch of 8 lanes (over whole tiles,
+// the 60 invocations that returned at once were most of the shadow pass at 1/16, and the four
+// that traced left half of their batch idle). (The fill's list, RB_FILL_CHUNKS, holds one
+// chunk a tile: fill_effects.comp runs an invocation per 4x4 block.)
 ivec2 chunkPixel(uint list) {
   uint g = gl_GlobalInvocationID.x, chunk = g / RB_TRACE_CHUNK;
-  uint count = list == RB_SHADOW_CHUNKS ? traceCounts.y : list == RB_EFFECT_CHUNKS ? traceCounts.z : traceCounts.w;
+  uint count = list == RB_SHADOW_CHUNKS ? traceCounts.y : traceCounts.z;
   if (chunk >= count) return ivec2(-1);
   uint word = tiles[list + chunk];
   return rankPixel(uvec2(word & 0xFFFu, (word >> 12u) & 0xFFFu), (word >> 24u) * RB_TRACE_CHUNK + g % RB_TRACE_CHUNK);

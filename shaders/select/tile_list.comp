@@ -6,8 +6,8 @@
 // frame (include/probe.glsl), goes to the shadow pass's list with as many of its chunks as the
 // highest ray rate among those items traces (all 16 at full rate or probed, 8 at 1/2, 4 at 1/4,
 // 1 at 1/16); one holding a selected or probed reflection or refraction item, to the other
-// pass's; and one holding a reflection or refraction item at a reduced rate, to the fill's with
-// the chunks from the first rank the densest such rate skips. Each list's count sets its pass's
+// pass's; and one holding a reflection or refraction item at a reduced rate, to the fill's as
+// one chunk (fill_effects.comp's invocation per 4x4 block). Each list's count sets its pass's
 // indirect dispatch: no selected pixel, no work.
 // One invocation per tile: it checks the few objects the coverage pass noted for the tile,
 // and scans the tile's pixels only when the tile shows more (fetching every pixel cost
@@ -94,10 +94,10 @@ void listTile() {
     atomicAdd(effectDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
     atomicAdd(tileCounts.y, 1u);
   }
-  if (ranks.z < RB_TILE_SIZE * RB_TILE_SIZE) {
-    uint from = ranks.z / RB_TRACE_CHUNK, chunks = RB_CHUNKS_PER_TILE - from, at = atomicAdd(traceCounts.w, chunks);
-    writeChunks(RB_FILL_CHUNKS, at, tile, from, RB_CHUNKS_PER_TILE);
-    atomicAdd(fillDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
+  if (ranks.z < RB_TILE_SIZE * RB_TILE_SIZE) {  // one chunk: the fill's invocation per 4x4 block
+    uint at = atomicAdd(traceCounts.w, 1u);
+    tiles[RB_FILL_CHUNKS + at] = chunkWord(tile, 0u);
+    atomicAdd(fillDispatch.x, chunkGroups(at + 1u) - chunkGroups(at));
   }
   if (any(notEqual(ranks.xy, uvec2(0u)))) atomicAdd(effectDispatch.w, 1u);
 }

@@ -184,7 +184,8 @@ struct GpuObjectCost {
 #define RB_TRACED_SHARE_QUARTER 0.3325   // 0.25 * RB_TRACED_PIXEL_COST_QUARTER
 #define RB_TRACED_SHARE_SIXTEENTH 0.103125  // 0.0625 * RB_TRACED_PIXEL_COST_SIXTEENTH
 // The prior fill share: the skipped pixels' ticks of the court, Suzanne, the WaterBottle and
-// TransmissionTest at 1/4 and 1/16 gave 0.0-0.48, the court 0.01-0.03, Suzanne 0.16-0.17.
+// TransmissionTest at 1/4 and 1/16 gave 0.0-0.48, the court 0.01-0.03, Suzanne 0.16-0.17 (with
+// an invocation per skipped pixel; the fill's invocation per 4x4 block costs about 0.6-0.8 of it).
 // Shadows fill in the lighting pass, outside the stage: a skipped pixel costs the shadow pass
 // its object's read alone, which is not timed. Their share is the pass's: `classified` on
 // CesiumMilkTruck's fly-through (640x360, the cheapest rays of the bench scenes) cost 0.37 of

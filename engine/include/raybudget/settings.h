@@ -203,8 +203,7 @@ struct FrameTiming {
   uint32_t effectTiles = 0;    // and the reflection and refraction pass's
   // The chunks of 4 pixels of those tiles each pass ran (16 a tile at full rate, 8 at 1/2, 4 at
   // 1/4, 1 at 1/16: the highest rate among the tile's items), and the fill of reflections and
-  // refractions (from the first pixel the densest reduced rate among them skips: 8 at 1/2, 12
-  // at 1/4, 15 at 1/16, none at full rate).
+  // refractions (one a tile where a reduced rate skips pixels: its invocation per 4x4 block).
   uint32_t shadowChunks = 0, effectChunks = 0, fillChunks = 0;
   uint32_t raysTraced = 0;     // ray queries the trace passes ran (shadow, reflection, refraction)
   // Pixels the stage's deadline (RenderSettings::stageDeadline) left to their fallbacks: per
