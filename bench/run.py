@@ -455,23 +455,27 @@ def headline(points, summary, oracle, calibration, policies):
     # 3. Two-sided adherence.
     # The first recorded frame of a path follows the warm-up on the same camera (the steady
     # case); the others follow a jump along the path (each view new to the learned costs).
-    lines.append("\n### Budget adherence, both sides (all budgets; range over repeats)\n")
-    lines.append("| policy | frames with stage <= T + 5% | the first recorded frame (after the still warm-up) | the others (after a camera jump) "
-                 "| budget use: median stage / T where the candidates exceed T |")
-    lines.append("|---|---|---|---|---|")
+    # The promise covers T from twice the stage's fixed cost t0 (the case's calibrated one) up:
+    # below it the fixed passes alone are most of T.
+    lines.append("\n### Budget adherence, both sides (range over repeats)\n")
+    lines.append("| policy | frames with stage <= T + 5% | of them at T >= 2 t0 | the first recorded frame (after the still warm-up) "
+                 "| the others (after a camera jump) | budget use: median stage / T where the candidates exceed T |")
+    lines.append("|---|---|---|---|---|---|")
     for p in policies:
-        within, still, jumps, use = [], [], [], []
+        within, ranged, still, jumps, use = [], [], [], [], []
         for r in cases.repeats:
             frames = [x for q in points if q["policy"] == p and q["repeat"] == r for x in q["frames"]]
             held = lambda fs: mean([float(num(x["rt_stage_ms"]) <= ADHERENCE_SLACK * num(x["budget_ms"])) for x in fs])
             within.append(held(frames))
+            ranged.append(held([x for x in frames if num(x["budget_ms"]) >= 2.0 * calibration.get((x["scene"], x["path"]), 0.0)]))
             still.append(held([x for x in frames if x["frame"] == "0"]))
             jumps.append(held([x for x in frames if x["frame"] != "0"]))
             use.append(median([num(x["rt_stage_ms"]) / num(x["budget_ms"]) for x in stage_budget_frames(frames)]))
         figures["adherence"][p], figures["budget_use"][p] = list(spread(within)), list(spread(use))
+        figures.setdefault("adherence_from_2t0", {})[p] = list(spread(ranged))
         figures.setdefault("adherence_still", {})[p] = list(spread(still))
         figures.setdefault("adherence_jumps", {})[p] = list(spread(jumps))
-        lines.append(f"| {p} | {fmt_spread(spread(within), 3)} | {fmt_spread(spread(still), 3)} | {fmt_spread(spread(jumps), 3)} "
+        lines.append(f"| {p} | {fmt_spread(spread(within), 3)} | {fmt_spread(spread(ranged), 3)} | {fmt_spread(spread(still), 3)} | {fmt_spread(spread(jumps), 3)} "
                      f"| {fmt_spread(spread(use), 2)} |")
     # 4. Per case at 25%, with the stage's cost and its fixed part.
     lines.append("\n### Per case: error recovered at 25% of full RT's stage cost (median over repeats)\n")
@@ -531,7 +535,7 @@ def compare(a_fig, b_fig):
 
     def m(x):
         return f"{x[0]:.3f}" if isinstance(x, list) else f"{x:.3f}"
-    for key in ("recovered", "speedup", "adherence", "budget_use"):
+    for key in ("recovered", "speedup", "adherence", "adherence_from_2t0", "budget_use"):
         for p, v in a_fig[key].items():
             w = b_fig.get(key, {}).get(p)
             if isinstance(v, dict):
