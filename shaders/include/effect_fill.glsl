@@ -60,8 +60,8 @@ void gatherChanges(ivec2 pixel, FillCentre c, uint rate, bool want[2], inout vec
 
 // 1/16's lattice of traced pixels as the fill of a 4x4 block of the screen reads it
 // (fill_effects.comp): the block's pixels fall into at most four of the lattice's cells, and
-// each cell's four corner points are read once for its pixels (two history loads, the position
-// on the view ray and the decoded normal each), where the pixels one at a time read and decoded
+// each cell's four corner points are read once for its pixels (the history, the position on
+// the view ray and the decoded normal each), where the pixels one at a time read and decoded
 // four each (60 a block: the larger part of the fill's time at 1/16 on lavapipe). What a corner
 // holds is what currentHistory gives a pixel of its object.
 struct LatticeSource {
@@ -75,18 +75,15 @@ struct LatticeSource {
 LatticeSource latticeSource(ivec2 q) {
   LatticeSource s = LatticeSource(RB_NO_OBJECT, 0u, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
   if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), frame.sizeLightsFrame.xy))) return s;
-  uint layer = (frame.sizeLightsFrame.w & 1u) * 2u;
-  uvec4 where = imageLoad(fillHistory, ivec3(q, layer + 1u));
-  if (where.z != frame.sizeLightsFrame.w + 1u) return s;
-  uvec4 terms = imageLoad(fillHistory, ivec3(q, layer));
-  s.fresh = ((terms.w & 0xFFu) == 0u ? 1u : 0u) | (((terms.w >> 8u) & 0xFFu) == 0u ? 2u : 0u);
+  uint objectId = imageLoad(fillHistory, ivec3(q, (frame.sizeLightsFrame.w & 1u) * 2u + 1u)).x;  // whoever wrote it
+  History h = currentHistory(q, objectId);
+  s.fresh = (h.age[0] == 0u ? 1u : 0u) | (h.age[1] == 0u ? 2u : 0u);
   if (s.fresh == 0u) return s;
-  s.objectId = where.x;
-  vec2 a = unpackHalf2x16(terms.x), b = unpackHalf2x16(terms.y), c = unpackHalf2x16(terms.z);
-  s.change0 = vec3(a, b.x);
-  s.change1 = vec3(b.y, c);
-  s.position = frame.cameraPositionNear.xyz + viewDirection(q) * uintBitsToFloat(where.y);
-  s.normal = octDecode(unpackSnorm2x16(where.w));
+  s.objectId = objectId;
+  s.change0 = h.change[0];
+  s.change1 = h.change[1];
+  s.position = frame.cameraPositionNear.xyz + viewDirection(q) * h.distance;
+  s.normal = octDecode(unpackSnorm2x16(h.normal));
   return s;
 }
 
