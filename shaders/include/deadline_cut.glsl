@@ -20,22 +20,8 @@ bool stagePast(uint deadline, bool afterEffects) {
   return spent > deadline;
 }
 
-// The shadow pass's deadline. With `benefit`, T less what this frame's selection predicts the
-// effects pass and the fill will take (the walk's, in the items' totals record;
-// select_walk.comp's effectsPricedCost), at least the floor: the CPU's deadline from the
-// passes' recent times (stageDeadline.y, which the object policies keep) cut the shadow pass
-// where a camera jump had the selection trade reflections for shadows (9% of `benefit-rates`'
-// recorded frames in a benchmark run, most of their shadow pixels, the stage ending under 0.8 T).
-uint shadowDeadline() {
-  uvec4 split = frame.shadowDeadlineSplit;
-  float effectsMs = itemCosts[itemTotalsIndex()].workPerPixel;
-  if (split.x == 0u || !(effectsMs >= 0.0)) return frame.stageDeadline.y;  // (NaN too)
-  float reserved = effectsMs * uintBitsToFloat(split.z);
-  return reserved < float(split.x - split.y) ? split.x - uint(reserved) : split.y;
-}
-
 // Whether a trace pass is past its deadline: `effects` for the effects pass, else the shadow pass.
-bool pastDeadline(bool effects) { return stagePast(effects ? frame.stageDeadline.x : shadowDeadline(), effects); }
+bool pastDeadline(bool effects) { return stagePast(effects ? frame.stageDeadline.x : frame.stageDeadline.y, effects); }
 
 // Whether the fill of reflections and refractions is past its deadline (about T itself): it is
 // cut only where the stage would else end past T.

@@ -4,8 +4,7 @@
 // keep their fallbacks. The selection predicts the stage's time; the deadline bounds it where
 // the prediction was wrong (a camera jump that left many shadow pixels uncertain: a trace pass
 // at 2-10x its prediction). The effects pass stops at T less the fill's recent time (x), the
-// shadow pass at T less the effects' and the fill's (y: select/stage_deadline.h; with `benefit`
-// less what this frame's selection predicts for them, include/deadline_cut.glsl), so that
+// shadow pass at T less the effects' and the fill's (y: select/stage_deadline.h), so that
 // shadows that ran past their prediction are cut rather than the reflections and refractions
 // after them. The fill is cut only at about T itself (z), where the stage would else end past
 // it: without the fill 15 of 16 pixels of an item at 1/16 keep the fallback, a far worse image

@@ -299,29 +299,6 @@ float setProbeStride(uint n) {
   return stride == 0u ? 0.0 : left / float(stride);
 }
 
-// `benefit`, frame mode, after the probe stride: the predicted cost of what the effects pass
-// and the fill will trace and fill this frame (the reflection and refraction candidates taken,
-// the partial item's left-over where it is one, and the probe's part of the ones left out at
-// its stride), which the shadow pass's deadline leaves them (include/deadline_cut.glsl).
-float effectsPricedCost(uint n, float share) {
-  subgroupMemoryBarrierBuffer();
-  subgroupBarrier();  // the marks in the frame's selection, the items' levels and the probe stride are visible
-  uint stride = items[push.walk.z * RB_ITEMS_PER_OBJECT].pixels;
-  uint partialItem = share > 0.0 ? partialId / RB_SEGMENT_SLOTS : 0xFFFFFFFFu;
-  float takenPart = 0.0, leftPart = 0.0;
-  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
-    GpuCandidate c = candidates[ci];
-    uint item = candidateItem(c.id);
-    if (item % RB_ITEMS_PER_OBJECT == RB_ITEM_SHADOWS || item == partialItem) continue;
-    bool on = (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) != 0u;
-    if (rateSegmentsWalk() ? scratch[item] > c.id % RB_SEGMENT_SLOTS : on) takenPart += c.cost;
-    else if (!on) leftPart += c.cost;
-  }
-  float taken = subgroupAdd(takenPart), left = subgroupAdd(leftPart);
-  float partial = partialItem != 0xFFFFFFFFu && partialItem % RB_ITEMS_PER_OBJECT != RB_ITEM_SHADOWS ? leftOver : 0.0;
-  return taken + partial + (stride == 0u ? 0.0 : left / float(stride));
-}
-
 // Frame mode, after the walk: the predicted cost of the selected candidates whose item (or
 // object) was never traced, priced by the prior (its learned work per pixel is 0). The time
 // scale leaves frames mostly priced so out of the headroom (cost_model.h): the prior's error
@@ -398,10 +375,6 @@ void main() {
   if (rateSegmentsWalk() && push.walk.y != 0u) markLevels();
   // The predicted cost includes the probe's (the time scale learns from the trace time).
   if (policy == RB_SELECT_BENEFIT && push.walk.y != 0u) p.cost += setProbeStride(n);
-  // The shadow pass's deadline leaves `benefit`'s reflections and refractions their predicted
-  // time (-1: the object policies, whose candidates hold every effect of an object).
-  float effects = policy == RB_SELECT_BENEFIT && push.walk.y != 0u ? effectsPricedCost(n, share) : -1.0;
-  if (push.walk.y != 0u && gl_SubgroupInvocationID == 0u) items[push.walk.z * RB_ITEMS_PER_OBJECT].workPerPixel = effects;
   float prior = push.walk.y != 0u ? priorPricedCost(n) : 0.0;
   if (gl_SubgroupInvocationID == 0u) {
     result.yzw = uvec3(floatBitsToUint(p.cost), floatBitsToUint(p.value), p.count);

@@ -85,7 +85,6 @@ struct FrameUniforms {
   vec4 ssr;                 // x 1 when ssrImage holds this frame's screen-space reflections, y roughness cut-off, z the diagonal of the scene's bounds (their rays' length)
   vec4 previousCamera;      // xyz the previous frame's camera position, w 1 when there was one
   uvec4 stageDeadline;      // the ray-tracing stage's deadlines in device-clock ticks after it began, x the effects pass's, y the shadow pass's, z the fill's (0: none; include/stage_clock.glsl)
-  uvec4 shadowDeadlineSplit;  // `benefit`: the shadow pass's deadline from this frame's selection, x the ticks of T and y of its floor (less the reserve), z ticks per predicted ms (float bits); 0: stageDeadline.y (include/deadline_cut.glsl)
 };
 
 // Push constants for the raster passes and the compute passes, 80 bytes (the guaranteed

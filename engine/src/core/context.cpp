@@ -206,8 +206,6 @@ struct Context::Impl {
     if (deadlineTicks != 0) deadlines = {deadlineTicks, deadlineTicks, deadlines.z};
     if (fillDeadlineTicks != 0) deadlines.z = fillDeadlineTicks;
     u.stageDeadline = glm::uvec4(deadlines, 0u);
-    // A deadline a test set holds for the shadow pass too.
-    u.shadowDeadlineSplit = deadlineTicks != 0 ? glm::uvec4(0u) : selection.shadowDeadlineSplit(settings);
     std::memcpy(slot.uniforms.mapped, &u, sizeof(u));
   }
 

@@ -20,7 +20,7 @@ static_assert(sizeof(gpu::GpuObject) == 160);
 static_assert(sizeof(gpu::GpuMaterial) == 176);
 static_assert(sizeof(gpu::GpuTextureTransform) == 32);
 static_assert(sizeof(gpu::GpuLight) == 144);
-static_assert(sizeof(gpu::FrameUniforms) == 352 + 3 * 16 * RB_MAX_PROBES + 128);
+static_assert(sizeof(gpu::FrameUniforms) == 352 + 3 * 16 * RB_MAX_PROBES + 112);
 static_assert(sizeof(gpu::DrawPush) == 80);
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;

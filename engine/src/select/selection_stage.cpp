@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cmath>
 #include <cstring>
 
 #include "select/cost_model.h"
@@ -271,31 +270,6 @@ struct SelectionStage::Impl {
     return totals.selectedLast == item && std::bit_cast<uint32_t>(totals.benefit) == std::bit_cast<uint32_t>(partial.share);
   }
 
-  // Whether the walk's predicted reflection and refraction cost (the items' totals record's
-  // workPerPixel, select_walk.comp's effectsPricedCost) is the CPU's: the taken candidates of
-  // those effects, the partial item's share of its first segment where it is one of them, and
-  // the probe's part of the ones left out (`selected` holds no bit of theirs), summed in another
-  // order on the GPU: within a relative 1e-5.
-  template <class ItemOf>
-  bool effectsCostMatches(const gpu::GpuItemCost& totals, std::span<const gpu::GpuCandidate> candidates, const std::vector<uint32_t>& taken,
-                          const uint32_t* selected, uint32_t stride, ItemOf itemOf) const {
-    const uint32_t items = buffers.objects * RB_ITEMS_PER_OBJECT;
-    const uint32_t partialItem = totals.selectedLast == 0 ? UINT32_MAX : totals.selectedLast - 1;
-    double takenCost = 0.0, leftOut = 0.0, partial = 0.0;
-    for (const gpu::GpuCandidate& c : candidates) {
-      const uint32_t item = itemOf(c.id);
-      if (item >= items || item % RB_ITEMS_PER_OBJECT == RB_ITEM_SHADOWS) continue;
-      if (item == partialItem) {
-        if (c.id % RB_SEGMENT_SLOTS == 0) partial = double(totals.benefit) * c.cost;
-        continue;
-      }
-      if (std::binary_search(taken.begin(), taken.end(), c.id)) takenCost += c.cost;
-      else if (!((selected[item / RB_ITEMS_PER_OBJECT] >> (item % RB_ITEMS_PER_OBJECT)) & 1u)) leftOut += c.cost;
-    }
-    const double cpu = takenCost + partial + (stride == 0 ? 0.0 : leftOut / stride);
-    return std::abs(double(totals.workPerPixel) - cpu) <= 1e-5 * std::max(cpu, 1e-6);
-  }
-
   // Whether the walk's cost of the selected candidates priced by the prior (result word 9,
   // select_walk.comp's priorPricedCost) equals the CPU's sum, summed in another order on the
   // GPU: within a relative 1e-5.
@@ -335,7 +309,6 @@ struct SelectionStage::Impl {
     }
     const uint32_t stride = after[items].pixels;
     if (!probeStrideFits(stride, left, frame.probeBudget, 1e-5)) return false;
-    if (!effectsCostMatches(after[items], candidates, taken, selected, stride, itemOf)) return false;
     std::vector<ItemLearned> learned(items);
     std::vector<float> fill(items);  // each item's fill share, which prices its rates
     size_t expected = 0;
@@ -570,15 +543,6 @@ glm::uvec3 SelectionStage::deadlineTicks(const RenderSettings& s) const {
   if (!isBudgeted(s.policy) || !s.learnTimeScale || !s.stageDeadline) return glm::uvec3(0u);
   const StageDeadline& d = impl_->deadline;
   return {d.effectsTicks(s.budgetMs), d.shadowTicks(s.budgetMs), d.fillTicks(s.budgetMs)};
-}
-
-glm::uvec4 SelectionStage::shadowDeadlineSplit(const RenderSettings& s) const {
-  if (!isBudgeted(s.policy) || toSelectPolicy(s.policy) != Policy::Benefit || !s.learnTimeScale || !s.stageDeadline) return glm::uvec4(0u);
-  const StageDeadline& d = impl_->deadline;
-  if (!d.calibrated()) return glm::uvec4(0u);
-  // The selection's costs are predictions its budget left the headroom for: reserved at it.
-  const float perMs = float(d.ticksPerMs() * impl_->timeScale.headroom(s.budgetConfidence));
-  return {d.ticks(s.budgetMs, s.budgetMs), d.ticks(StageDeadline::kShadowShare * s.budgetMs, s.budgetMs), std::bit_cast<uint32_t>(perMs), 0u};
 }
 
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {

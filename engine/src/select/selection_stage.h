@@ -53,11 +53,6 @@ class SelectionStage {
   // effects pass's (x), the shadow pass's (y) and the fill's (z): 0, none, unless a budgeted
   // policy learns its time scale with RenderSettings::stageDeadline.
   glm::uvec3 deadlineTicks(const RenderSettings& settings) const;
-  // `benefit`'s shadow-pass deadline from the frame's own selection (the frame's uniforms,
-  // shadowDeadlineSplit; include/deadline_cut.glsl): the ticks of T and of its floor, each less
-  // the reserve, and the ticks per millisecond the selection predicts (float bits), which the
-  // GPU takes the walk's predicted reflection and refraction time off; 0 where deadlineTicks is.
-  glm::uvec4 shadowDeadlineSplit(const RenderSettings& settings) const;
   // After the trace passes: the copy of the tile list's header (tiles and rays traced).
   void recordStats(VkCommandBuffer cmd, uint32_t slot) const;
   // After the slot's fence: the frame's selection stats into `t` (its pass times read), and

@@ -63,9 +63,7 @@ class StageDeadline {
   uint32_t effectsTicks(double budgetMs) const { return ticks(std::max(budgetMs - fillMs(), kEffectsShare * budgetMs), budgetMs); }
   // The shadow pass's deadline: T less the effects' and the fill's recent time (at least
   // kShadowShare of T), so that shadows that ran far past their prediction (a camera jump's
-  // uncertain shadow-map pixels) are cut, not the reflections and refractions after them. The
-  // object policies'; `benefit`'s takes this frame's predicted reflection and refraction time
-  // off T on the GPU instead (SelectionStage::shadowDeadlineSplit).
+  // uncertain shadow-map pixels) are cut, not the reflections and refractions after them.
   uint32_t shadowTicks(double budgetMs) const {
     return ticks(std::max(budgetMs - effectsMs_.value() - fillMs(), kShadowShare * budgetMs), budgetMs);
   }
