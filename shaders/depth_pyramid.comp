@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "include/bindings.glsl"
+#include "include/depth_pyramid.glsl"
 
 // One level of the min-depth pyramid the screen-space reflections march in (Hi-Z): level L >= 1
 // holds the nearest depth of the level L-1 texels it covers (three along an odd edge, so that
@@ -20,7 +21,7 @@ void main() {
   for (int y = 0; y < reach.y; ++y)
     for (int x = 0; x < reach.x; ++x) {
       ivec2 at = min(texel * 2 + ivec2(x, y), below - 1);
-      nearest = min(nearest, level == 1u ? texelFetch(gDepth, at, 0).r : texelFetch(depthPyramid, at, int(level) - 2).r);
+      nearest = min(nearest, pyramidDepth(at, int(level) - 1));
     }
   imageStore(depthPyramidLevels[level - 1u], texel, vec4(nearest));
 }

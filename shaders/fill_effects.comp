@@ -11,6 +11,7 @@
 #include "include/deadline_cut.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
+#include "include/tile_pixel.glsl"
 #include "include/effect_fill.glsl"
 
 // The fill of the reflections and refractions that reduced ray rates skipped this frame
@@ -51,8 +52,7 @@ void main() {
   bool listed = chunk < traceCounts.w;
   ivec2 origin = ivec2(0);
   if (listed) {
-    uint word = tiles[RB_FILL_CHUNKS + chunk];
-    origin = ivec2(word & 0xFFFu, (word >> 12u) & 0xFFFu) * RB_TILE_SIZE + ivec2(g & 1u, (g >> 1u) & 1u) * 4;
+    origin = ivec2(chunkTile(tiles[RB_FILL_CHUNKS + chunk])) * RB_TILE_SIZE + ivec2(g & 1u, (g >> 1u) & 1u) * 4;
   }
   uint lastObject = RB_NO_OBJECT, left = 0u;
   Selection sel;

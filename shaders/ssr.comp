@@ -3,6 +3,7 @@
 #include "include/bindings.glsl"
 #include "include/gbuffer.glsl"
 #include "include/reproject.glsl"
+#include "include/depth_pyramid.glsl"
 
 // Screen-space reflections, the reflection fallback's first choice (include/env_fallback.glsl):
 // each smooth surface's mirror ray is marched through the min-depth pyramid (Hi-Z: Uludag
@@ -15,8 +16,6 @@ layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 
 
 const int kMaxSteps = 80;
 
-// Level 0 is the G-buffer's depth itself; the pyramid's mip m holds level m + 1.
-float pyramidDepth(ivec2 cell, int level) { return level == 0 ? texelFetch(gDepth, cell, 0).r : texelFetch(depthPyramid, cell, level - 1).r; }
 
 // Marches p(t) = origin + dir * t, t in [tStart, 1], in (pixel x, pixel y, depth) space;
 // returns the t where it first passes behind the nearest depth of a level-0 texel, or -1.

@@ -33,6 +33,16 @@ vec3 shrunkMean(vec3 sum, vec3 squares, float weight) {
   return signal > 0.0 ? mean * (signal / (signal + spread)) : vec3(0.0);
 }
 
+// Adds a source's change per path in `use`, at weight w, to the fill's sums.
+void addSource(bool use[2], float w, vec3 change[2], inout vec3 sum[2], inout vec3 squares[2], inout float total[2]) {
+  for (int path = 0; path < 2; ++path)
+    if (use[path]) {
+      sum[path] += w * change[path];
+      squares[path] += w * change[path] * change[path];
+      total[path] += w;
+    }
+}
+
 // Adds to the sums of the paths in `want` (0 reflection, 1 refraction) what tracing changed at
 // the pixels around `pixel` that `rate` traced this frame on c's object. Their history holds
 // all the fill reads there: the object, whether the path was traced (age 0), the change, and
@@ -48,13 +58,7 @@ void gatherChanges(ivec2 pixel, FillCentre c, uint rate, bool want[2], inout vec
     bool use[2] = bool[2](want[0] && h.age[0] == 0u, want[1] && h.age[1] == 0u);
     if (!use[0] && !use[1]) continue;
     vec3 position = frame.cameraPositionNear.xyz + viewDirection(at[k]) * h.distance;
-    float w = near[k] * fillSimilarity(c, position, octDecode(unpackSnorm2x16(h.normal)));
-    for (int path = 0; path < 2; ++path)
-      if (use[path]) {
-        sum[path] += w * h.change[path];
-        squares[path] += w * h.change[path] * h.change[path];
-        total[path] += w;
-      }
+    addSource(use, near[k] * fillSimilarity(c, position, octDecode(unpackSnorm2x16(h.normal))), h.change, sum, squares, total);
   }
 }
 
@@ -107,14 +111,7 @@ void addLatticeSource(LatticeSource src, ivec2 d, FillCentre c, bool want[2], in
   if (src.objectId != c.objectId) return;
   bool use[2] = bool[2](want[0] && (src.fresh & 1u) != 0u, want[1] && (src.fresh & 2u) != 0u);
   if (!use[0] && !use[1]) return;
-  float w = exp(float(d.x * d.x + d.y * d.y) * -0.125) * fillSimilarity(c, src.position, src.normal);
-  vec3 change[2] = vec3[2](src.change0, src.change1);
-  for (int path = 0; path < 2; ++path)
-    if (use[path]) {
-      sum[path] += w * change[path];
-      squares[path] += w * change[path] * change[path];
-      total[path] += w;
-    }
+  addSource(use, latticeNearness(d, true) * fillSimilarity(c, src.position, src.normal), vec3[2](src.change0, src.change1), sum, squares, total);
 }
 
 // gatherChanges at 1/16 for a pixel of `cell`: the same sources in the same order, so the same sums.

@@ -40,6 +40,10 @@ float fillSimilarity(FillCentre c, vec3 position, vec3 normal) {
   return plane * facing;
 }
 
+// The distance weight of a traced neighbour `d` pixels from the pixel (1/16's sparser lattice
+// wider).
+float latticeNearness(ivec2 d, bool sixteenth) { return exp(float(d.x * d.x + d.y * d.y) * (sixteenth ? -0.125 : -0.5)); }
+
 // Up to four traced neighbours of a skipped pixel and their weights (0: none there).
 struct FillSources {
   ivec2 at[4];
@@ -62,11 +66,10 @@ void fillLattice(ivec2 pixel, uint rate, out ivec2 at[4], out float near[4]) {
   for (int k = 0; k < 4; ++k) {
     ivec2 q = rate == RB_RATE_HALF ? pixel + kHalfRateNeighbours[k] : below + ivec2(k & 1, k >> 1) * spacing;
     ivec2 d = q - pixel;
-    float d2 = float(d.x * d.x + d.y * d.y);
     bool within = sixteenth || all(lessThanEqual(abs(d), ivec2(1)));  // 1/4: within the 3x3 pixels around it
     bool onScreen = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(uvec2(q), frame.sizeLightsFrame.xy));
     at[k] = q;
-    near[k] = within && onScreen ? exp(d2 * (sixteenth ? -0.125 : -0.5)) : 0.0;
+    near[k] = within && onScreen ? latticeNearness(d, sixteenth) : 0.0;
   }
 }
 

@@ -31,6 +31,7 @@ uint rateRanks(uint rate) { return RB_TILE_SIZE * RB_TILE_SIZE / ratePeriod(rate
 
 // A chunk: RB_TRACE_CHUNK consecutive ranks of a tile, from rank 4c.
 uint chunkWord(uvec2 tile, uint c) { return tile.x | (tile.y << 12u) | (c << 24u); }
+uvec2 chunkTile(uint word) { return uvec2(word & 0xFFFu, (word >> 12u) & 0xFFFu); }
 
 // The pixel of a trace pass over chunks (`list`: RB_SHADOW_CHUNKS or RB_EFFECT_CHUNKS),
 // ivec2(-1) past the list's end. A trace pass's list holds a tile's chunks up to the ranks its
@@ -44,7 +45,7 @@ ivec2 chunkPixel(uint list) {
   uint count = list == RB_SHADOW_CHUNKS ? traceCounts.y : traceCounts.z;
   if (chunk >= count) return ivec2(-1);
   uint word = tiles[list + chunk];
-  return rankPixel(uvec2(word & 0xFFFu, (word >> 12u) & 0xFFFu), (word >> 24u) * RB_TRACE_CHUNK + g % RB_TRACE_CHUNK);
+  return rankPixel(chunkTile(word), (word >> 24u) * RB_TRACE_CHUNK + g % RB_TRACE_CHUNK);
 }
 
 #endif

@@ -34,21 +34,20 @@ uint tracedRanks(uint word, uint effects, bool probed) {
   return ranks;
 }
 
-// The first rank of the tile some selected item in `effects` of an object with selection word
-// `word` skips at its reduced rate (64: none does).
-uint firstSkippedRank(uint word, uint effects) {
-  uint first = RB_TILE_SIZE * RB_TILE_SIZE;
+// Whether a selected item in `effects` of an object with selection word `word` has a reduced
+// rate, which skips pixels the fill fills.
+bool skipsPixels(uint word, uint effects) {
   for (uint e = 0u; e < RB_ITEMS_PER_OBJECT; ++e)
-    if ((effects & word & (1u << e)) != 0u) first = min(first, rateRanks((word >> (RB_RATE_SHIFT + 2u * e)) & 3u));
-  return first;
+    if ((effects & word & (1u << e)) != 0u && ((word >> (RB_RATE_SHIFT + 2u * e)) & 3u) != RB_RATE_FULL) return true;
+  return false;
 }
 
 // Adds an object whose selection word at this tile is `word` (selectionInTile) to the ranks the
-// shadow pass (x) and the effect pass (y) trace and the first the fill fills (z).
-void addObject(inout uvec3 ranks, uint word, bool probed) {
+// shadow pass (x) and the effect pass (y) trace, and to whether the fill runs over the tile.
+void addObject(inout uvec2 ranks, inout bool fill, uint word, bool probed) {
   const uint shadows = 1u << RB_ITEM_SHADOWS, effects = RB_ITEMS_ALL & ~shadows;
-  ranks.xy = max(ranks.xy, uvec2(tracedRanks(word, shadows, probed), tracedRanks(word, effects, probed)));
-  ranks.z = min(ranks.z, firstSkippedRank(word, effects));
+  ranks = max(ranks, uvec2(tracedRanks(word, shadows, probed), tracedRanks(word, effects, probed)));
+  fill = fill || skipsPixels(word, effects);
 }
 
 // Appends the tile's chunks [first, end) to the list at `list` whose count was `at` before.
@@ -66,20 +65,21 @@ void listTile() {
   uvec2 tile = first / RB_TILE_SIZE;
   uint base = t * RB_TILE_OBJECT_WORDS;
   bool probed = probeTile(tile);
-  // The ranks the shadow pass and the effect pass trace, and the first the fill fills.
-  uvec3 ranks = uvec3(0u, 0u, RB_TILE_SIZE * RB_TILE_SIZE);
+  // The ranks the shadow pass and the effect pass trace, and whether the fill runs.
+  uvec2 ranks = uvec2(0u);
+  bool fill = false;
   if (tileObjects[base + RB_TILE_OBJECT_WORDS - 1u] == 0u) {
     for (uint s = 0u; s + 1u < RB_TILE_OBJECT_WORDS; ++s) {
       uint v = tileObjects[base + s];
       if (v == 0u) continue;
-      addObject(ranks, selectionInTile(v - 1u, selected[v - 1u], tile), probed);
+      addObject(ranks, fill, selectionInTile(v - 1u, selected[v - 1u], tile), probed);
     }
   } else {
     for (uint y = first.y; y < last.y; ++y)
       for (uint x = first.x; x < last.x; ++x) {
         uint id = texelFetch(gObjectId, ivec2(x, y), 0).r;
         if (id == RB_NO_OBJECT) continue;
-        addObject(ranks, selectionInTile(id, selected[id], tile), probed);
+        addObject(ranks, fill, selectionInTile(id, selected[id], tile), probed);
       }
   }
   if (ranks.x != 0u) {
@@ -94,12 +94,12 @@ void listTile() {
     atomicAdd(effectDispatch.x, chunkGroups(at + chunks) - chunkGroups(at));
     atomicAdd(tileCounts.y, 1u);
   }
-  if (ranks.z < RB_TILE_SIZE * RB_TILE_SIZE) {  // one chunk: the fill's invocation per 4x4 block
+  if (fill) {  // one chunk: the fill's invocation per 4x4 block
     uint at = atomicAdd(traceCounts.w, 1u);
     tiles[RB_FILL_CHUNKS + at] = chunkWord(tile, 0u);
     atomicAdd(fillDispatch.x, chunkGroups(at + 1u) - chunkGroups(at));
   }
-  if (any(notEqual(ranks.xy, uvec2(0u)))) atomicAdd(effectDispatch.w, 1u);
+  if (any(notEqual(ranks, uvec2(0u)))) atomicAdd(effectDispatch.w, 1u);
 }
 
 void main() {
