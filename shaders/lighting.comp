@@ -10,6 +10,7 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/display.glsl"
 #include "include/environment.glsl"
 #include "include/gbuffer.glsl"
+#include "include/lights.glsl"
 #include "include/item_stats.glsl"
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
@@ -34,15 +35,6 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 // With RB_PASS_BEHIND_GLASS it lights the opaque frame that glass shows behind it: the
 // shadow maps alone, nothing measured.
 layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 1) in;
-
-// glTF KHR_lights_punctual range falloff: smooth window to zero at `range`.
-float rangeAttenuation(float d, float range) {
-  float invSquare = 1.0 / max(d * d, 1e-8);
-  if (range <= 0.0) return invSquare;
-  float r = d / range;
-  float window = clamp(1.0 - r * r * r * r, 0.0, 1.0);
-  return window * window * invSquare;
-}
 
 // The frame's pixel from the light this invocation stored, read back as the half-float images
 // hold it (an invocation reads its own writes), as the compose pass reads it: packHalf2x16
@@ -97,25 +89,9 @@ void main() {
   vec3 fallbackColor = s.emissive;  // with the shadow maps' visibility, when measuring
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
-    uint type = uint(light.directionType.w);
     vec3 L;
-    float attenuation = 1.0;
-    if (type == RB_LIGHT_DIRECTIONAL) {
-      L = -light.directionType.xyz;
-      if (dot(N, L) <= 0.0) continue;
-    } else {
-      vec3 toLight = light.positionRange.xyz - s.position;
-      float d = length(toLight);
-      L = toLight / max(d, 1e-8);
-      if (dot(N, L) <= 0.0) continue;
-      attenuation = rangeAttenuation(d, light.positionRange.w);
-      if (type == RB_LIGHT_SPOT) {
-        float cd = dot(-L, light.directionType.xyz);
-        float t = clamp((cd - light.spotShadow.y) / max(light.spotShadow.x - light.spotShadow.y, 1e-4), 0.0, 1.0);
-        attenuation *= t * t;
-        if (attenuation <= 0.0) continue;
-      }
-    }
+    float distance, attenuation;
+    if (!lightSample(light, s.position, L, distance, attenuation) || dot(N, L) <= 0.0) continue;
     // The mask where traced (the rays' or the certain map's visibility), else the map's,
     // corrected by its error where the point was last traced (include/shadow_history.glsl),
     // else where the fill found traced neighbours (include/shadow_fill.glsl). A reduced rate's

@@ -5,6 +5,7 @@
 #define RB_RT_COMMON_GLSL
 #include "include/bindings.glsl"
 #include "include/brdf.glsl"
+#include "include/lights.glsl"
 #include "include/material_layers.glsl"
 #include "include/normal_map.glsl"
 #include "include/rayquery.glsl"
@@ -131,34 +132,6 @@ float traceVisibility(vec3 origin, vec3 dir, float tMax, inout uint work) {
   uvec2 w = rqWork(q);
   work += w.x + w.y;
   return rqCommittedHit(q) ? 0.0 : 1.0;
-}
-
-// Direction to the light, distance and unshadowed radiance scale of light `i` at `p`.
-bool lightSample(GpuLight light, vec3 p, out vec3 L, out float dist, out float scale) {
-  uint type = uint(light.directionType.w);
-  scale = 1.0;
-  if (type == RB_LIGHT_DIRECTIONAL) {
-    L = -light.directionType.xyz;
-    dist = 1e30;
-    return true;
-  }
-  vec3 toLight = light.positionRange.xyz - p;
-  dist = length(toLight);
-  L = toLight / max(dist, 1e-8);
-  float range = light.positionRange.w;
-  float inv = 1.0 / max(dist * dist, 1e-8);
-  if (range > 0.0) {
-    float r = dist / range;
-    float window = clamp(1.0 - r * r * r * r, 0.0, 1.0);
-    inv *= window * window;
-  }
-  scale = inv;
-  if (type == RB_LIGHT_SPOT) {
-    float cd = dot(-L, light.directionType.xyz);
-    float t = clamp((cd - light.spotShadow.y) / max(light.spotShadow.x - light.spotShadow.y, 1e-4), 0.0, 1.0);
-    scale *= t * t;
-  }
-  return scale > 0.0;
 }
 
 // Radiance leaving a secondary-ray hit towards the ray's origin.
