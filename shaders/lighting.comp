@@ -10,8 +10,8 @@ layout(push_constant) uniform PushBlock { DrawPush push; };
 #include "include/display.glsl"
 #include "include/environment.glsl"
 #include "include/gbuffer.glsl"
-#include "include/lights.glsl"
 #include "include/item_stats.glsl"
+#include "include/lights.glsl"
 #include "include/shadows.glsl"
 #include "include/probe.glsl"
 #include "include/rates.glsl"
@@ -90,8 +90,8 @@ void main() {
   for (uint i = 0u; i < frame.sizeLightsFrame.z; ++i) {
     GpuLight light = lights[i];
     vec3 L;
-    float distance, attenuation;
-    if (!lightSample(light, s.position, L, distance, attenuation) || dot(N, L) <= 0.0) continue;
+    float toLight, attenuation;
+    if (!lightSample(light, s.position, L, toLight, attenuation) || dot(N, L) <= 0.0) continue;
     // The mask where traced (the rays' or the certain map's visibility), else the map's,
     // corrected by its error where the point was last traced (include/shadow_history.glsl),
     // else where the fill found traced neighbours (include/shadow_fill.glsl). A reduced rate's
