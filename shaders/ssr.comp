@@ -16,7 +16,6 @@ layout(local_size_x = RB_TILE_SIZE, local_size_y = RB_TILE_SIZE, local_size_z = 
 
 const int kMaxSteps = 80;
 
-
 // Marches p(t) = origin + dir * t, t in [tStart, 1], in (pixel x, pixel y, depth) space;
 // returns the t where it first passes behind the nearest depth of a level-0 texel, or -1.
 float marchHiZ(vec3 origin, vec3 dir, float tStart, int levels) {

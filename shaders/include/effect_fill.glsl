@@ -79,8 +79,8 @@ struct LatticeSource {
 LatticeSource latticeSource(ivec2 q) {
   LatticeSource s = LatticeSource(RB_NO_OBJECT, 0u, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
   if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), frame.sizeLightsFrame.xy))) return s;
-  uint objectId = imageLoad(fillHistory, ivec3(q, (frame.sizeLightsFrame.w & 1u) * 2u + 1u)).x;  // whoever wrote it
-  History h = currentHistory(q, objectId);
+  uint objectId;
+  History h = currentHistoryOfWriter(q, objectId);
   s.fresh = (h.age[0] == 0u ? 1u : 0u) | (h.age[1] == 0u ? 2u : 0u);
   if (s.fresh == 0u) return s;
   s.objectId = objectId;

@@ -43,12 +43,13 @@ struct History {
 
 History noHistory() { return History(vec3[2](vec3(0.0), vec3(0.0)), uvec2(RB_HISTORY_NONE), uvec2(0u), 0.0, 0u); }
 
-// The history at `at` in `layer` (2 * parity), written by frame `tag` - 1 on `objectId`, else
-// ages RB_HISTORY_NONE.
-History storedHistory(ivec2 at, uint layer, uint tag, uint objectId) {
+// Where the history at `at` in `layer` (2 * parity) was written: its layer + 1 (the object, the
+// distance, the frame that wrote it plus 1 and the normal).
+uvec4 historyWhere(ivec2 at, uint layer) { return imageLoad(fillHistory, ivec3(at, layer + 1u)); }
+
+// The history at `at` in `layer` whose `where` (historyWhere) the caller has accepted.
+History historyAt(ivec2 at, uint layer, uvec4 where) {
   History h = noHistory();
-  uvec4 where = imageLoad(fillHistory, ivec3(at, layer + 1u));
-  if (where.x != objectId || where.z != tag) return h;
   h.distance = uintBitsToFloat(where.y);
   h.normal = where.w;
   uvec4 terms = imageLoad(fillHistory, ivec3(at, layer));
@@ -60,9 +61,26 @@ History storedHistory(ivec2 at, uint layer, uint tag, uint objectId) {
   return h;
 }
 
+// The history at `at` in `layer` (2 * parity), written by frame `tag` - 1 on `objectId`, else
+// ages RB_HISTORY_NONE.
+History storedHistory(ivec2 at, uint layer, uint tag, uint objectId) {
+  uvec4 where = historyWhere(at, layer);
+  return where.x == objectId && where.z == tag ? historyAt(at, layer, where) : noHistory();
+}
+
 // What this frame wrote at `pixel` of object `objectId` so far (ages RB_HISTORY_NONE where nothing).
 History currentHistory(ivec2 pixel, uint objectId) {
   return storedHistory(pixel, (frame.sizeLightsFrame.w & 1u) * 2u, frame.sizeLightsFrame.w + 1u, objectId);
+}
+
+// What this frame wrote at `pixel` so far, on whichever object wrote it (`objectId`; RB_NO_OBJECT
+// and ages RB_HISTORY_NONE where nothing): one load of where it was written, not two.
+History currentHistoryOfWriter(ivec2 pixel, out uint objectId) {
+  uint layer = (frame.sizeLightsFrame.w & 1u) * 2u;
+  uvec4 where = historyWhere(pixel, layer);
+  bool written = where.z == frame.sizeLightsFrame.w + 1u;
+  objectId = written ? where.x : RB_NO_OBJECT;
+  return written ? historyAt(pixel, layer, where) : noHistory();
 }
 
 // What the previous frame left for the point `p` of object `objectId`, or ages RB_HISTORY_NONE.
