@@ -2,8 +2,9 @@
 // the pixels past it keep exactly the fallbacks `none` shows; a selection priced far too cheap
 // holds T with it and not without it; past the fill's own deadline the pixels a reduced rate
 // skipped keep their fallbacks; the device clock's rate is learned from the passes'
-// timestamps, each pass's deadline leaves the passes after it their recent time, and the
-// reserve after the deadline is learned from the frames it cut.
+// timestamps, each pass's deadline leaves the passes after it their recent time (the fill's
+// renewed while the effects pass is cut), and the reserve after the deadline is learned from
+// the frames it cut.
 #include <algorithm>
 
 #include <gtest/gtest.h>
@@ -79,6 +80,31 @@ TEST(StageDeadline, TheReserveIsWhatCutFramesNeededToEndAtT) {
   EXPECT_EQ(d.ticks(T, T), uint32_t((T - 1.0) * 1e6));
   d.restart();
   EXPECT_DOUBLE_EQ(d.reserveMs(T), least) << "a restarted selection's reserve is another's";
+}
+
+// A frame teaches the fill's recent time wherever the fill ran whole, the effects pass's only
+// where it ran whole too, and the reserve where the deadlines cut it: a stale, long fill time
+// (a cold start's) is renewed while the effects pass it leaves too little of T is cut.
+TEST(StageDeadline, TheFillsTimeIsRenewedWhileTheEffectsPassIsCut) {
+  select::StageDeadline d;
+  d.learn(1'000'000, 1.0);
+  const double T = 4.0;
+  select::StageDeadline::Frame cold{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = 18.0, .effectsMs = 9.0, .fillMs = 6.0};
+  for (int f = 0; f < 2; ++f) d.learnFrame(cold);
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(T / 2, T)) << "the fill's 6 ms leave the effects pass a half of T, the least";
+  select::StageDeadline::Frame effectsCut{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = 3.0, .effectsMs = 0.25,
+                                          .fillMs = 1.0, .cut = true, .effectsCut = true};
+  for (int f = 0; f < 6; ++f) d.learnFrame(effectsCut);
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T)) << "the fill's time renewed from the frames whose effects pass was cut";
+  EXPECT_EQ(d.shadowTicks(T), d.ticks(T / 4, T)) << "the effects pass's time from no cut frame: the cold ones' 9 ms";
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), select::StageDeadline::kDrainShare * T) << "the cut frames ended under T";
+  select::StageDeadline::Frame fillCut{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = T, .effectsMs = 1.0, .fillMs = 0.25,
+                                       .cut = false, .fillCut = true};
+  for (int f = 0; f < 7; ++f) d.learnFrame(fillCut);
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T)) << "a fill its deadline cut is no measure of the fill, nor its effects pass";
+  select::StageDeadline::Frame whole{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = 3.75, .effectsMs = 1.25, .fillMs = 1.0};
+  for (int f = 0; f < 7; ++f) d.learnFrame(whole);
+  EXPECT_EQ(d.shadowTicks(T), d.ticks(1.75, T));
 }
 
 // Every pixel past the deadline (1 tick: all of them) shows what `none` shows: the shadow maps

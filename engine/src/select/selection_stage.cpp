@@ -377,11 +377,14 @@ struct SelectionStage::Impl {
       // The device clock's rate: its span from coverage's start to the shadow pass's end (the
       // select pass's without one) against the same passes' timestamps (stage_deadline.h).
       if (header[20] != 0u) deadline.learn(header[21], t.ms(Pass::Coverage) + t.ms(Pass::Select) + t.ms(Pass::TraceShadows));
-      const bool fillCut = t.fillCutPixels > 0;
-      if (t.deadlineCutPixels == header[26] && !fillCut) deadline.learnPassTimes(t.ms(Pass::TraceEffects), t.ms(Pass::FillEffects));
-      if (t.deadlineCutPixels > 0)
-        deadline.learnCut(fillCut ? deadline.stageWithWholeFill(t.rtStageMs(), t.ms(Pass::FillEffects)) : t.rtStageMs(), s.budgetMs,
-                          slot.deadlineReserveMs);
+      deadline.learnFrame({.budgetMs = s.budgetMs,
+                           .reserveMs = slot.deadlineReserveMs,
+                           .stageMs = t.rtStageMs(),
+                           .effectsMs = t.ms(Pass::TraceEffects),
+                           .fillMs = t.ms(Pass::FillEffects),
+                           .cut = t.deadlineCutPixels > 0,
+                           .effectsCut = t.deadlineCutPixels != header[26],
+                           .fillCut = t.fillCutPixels > 0});
     }
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;

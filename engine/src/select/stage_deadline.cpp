@@ -16,6 +16,14 @@ void StageDeadline::learn(uint32_t spanTicks, double spanMs) {
   ticksPerMs_.add(double(spanTicks) / spanMs);
 }
 
+void StageDeadline::learnFrame(const Frame& f) {
+  if (!f.fillCut) {
+    fillMs_.add(f.fillMs);
+    if (!f.effectsCut) effectsMs_.add(f.effectsMs);
+  }
+  if (f.cut) learnCut(f.fillCut ? stageWithWholeFill(f.stageMs, f.fillMs) : f.stageMs, f.budgetMs, f.reserveMs);
+}
+
 uint32_t StageDeadline::ticks(double atMs, double budgetMs) const {
   if (!(budgetMs > 0.0)) return 0;
   // A reserve that takes the pass's whole share leaves it its leave-outs alone: one tick.

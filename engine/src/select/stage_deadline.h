@@ -40,13 +40,29 @@ class StageDeadline {
   // recent time for the fill's measured one, where longer. (A cut fill ends the stage near T
   // whatever ran late before it, so taken as it is, it would teach a reserve that shrinks.)
   double stageWithWholeFill(double stageMs, double cutFillMs) const { return stageMs - cutFillMs + std::max(cutFillMs, fillMs_.value()); }
-  // A frame's effects pass and fill, where the deadline cut none of the effects pass's pixels
-  // and none of the fill's (where the effects pass was cut, the fill finds fewer traced
-  // neighbours).
+  // A frame's effects pass and fill, where the deadlines cut none of their pixels.
   void learnPassTimes(double effectsMs, double fillMs) {
     effectsMs_.add(effectsMs);
     fillMs_.add(fillMs);
   }
+  // What a frame the stage ran teaches the deadline (selection_stage.cpp's retire).
+  struct Frame {
+    double budgetMs = 0.0, reserveMs = 0.0;  // its T and the reserve it ran with
+    double stageMs = 0.0, effectsMs = 0.0, fillMs = 0.0;
+    bool cut = false;         // the deadline left pixels to their fallbacks
+    bool effectsCut = false;  // ... some of them the effects pass's
+    bool fillCut = false;     // the fill's deadline left some
+  };
+  // A frame teaches the fill's recent time where the fill's deadline cut none of it, and the
+  // effects pass's where the deadline cut none of the effects pass's pixels either: a cut
+  // pass's time is a lower bound of its own, while the fill after it ran over the same skipped
+  // pixels. (Taught only by frames with neither cut, the fill's time went unrenewed for as long
+  // as the effects pass was cut, which a stale one made it be: from a cold start, the first
+  // two frames, with no deadline yet and priced by the prior, filled NormalTangentMirrorTest's
+  // mirror at 1/16 in 6-7 ms at T = 4.6 ms, which left the effects pass under 1 ms of T in every
+  // frame after, cut, and the stage ending at 0.6-0.7 T with the mirror untraced.) A frame the
+  // deadlines cut teaches the reserve.
+  void learnFrame(const Frame& f);
   // A restarted selection: the passes' times and the reserve were another selection's.
   void restart() {
     effectsMs_.clear();
