@@ -3,8 +3,8 @@
 // holds T with it and not without it; past the fill's own deadline the pixels a reduced rate
 // skipped keep their fallbacks; the device clock's rate is learned from the passes'
 // timestamps, each pass's deadline leaves the passes after it their recent time (the fill's
-// renewed while the effects pass is cut), and the reserve after the deadline is learned from
-// the frames it cut.
+// from frames under deadlines), and the reserve after the deadline is learned from the frames
+// it cut.
 #include <algorithm>
 
 #include <gtest/gtest.h>
@@ -82,29 +82,36 @@ TEST(StageDeadline, TheReserveIsWhatCutFramesNeededToEndAtT) {
   EXPECT_DOUBLE_EQ(d.reserveMs(T), least) << "a restarted selection's reserve is another's";
 }
 
-// A frame teaches the fill's recent time wherever the fill ran whole, the effects pass's only
-// where it ran whole too, and the reserve where the deadlines cut it: a stale, long fill time
-// (a cold start's) is renewed while the effects pass it leaves too little of T is cut.
-TEST(StageDeadline, TheFillsTimeIsRenewedWhileTheEffectsPassIsCut) {
+// A frame teaches the passes' recent times where no deadline cut them, the fill's only where
+// it ran under deadlines: a cold start's unbounded fill would cut the effects pass in every
+// frame after it, so that no uncut frame could renew it.
+TEST(StageDeadline, TheFillsTimeComesFromFramesUnderDeadlines) {
   select::StageDeadline d;
   d.learn(1'000'000, 1.0);
   const double T = 4.0;
-  select::StageDeadline::Frame cold{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = 18.0, .effectsMs = 9.0, .fillMs = 6.0};
+  select::StageDeadline::Frame cold{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = 18.0, .effectsMs = 1.5, .fillMs = 6.0,
+                                    .underDeadline = false};
   for (int f = 0; f < 2; ++f) d.learnFrame(cold);
-  EXPECT_EQ(d.effectsTicks(T), d.ticks(T / 2, T)) << "the fill's 6 ms leave the effects pass a half of T, the least";
-  select::StageDeadline::Frame effectsCut{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = 3.0, .effectsMs = 0.25,
-                                          .fillMs = 1.0, .cut = true, .effectsCut = true};
-  for (int f = 0; f < 6; ++f) d.learnFrame(effectsCut);
-  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T)) << "the fill's time renewed from the frames whose effects pass was cut";
-  EXPECT_EQ(d.shadowTicks(T), d.ticks(T / 4, T)) << "the effects pass's time from no cut frame: the cold ones' 9 ms";
-  EXPECT_DOUBLE_EQ(d.reserveMs(T), select::StageDeadline::kDrainShare * T) << "the cut frames ended under T";
-  select::StageDeadline::Frame fillCut{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = T, .effectsMs = 1.0, .fillMs = 0.25,
-                                       .cut = false, .fillCut = true};
-  for (int f = 0; f < 7; ++f) d.learnFrame(fillCut);
-  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T)) << "a fill its deadline cut is no measure of the fill, nor its effects pass";
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(T, T)) << "a fill with no deadline is no frame's after it";
+  EXPECT_EQ(d.shadowTicks(T), d.ticks(2.5, T)) << "the effects pass ran whole";
   select::StageDeadline::Frame whole{.budgetMs = T, .reserveMs = d.reserveMs(T), .stageMs = 3.75, .effectsMs = 1.25, .fillMs = 1.0};
   for (int f = 0; f < 7; ++f) d.learnFrame(whole);
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T));
   EXPECT_EQ(d.shadowTicks(T), d.ticks(1.75, T));
+  // Cut frames teach the reserve, not the passes' times (a cut pass's time is a lower bound of
+  // its own; the frames whose effects pass was cut are those whose selection overran).
+  select::StageDeadline::Frame effectsCut = whole, fillCut = whole;
+  effectsCut.effectsMs = 0.25;
+  effectsCut.fillMs = 3.0;
+  effectsCut.cut = effectsCut.effectsCut = true;
+  effectsCut.stageMs = T + 1.0;
+  fillCut.fillMs = 0.25;
+  fillCut.fillCut = true;
+  for (int f = 0; f < 7; ++f) d.learnFrame(effectsCut);
+  for (int f = 0; f < 7; ++f) d.learnFrame(fillCut);
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T));
+  EXPECT_EQ(d.shadowTicks(T), d.ticks(1.75, T));
+  EXPECT_DOUBLE_EQ(d.reserveMs(T), select::StageDeadline::kDrainShare * T + 1.0);
 }
 
 // Every pixel past the deadline (1 tick: all of them) shows what `none` shows: the shadow maps

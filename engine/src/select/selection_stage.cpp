@@ -120,6 +120,7 @@ struct SelectionStage::Impl {
     float selectBudgetMs = 0.0f;  // ... of which the selection's (the rest: `benefit`'s probe)
     bool belowFixedCost = false;  // T at or below the stage's fixed cost: nothing traced
     double deadlineReserveMs = 0.0;  // the deadline's reserve (StageDeadline::reserveMs)
+    bool underDeadline = false;      // ... and whether the trace passes had deadlines
   };
 
   const vk::Context& ctx;
@@ -177,6 +178,12 @@ struct SelectionStage::Impl {
                          buffers.coverage.buffer, buffers.itemCosts.buffer});
   }
 
+  // The trace passes' deadlines (effects, shadows, fill; 0: none) for the frame.
+  glm::uvec3 deadlineTicksFor(const RenderSettings& s) const {
+    if (!isBudgeted(s.policy) || !s.learnTimeScale || !s.stageDeadline) return glm::uvec3(0u);
+    return {deadline.effectsTicks(s.budgetMs), deadline.shadowTicks(s.budgetMs), deadline.fillTicks(s.budgetMs)};
+  }
+
   // T at or below the stage's learned fixed cost: nothing can be traced.
   bool belowFixedCost(const RenderSettings& s) const { return double(s.budgetMs) <= timeScale.fixedMs(); }
 
@@ -191,6 +198,7 @@ struct SelectionStage::Impl {
     slot.traceFixedMs = timeScale.traceFixedMs();
     slot.belowFixedCost = belowFixedCost(s);
     slot.deadlineReserveMs = deadline.reserveMs(s.budgetMs);
+    slot.underDeadline = deadlineTicksFor(s).x != 0u;
     // Room for the prediction's recent errors (cost_model.h's headroom).
     slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float((double(s.budgetMs) - timeScale.fixedMs()) / timeScale.headroom(s.budgetConfidence));
     // `benefit` keeps a share of the trace budget for the probe of what it leaves out.
@@ -384,7 +392,8 @@ struct SelectionStage::Impl {
                            .fillMs = t.ms(Pass::FillEffects),
                            .cut = t.deadlineCutPixels > 0,
                            .effectsCut = t.deadlineCutPixels != header[26],
-                           .fillCut = t.fillCutPixels > 0});
+                           .fillCut = t.fillCutPixels > 0,
+                           .underDeadline = slot.underDeadline});
     }
     if (slot.stageSkipped) {
       t.budgetMs = s.budgetMs;
@@ -542,11 +551,7 @@ void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot,
   impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames);
 }
 
-glm::uvec3 SelectionStage::deadlineTicks(const RenderSettings& s) const {
-  if (!isBudgeted(s.policy) || !s.learnTimeScale || !s.stageDeadline) return glm::uvec3(0u);
-  const StageDeadline& d = impl_->deadline;
-  return {d.effectsTicks(s.budgetMs), d.shadowTicks(s.budgetMs), d.fillTicks(s.budgetMs)};
-}
+glm::uvec3 SelectionStage::deadlineTicks(const RenderSettings& s) const { return impl_->deadlineTicksFor(s); }
 
 void SelectionStage::recordStats(VkCommandBuffer cmd, uint32_t slot) const {
   if (!impl_->slots[slot].selected) return;

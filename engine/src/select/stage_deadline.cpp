@@ -17,9 +17,9 @@ void StageDeadline::learn(uint32_t spanTicks, double spanMs) {
 }
 
 void StageDeadline::learnFrame(const Frame& f) {
-  if (!f.fillCut) {
-    fillMs_.add(f.fillMs);
-    if (!f.effectsCut) effectsMs_.add(f.effectsMs);
+  if (!f.effectsCut && !f.fillCut) {
+    effectsMs_.add(f.effectsMs);
+    if (f.underDeadline) fillMs_.add(f.fillMs);
   }
   if (f.cut) learnCut(f.fillCut ? stageWithWholeFill(f.stageMs, f.fillMs) : f.stageMs, f.budgetMs, f.reserveMs);
 }
