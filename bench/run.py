@@ -31,6 +31,9 @@ POLICIES = ["paper", "density", "nearest", "random", "benefit", "benefit-rates"]
 # `benefit` with one part left out (docs/SELECTION.md), with --ablations.
 ABLATIONS = ["benefit-no-centrality", "benefit-no-hysteresis", "benefit-prior-only", "benefit-no-classifier", "benefit-no-probe"]
 FRACTIONS = [0.10, 0.25, 0.50]  # of `all`'s stage cost
+# A recorded frame whose fallback's FLIP is within this of full RT's says little of a policy
+# alone (its share of a tiny gap is mostly noise): the by-frame figures leave it out.
+FRAME_GAP = 0.001
 ADHERENCE_SLACK = 1.05          # the promise: rt_stage_ms <= T + 5%
 COLORS = {"paper": "tab:orange", "density": "tab:blue", "nearest": "tab:green", "random": "tab:purple", "benefit": "tab:brown", "benefit-rates": "black",
           "benefit-no-centrality": "tab:pink", "benefit-no-hysteresis": "tab:cyan", "benefit-prior-only": "gold",
@@ -363,6 +366,21 @@ class Cases:
         pts = curve(self.points, case, policy, repeat, n)
         return recovered(error_at_cost(pts, fraction * self.full_cost(case)), n, a)
 
+    def frames_of(self, case, policy, repeat, frame):
+        """A policy's recorded frame `frame` of one repeat, at each of its budgets."""
+        return [x for q in self.of(case, policy) if q["repeat"] == repeat for x in q["frames"] if x["frame"] == frame]
+
+    def recovered_in_frame(self, case, policy, repeat, frame, fraction):
+        """recovered_at over one recorded frame alone: its points, and `none`'s and `all`'s FLIP in
+        it; nan where the fallback's error there is under FRAME_GAP."""
+        flip = lambda p: median([num(x["flip"]) for x in self.frames_of(case, p, repeat, frame)])
+        n, a = flip("none"), flip("all")
+        if not n - a > FRAME_GAP:
+            return math.nan
+        pts = sorted((num(x["rt_stage_ms"]), num(x["flip"])) for x in self.frames_of(case, policy, repeat, frame)
+                     if not math.isnan(num(x["flip"])))
+        return recovered(error_at_cost([(0.0, n)] + pts, fraction * self.full_cost(case)), n, a)
+
     def half_gap_cost(self, case, policy, repeat, left=0.5):
         """The cost where the policy's curve first leaves `left` of `none`'s error gap (0.5: halves
         it; nan: never)."""
@@ -414,6 +432,21 @@ def headline(points, summary, oracle, calibration, policies):
             figures["recovered"].setdefault(p, {})[f"{f:.2f}"] = list(s)
             cells.append(fmt_spread(s, 3) + (f", {s[0] / o:.0%} of oracle" if o and not math.isnan(o) and o > 0 else ""))
         lines.append(f"| {f:.0%} | {o:.3f} | " + " | ".join(cells) + " |")
+    # 1a. The same per recorded frame: the first follows the warm-up on its camera, over which
+    # the temporal fill carried what each reduced rate traced; the others follow a camera jump.
+    lines.append(f"\n### Error recovered at {' / '.join(f'{f:.0%}' for f in FRACTIONS)} of full RT's stage cost, by recorded frame "
+                 f"(median over the cases whose `none` FLIP exceeds `all`'s by {FRAME_GAP} in that frame; range over repeats)\n")
+    lines.append("| policy | the first recorded frame (after the still warm-up) | the others (after a camera jump) |")
+    lines.append("|---|---|---|")
+    later = sorted({x["frame"] for q in points for x in q["frames"]} - {"0"})
+    for p in policies:
+        cells = []
+        for name, frames in (("still", ["0"]), ("jumps", later)):
+            per_fraction = [spread([median([cases.recovered_in_frame(c, p, r, fr, f) for c in cases.list for fr in frames])
+                                    for r in cases.repeats]) for f in FRACTIONS]
+            figures.setdefault("recovered_by_frame", {}).setdefault(p, {})[name] = [list(s) for s in per_fraction]
+            cells.append(" / ".join(fmt_spread(s, 3) for s in per_fraction))
+        lines.append(f"| {p} | " + " | ".join(cells) + " |")
     # 1b. The classifier alone: every item traced, shadow rays only where the map is uncertain.
     if any(p["policy"] == "classified" for p in points):
         lines.append("\n### `classified`: every item traced, shadow rays only where the shadow map is uncertain "
