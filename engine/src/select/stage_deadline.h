@@ -49,9 +49,9 @@ class StageDeadline {
   struct Frame {
     double budgetMs = 0.0, reserveMs = 0.0;  // its T and the reserve it ran with
     double stageMs = 0.0, effectsMs = 0.0, fillMs = 0.0;
-    bool cut = false;         // the deadline left pixels to their fallbacks
-    bool effectsCut = false;  // ... some of them the effects pass's
-    bool fillCut = false;     // the fill's deadline left some
+    bool cut = false;           // the deadline left pixels to their fallbacks
+    bool effectsCut = false;    // ... some of them the effects pass's
+    bool fillCut = false;       // the fill's deadline left some
     bool underDeadline = true;  // its trace passes had deadlines (the clock had a rate)
   };
   // A frame teaches the passes' recent times where the deadlines cut none of their pixels (a cut
