@@ -33,10 +33,10 @@ TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
   // and the fill's, down to a half and a quarter of T.
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(4.0, 4.0)) << "no pass time learned yet";
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0, 4.0));
-  for (int f = 0; f < 4; ++f) d.learnPassTimes(1.0, 0.5);
+  for (int f = 0; f < 4; ++f) d.learnFrame({.effectsMs = 1.0, .fillMs = 0.5});
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(3.5, 4.0));
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(2.5, 4.0));
-  for (int f = 0; f < 4; ++f) d.learnPassTimes(10.0, 3.0);
+  for (int f = 0; f < 4; ++f) d.learnFrame({.effectsMs = 10.0, .fillMs = 3.0});
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(2.0, 4.0));
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(1.0, 4.0));
   // The fill's deadline: T, whatever the reserve; a cut fill's frame is learned with the fill's
@@ -50,7 +50,7 @@ TEST(StageDeadline, TicksFollowTheLearnedClockRate) {
   d.restart();
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(4.0, 4.0)) << "a restarted selection's passes are another's";
   // The fill's time left by the trace passes is the second largest of its last 7.
-  for (double fill : {0.2, 0.2, 0.2, 0.2, 0.2, 0.6, 1.0}) d.learnPassTimes(1.0, fill);
+  for (double fill : {0.2, 0.2, 0.2, 0.2, 0.2, 0.6, 1.0}) d.learnFrame({.effectsMs = 1.0, .fillMs = fill});
   EXPECT_EQ(d.effectsTicks(4.0), d.ticks(3.4, 4.0)) << "one long fill does not move it";
   EXPECT_EQ(d.shadowTicks(4.0), d.ticks(2.4, 4.0));
 }
@@ -71,7 +71,7 @@ TEST(StageDeadline, TheReserveIsWhatCutFramesNeededToEndAtT) {
   EXPECT_DOUBLE_EQ(d.reserveMs(T), most) << "at most kMaxReserveShare of T";
   d.learn(1'000'000, 1.0);
   EXPECT_EQ(d.shadowTicks(T), uint32_t((T - most) * 1e6));
-  for (int f = 0; f < 7; ++f) d.learnPassTimes(4.0, 2.0);
+  for (int f = 0; f < 7; ++f) d.learnFrame({.effectsMs = 4.0, .fillMs = 2.0});
   EXPECT_EQ(d.shadowTicks(T), 1u) << "a reserve past the pass's share cuts it at once (its leave-outs alone)";
   for (int f = 0; f < 7; ++f) cutFrame(0.1);
   EXPECT_DOUBLE_EQ(d.reserveMs(T), least) << "cut frames that ended under T give it back";

@@ -40,11 +40,6 @@ class StageDeadline {
   // recent time for the fill's measured one, where longer. (A cut fill ends the stage near T
   // whatever ran late before it, so taken as it is, it would teach a reserve that shrinks.)
   double stageWithWholeFill(double stageMs, double cutFillMs) const { return stageMs - cutFillMs + std::max(cutFillMs, fillMs_.value()); }
-  // A frame's effects pass and fill, where the deadlines cut none of their pixels.
-  void learnPassTimes(double effectsMs, double fillMs) {
-    effectsMs_.add(effectsMs);
-    fillMs_.add(fillMs);
-  }
   // What a frame the stage ran teaches the deadline (selection_stage.cpp's retire).
   struct Frame {
     double budgetMs = 0.0, reserveMs = 0.0;  // its T and the reserve it ran with
