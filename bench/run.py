@@ -6,7 +6,7 @@ results/<date>/: frames.csv, summary.csv, headline.md, headline.json, plots and 
 (the per-scene sweeps and their images under raw/). docs/BENCHMARKS.md defines every figure.
 
 usage: bench/run.py [--quick] [--out DIR] [--publish DIR] [--scenes FILE...]
-                    [--policies LIST] [--budgets N] [--frames N] [--warmup N]
+                    [--policies LIST] [--budgets N] [--frames N] [--warmup N] [--lead-in N]
                     [--repeats N] [--size WxH] [--paths LIST] [--order-seed S]
                     [--validation] [--budget-confidence C] [--no-stage-deadline]
                     [--compare OTHER_RUN_DIR]
@@ -51,6 +51,8 @@ def parse_args(argv):
     p.add_argument("--budgets", type=int)
     p.add_argument("--frames", type=int)
     p.add_argument("--warmup", type=int)
+    p.add_argument("--lead-in", type=int, help="frames of the camera moving along the path before the last recorded frame "
+                   "(the others follow the still warm-up or a jump)")
     p.add_argument("--repeats", type=int)
     p.add_argument("--size")
     p.add_argument("--paths", default="orbit,flythrough")
@@ -77,8 +79,11 @@ def parse_args(argv):
     # 14 warm-up frames: the headroom (engine/src/select/cost_model.h) waits for 8 measured
     # frames after a restart, and the first recorded frame's still view has had most of 1/16's
     # period (docs/BENCHMARKS.md).
-    full = dict(budgets=6, frames=3, warmup=14, repeats=2, size="640x360")
-    quick = dict(budgets=5, frames=3, warmup=5, repeats=2, size="320x180")
+    # --lead-in N: the last recorded frame follows N frames of the camera moving along the
+    # path (the learned costs and values and the temporal fill following the view) instead of
+    # a jump.
+    full = dict(budgets=6, frames=3, warmup=14, lead_in=0, repeats=2, size="640x360")
+    quick = dict(budgets=5, frames=3, warmup=5, lead_in=0, repeats=2, size="320x180")
     for k, v in (quick if a.quick else full).items():
         if getattr(a, k) is None:
             setattr(a, k, v)
@@ -131,7 +136,7 @@ class Progress:
 def run_sweep(a, scene, out, progress):
     w, h = a.size.split("x")
     cmd = [a.raybudget, "sweep", str(scene), "--out", str(out), "--width", w, "--height", h, "--frames", str(a.frames),
-           "--warmup", str(a.warmup), "--budgets", str(a.budgets), "--repeats", str(a.repeats), "--policies", a.policies,
+           "--warmup", str(a.warmup), "--lead-in", str(a.lead_in), "--budgets", str(a.budgets), "--repeats", str(a.repeats), "--policies", a.policies,
            "--paths", a.paths, "--order-seed", str(a.order_seed)]
     if a.validation:
         cmd.append("--validation")
@@ -234,6 +239,21 @@ def spread(v):
     """(median, min, max) over the values that are numbers."""
     v = [x for x in v if not math.isnan(x)]
     return (median(v), min(v), max(v)) if v else (math.nan, math.nan, math.nan)
+
+
+# What a recorded frame follows: the still warm-up on its camera (the first), a jump from the
+# frame before (a cut), or frames of the camera moving along the path to it (its `lead_in`).
+FRAME_KIND_LABELS = {"still": "the first recorded frame (after the still warm-up)", "jumps": "after a camera jump",
+                     "moving": "after the camera moved along the path"}
+
+
+def frame_kinds(points):
+    """The recorded frames' ids of each kind present: still, jumps, moving (runs before the
+    lead-in had no `lead_in` column: their later frames all follow a jump)."""
+    ids = {x["frame"] for q in points for x in q["frames"]}
+    moving = {x["frame"] for q in points for x in q["frames"] if num(x.get("lead_in") or "0") > 0}
+    kinds = {"still": sorted(ids & {"0"} - moving), "jumps": sorted(ids - {"0"} - moving), "moving": sorted(moving)}
+    return {k: v for k, v in kinds.items() if v}
 
 
 def stage_budget_frames(rows):
@@ -433,15 +453,16 @@ def headline(points, summary, oracle, calibration, policies):
             cells.append(fmt_spread(s, 3) + (f", {s[0] / o:.0%} of oracle" if o and not math.isnan(o) and o > 0 else ""))
         lines.append(f"| {f:.0%} | {o:.3f} | " + " | ".join(cells) + " |")
     # 1a. The same per recorded frame: the first follows the warm-up on its camera, over which
-    # the temporal fill carried what each reduced rate traced; the others follow a camera jump.
+    # the temporal fill carried what each reduced rate traced; the others follow a camera jump,
+    # or the camera moving along the path (--lead-in).
+    kinds = frame_kinds(points)
     lines.append(f"\n### Error recovered at {' / '.join(f'{f:.0%}' for f in FRACTIONS)} of full RT's stage cost, by recorded frame "
                  f"(median over the cases whose `none` FLIP exceeds `all`'s by {FRAME_GAP} in that frame; range over repeats)\n")
-    lines.append("| policy | the first recorded frame (after the still warm-up) | the others (after a camera jump) |")
-    lines.append("|---|---|---|")
-    later = sorted({x["frame"] for q in points for x in q["frames"]} - {"0"})
+    lines.append("| policy | " + " | ".join(FRAME_KIND_LABELS[k] for k in kinds) + " |")
+    lines.append("|---|" + "---|" * len(kinds))
     for p in policies:
         cells = []
-        for name, frames in (("still", ["0"]), ("jumps", later)):
+        for name, frames in kinds.items():
             per_fraction = [spread([median([cases.recovered_in_frame(c, p, r, fr, f) for c in cases.list for fr in frames])
                                     for r in cases.repeats]) for f in FRACTIONS]
             figures.setdefault("recovered_by_frame", {}).setdefault(p, {})[name] = [list(s) for s in per_fraction]
@@ -487,28 +508,30 @@ def headline(points, summary, oracle, calibration, policies):
         lines.append(f"| share of the {len(visible)} cases with `none` FLIP > 0.005 at 4x or more (half left) | " + " | ".join(cells) + " |")
     # 3. Two-sided adherence.
     # The first recorded frame of a path follows the warm-up on the same camera (the steady
-    # case); the others follow a jump along the path (each view new to the learned costs).
+    # case); the others a jump along the path (a view new to the learned costs) or the camera
+    # moving along it (--lead-in).
     # The promise covers T from twice the stage's fixed cost t0 (the case's calibrated one) up:
     # below it the fixed passes alone are most of T.
     lines.append("\n### Budget adherence, both sides (range over repeats)\n")
-    lines.append("| policy | frames with stage <= T + 5% | of them at T >= 2 t0 | the first recorded frame (after the still warm-up) "
-                 "| the others (after a camera jump) | budget use: median stage / T where the candidates exceed T |")
-    lines.append("|---|---|---|---|---|---|")
+    lines.append("| policy | frames with stage <= T + 5% | of them at T >= 2 t0 | "
+                 + " | ".join(FRAME_KIND_LABELS[k] for k in kinds) + " | budget use: median stage / T where the candidates exceed T |")
+    lines.append("|---|---|---|" + "---|" * len(kinds) + "---|")
     for p in policies:
-        within, ranged, still, jumps, use = [], [], [], [], []
+        within, ranged, by_kind, use = [], [], {k: [] for k in kinds}, []
         for r in cases.repeats:
             frames = [x for q in points if q["policy"] == p and q["repeat"] == r for x in q["frames"]]
             held = lambda fs: mean([float(num(x["rt_stage_ms"]) <= ADHERENCE_SLACK * num(x["budget_ms"])) for x in fs])
             within.append(held(frames))
             ranged.append(held([x for x in frames if num(x["budget_ms"]) >= 2.0 * calibration.get((x["scene"], x["path"]), 0.0)]))
-            still.append(held([x for x in frames if x["frame"] == "0"]))
-            jumps.append(held([x for x in frames if x["frame"] != "0"]))
+            for k, ids in kinds.items():
+                by_kind[k].append(held([x for x in frames if x["frame"] in ids]))
             use.append(median([num(x["rt_stage_ms"]) / num(x["budget_ms"]) for x in stage_budget_frames(frames)]))
         figures["adherence"][p], figures["budget_use"][p] = list(spread(within)), list(spread(use))
         figures.setdefault("adherence_from_2t0", {})[p] = list(spread(ranged))
-        figures.setdefault("adherence_still", {})[p] = list(spread(still))
-        figures.setdefault("adherence_jumps", {})[p] = list(spread(jumps))
-        lines.append(f"| {p} | {fmt_spread(spread(within), 3)} | {fmt_spread(spread(ranged), 3)} | {fmt_spread(spread(still), 3)} | {fmt_spread(spread(jumps), 3)} "
+        for k in kinds:
+            figures.setdefault(f"adherence_{k}", {})[p] = list(spread(by_kind[k]))
+        lines.append(f"| {p} | {fmt_spread(spread(within), 3)} | {fmt_spread(spread(ranged), 3)} | "
+                     + " | ".join(fmt_spread(spread(by_kind[k]), 3) for k in kinds) + " "
                      f"| {fmt_spread(spread(use), 2)} |")
     # 4. Per case at 25%, with the stage's cost and its fixed part.
     lines.append("\n### Per case: error recovered at 25% of full RT's stage cost (median over repeats)\n")
@@ -764,7 +787,7 @@ def main(argv):
         scenes = sorted({r["scene"] for r in rows})
     else:
         print(f"run.py: {len(scenes)} scenes x {a.paths} x policies {policies} x {a.budgets} budgets x {a.repeats} repeats, "
-              f"{a.frames} frames (+{a.warmup} warm-up per configuration) at {a.size}, order seed {a.order_seed} -> {out_dir}")
+              f"{a.frames} frames (+{a.warmup} warm-up per configuration, the last after {a.lead_in} moving) at {a.size}, order seed {a.order_seed} -> {out_dir}")
         rows, oracle, calibration, skipped = sweep_scenes(a, scenes, out_dir)
         if not rows:
             print("run.py: no scene rendered", file=sys.stderr)
@@ -779,7 +802,7 @@ def main(argv):
     cmd = "bench/run.py " + " ".join(argv)
     preamble = (f"Command: `{cmd.strip()}`, {minutes:.1f} min, {len(scenes) - len(skipped)} scenes"
                 + (f"; failed: {', '.join(f'{n} (exit {rc})' for n, rc in skipped)}" if skipped else "")
-                + f"; {a.size}, {a.frames} frames per path after {a.warmup} warm-up, {a.budgets} budgets, {a.repeats} repeats\n\n")
+                + f"; {a.size}, {a.frames} frames per path after {a.warmup} warm-up (the last after {a.lead_in} frames moving), {a.budgets} budgets, {a.repeats} repeats\n\n")
     if a.aggregate_only:  # the sweep's own command, time and settings
         with open(out_dir / "headline.json") as f:
             preamble = json.load(f)["preamble"]

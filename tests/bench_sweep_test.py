@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The benchmark end to end on a tiny sweep: one ci scene, 2 policies, 2 budgets, 3 frames,
-2 repeats. Checks the CSV columns, that `all` matches the reference (zero error) and `none`
+2 repeats, the last frame after 2 frames moving along the path. Checks the CSV columns, that `all` matches the reference (zero error) and `none`
 does not, that every repeat is imaged, that the stage time covers its passes, and that the
 summary, oracle, headline and plots are written. Then order independence: with the time
 scale at its prior (no timing feedback), every configuration selects the same objects
@@ -19,7 +19,7 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCENE = ROOT.parent / "shared" / "scenes" / "ci" / "CornellBox"
 
-FRAME_COLUMNS = ["scene", "path", "policy", "budget_index", "budget_ms", "repeat", "order", "frame", "coverage_ms", "select_ms",
+FRAME_COLUMNS = ["scene", "path", "policy", "budget_index", "budget_ms", "repeat", "order", "frame", "lead_in", "coverage_ms", "select_ms",
                  "trace_ms", "trace_shadows_ms", "trace_effects_ms", "fill_effects_ms", "rt_stage_ms", "shadow_maps_ms", "frame_ms", "predicted_trace_ms", "trace_budget_ms",
                  "candidates_ms", "selected_objects", "rays", "selected_value", "optimal_value_bound", "selection_changes", "item_option_changes", "partial_share", "deadline_cut_pixels", "fill_cut_pixels", "rmse",
                  "psnr", "image", "flip"]
@@ -38,7 +38,7 @@ def main(raybudget, out):
         return 77
     shutil.rmtree(out, ignore_errors=True)
     cmd = [sys.executable, str(ROOT / "bench" / "run.py"), "--raybudget", raybudget, "--scenes", str(scenes[0]),
-           "--policies", "density,random", "--budgets", "2", "--frames", "3", "--warmup", "2", "--repeats", "2",
+           "--policies", "density,random", "--budgets", "2", "--frames", "3", "--warmup", "2", "--lead-in", "2", "--repeats", "2",
            "--paths", "orbit", "--size", "96x64", "--validation", "--out", out]
     run = subprocess.run(cmd, capture_output=True, text=True)
     print(run.stdout[-4000:], run.stderr[-4000:])
@@ -58,6 +58,8 @@ def main(raybudget, out):
     if any(len(by_policy[p]) != 2 * 3 for p in ("all", "none", "classified")) or len(by_policy["density"]) != 2 * 2 * 3:
         fail("expected 3 frames per configuration, 2 budgets, 2 repeats: " + str({k: len(v) for k, v in by_policy.items()}))
     for r in rows:
+        if r["lead_in"] != ("2" if r["frame"] == "2" else "0"):
+            fail(f"the last recorded frame follows the 2 lead-in frames, the others none: frame {r['frame']}, lead_in {r['lead_in']}")
         if not r["image"] or not (out / r["image"]).is_file():
             fail(f"every recorded frame of every repeat is imaged: {r['policy']} repeat {r['repeat']} frame {r['frame']}")
         stage = float(r["rt_stage_ms"])
@@ -152,6 +154,8 @@ def check_order_independence(raybudget, scene, out):
         fail("the replayed sweep wrote other cameras than it read")
     sweep_selections(raybudget, scene, out / "replay-short", "--policies", "density", "--budget-list", "0.4", "--repeats", "1",
                      "--replay-paths", str(recorded), frames="2", expect_error="holds 3 cameras, --frames asks for 2")
+    sweep_selections(raybudget, scene, out / "replay-lead-in", "--policies", "density", "--budget-list", "0.4", "--repeats", "1",
+                     "--replay-paths", str(recorded), "--lead-in", "2", expect_error="--lead-in follows the named camera paths")
 
 
 if __name__ == "__main__":

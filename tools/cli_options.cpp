@@ -216,6 +216,18 @@ Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame
   return start;
 }
 
+Camera cameraApproaching(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount, uint32_t stepsBack,
+                         FlythroughShape shape) {
+  constexpr int64_t kSteps = 100;  // steps per frame spacing
+  // The orbit's frames divide a turn (frame / count), the fly-through's its length from end to
+  // end (frame / (count - 1)): the same path at kSteps times the frames keeps its frames.
+  const bool wraps = path == "orbit";
+  const int64_t fine = wraps ? kSteps * frameCount : kSteps * (int64_t(frameCount) - 1) + 1;
+  int64_t at = kSteps * int64_t(frame) - int64_t(stepsBack);
+  at = wraps ? ((at % fine) + fine) % fine : std::max<int64_t>(at, 0);
+  return cameraOnPath(path, start, uint32_t(at), uint32_t(std::max<int64_t>(fine, 1)), shape);
+}
+
 bool parseImageOption(const std::vector<std::string>& args, size_t& i, RenderSettings& s) {
   const std::string& a = args[i];
   if (a == "--no-screen-space-transmission") s.screenSpaceTransmission = false;

@@ -31,6 +31,12 @@ extern const char* kUsage;
 // "flythrough" (shaped by `shape`: flythroughShape), or anything else the start itself (static).
 Camera cameraOnPath(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount, FlythroughShape shape = {});
 
+// The camera `stepsBack` steps before frame `frame` of that path, a step a hundredth of the
+// path's spacing between frames: a camera moving along it towards the frame at a steady
+// speed (the benchmark's lead-in; an orbit wraps round, a fly-through stops at its start).
+Camera cameraApproaching(const std::string& path, const Camera& start, uint32_t frame, uint32_t frameCount, uint32_t stepsBack,
+                         FlythroughShape shape = {});
+
 // The median (the mean of the two middle values for an even count); 0 when empty.
 double median(std::vector<double> values);
 

@@ -24,6 +24,9 @@ const char* kSweepUsage = R"(usage: raybudget sweep SCENE.gltf|SCENE.glb [option
   --width W --height H  image size (default 640x360)
   --frames N            recorded frames per camera path and configuration (default 4)
   --warmup N            frames on the path's first camera before them, not recorded (default 8)
+  --lead-in N           frames of the camera moving along the path (a hundredth of the recorded
+                        frames' spacing a frame) before the last recorded frame, not recorded;
+                        the others follow a jump (default 0, at most 99)
   --budgets N           budgets: 100, 25, 50, 10 and 20% of full RT's stage cost (as many as N
                         allows), then twice the stage's fixed cost, then the widest gaps in log
                         cost (default 6)
@@ -150,9 +153,14 @@ class Sweep {
     std::vector<FrameTiming> all;
     std::vector<double> rmse(path.size(), -1.0);
     auto collect = [&](const std::vector<FrameTiming>& done) { all.insert(all.end(), done.begin(), done.end()); };
-    const uint64_t first = rendered_ + c_.warmup;
+    std::vector<uint64_t> recordedAt;  // the renderer's frame number of each recorded frame
     for (uint32_t w = 0; w < c_.warmup; ++w) render(path.front(), collect);
     for (size_t f = 0; f < path.size(); ++f) {
+      // The last recorded frame follows the camera's approach along the path (--lead-in); the
+      // others follow a jump from the frame before (or the still warm-up).
+      if (f + 1 == path.size())
+        for (const Camera& camera : leadIn_) render(camera, collect);
+      recordedAt.push_back(rendered_);
       render(path[f], collect);
       if (kind.imageDir.empty()) continue;
       const FrameImages img = renderer_.readback();
@@ -164,21 +172,27 @@ class Sweep {
     collect(renderer_.finish());
     std::vector<FrameTiming> recorded;
     for (const FrameTiming& t : all) {
-      if (t.frame < first) continue;
+      const auto at = std::find(recordedAt.begin(), recordedAt.end(), t.frame);
+      if (at == recordedAt.end()) continue;
+      const size_t f = size_t(at - recordedAt.begin());
       recorded.push_back(t);
-      if (kind.recorded) writeRow(pathName, cfg, kind, size_t(t.frame - first), t, rmse[size_t(t.frame - first)]);
+      if (kind.recorded) writeRow(pathName, cfg, kind, f, f + 1 == path.size() ? leadIn_.size() : 0, t, rmse[f]);
     }
     csv_.flush();
     return recorded;
   }
 
-  void newPath() { reference_.clear(); }
+  // A new camera path; `leadIn`: the cameras before its last recorded frame (--lead-in).
+  void newPath(std::vector<Camera> leadIn) {
+    reference_.clear();
+    leadIn_ = std::move(leadIn);
+  }
 
  private:
-  void writeRow(const std::string& pathName, const Config& cfg, const RunKind& kind, size_t f, const FrameTiming& t, double rmse) {
+  void writeRow(const std::string& pathName, const Config& cfg, const RunKind& kind, size_t f, size_t leadIn, const FrameTiming& t, double rmse) {
     const bool budgeted = isBudgeted(cfg.policy);
     csv_ << std::filesystem::path(scene_.path).stem().string() << ',' << pathName << ',' << cfg.name() << ',' << cfg.budgetIndex << ','
-         << (budgeted ? cfg.budgetMs : 0.0f) << ',' << kind.repeat << ',' << kind.order << ',' << f << ',' << passCell(t, Pass::Coverage) << ','
+         << (budgeted ? cfg.budgetMs : 0.0f) << ',' << kind.repeat << ',' << kind.order << ',' << f << ',' << leadIn << ',' << passCell(t, Pass::Coverage) << ','
          << passCell(t, Pass::Select) << ',' << t.traceMs() << ',' << passCell(t, Pass::TraceShadows) << ',' << passCell(t, Pass::TraceEffects) << ','
          << passCell(t, Pass::FillEffects) << ',' << t.rtStageMs() << ',' << passCell(t, Pass::ShadowMaps) << ','
          << t.totalMs() << ',' << t.predictedTraceMs << ',' << t.traceBudgetMs << ',' << t.candidatesMs << ','
@@ -212,6 +226,7 @@ class Sweep {
   uint64_t total_, done_ = 0, rendered_ = 0;
   CostModel start_;
   std::map<size_t, std::vector<float>> reference_;
+  std::vector<Camera> leadIn_;
 };
 
 // A run's mean stage time over its recorded frames: the statistic the benchmark's cost axis
@@ -275,6 +290,7 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
     if (a == "--out") c.out = value();
     else if (a == "--frames") c.frames = parseUint(a, value(), 1, 100000);
     else if (a == "--warmup") c.warmup = parseUint(a, value(), 0, 1000);
+    else if (a == "--lead-in") c.leadIn = parseUint(a, value(), 0, 99);
     else if (a == "--budgets") c.budgets = parseUint(a, value(), 2, 64);
     else if (a == "--repeats") c.repeats = parseUint(a, value(), 1, 100);
     else if (a == "--order-seed") c.orderSeed = parseUint(a, value(), 0, 0x7FFFFFFF);
@@ -301,6 +317,8 @@ SweepCommand parseSweep(const std::vector<std::string>& args) {
     } else sceneArgument(a, c.scene, std::string("\n") + kSweepUsage);
   }
   if (c.scene.empty()) throw Error(std::string("sweep needs a scene file\n") + kSweepUsage);
+  if (c.leadIn > 0 && !c.replayPaths.empty())
+    throw Error("--lead-in follows the named camera paths: --replay-paths gives only the recorded cameras");
   return c;
 }
 
@@ -316,7 +334,7 @@ int runSweep(const SweepCommand& c) {
   const std::filesystem::path out(c.out);
   std::filesystem::create_directories(out / "paths");
   std::ofstream csv(out / "frames.csv");
-  csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,coverage_ms,select_ms,trace_ms,trace_shadows_ms,trace_effects_ms,fill_effects_ms,rt_stage_ms,shadow_maps_ms,frame_ms,"
+  csv << "scene,path,policy,budget_index,budget_ms,repeat,order,frame,lead_in,coverage_ms,select_ms,trace_ms,trace_shadows_ms,trace_effects_ms,fill_effects_ms,rt_stage_ms,shadow_maps_ms,frame_ms,"
          "predicted_trace_ms,trace_budget_ms,candidates_ms,selected_objects,rays,selected_value,optimal_value_bound,selection_changes,item_option_changes,partial_share,deadline_cut_pixels,fill_cut_pixels,rmse,psnr,image\n";
   std::ofstream calibration(out / "calibration.csv");
   calibration << "path,full_rt_stage_ms,fixed_stage_ms,ms_per_work_unit,ms_per_paper_cost,ms_per_item_work_unit,stage_overhead_ms,trace_fixed_ms,ms_per_ray,ms_per_item_ray,budgets_ms\n";
@@ -329,7 +347,7 @@ int runSweep(const SweepCommand& c) {
     if (uses(p)) calibrated.push_back(p);
   const uint32_t budgets = c.budgetList.empty() ? c.budgets : uint32_t(c.budgetList.size());
   const uint32_t calibrationRuns = c.budgetList.empty() ? 2 + 1 + 2 * uint32_t(calibrated.size()) : 1;
-  const uint64_t perPath = uint64_t(c.frames + c.warmup) * (calibrationRuns + uint64_t(c.repeats) * (2 + uint64_t(c.classified) + c.policies.size() * budgets));
+  const uint64_t perPath = uint64_t(c.frames + c.warmup + c.leadIn) * (calibrationRuns + uint64_t(c.repeats) * (2 + uint64_t(c.classified) + c.policies.size() * budgets));
   Sweep sweep(c, scene, renderer, csv, perPath * c.paths.size());
   std::cout << "sweep " << c.scene << ": " << scene.objects.size() << " objects, device " << renderer.deviceName() << '\n';
   const Camera start = pathStartCamera(scene, renderer.aspect());
@@ -338,7 +356,10 @@ int runSweep(const SweepCommand& c) {
     const std::vector<Camera> path = c.replayPaths.empty() ? cameraPath(pathName, start, c.frames, flythroughShape(scene, start))
                                                            : replayedPath(c, pathName, start);
     writePathJson(out / "paths" / (pathName + ".json"), pathName, path);
-    sweep.newPath();
+    std::vector<Camera> leadIn;
+    for (uint32_t back = c.leadIn; back > 0; --back)
+      leadIn.push_back(cameraApproaching(pathName, start, c.frames - 1, c.frames, back, flythroughShape(scene, start)));
+    sweep.newPath(std::move(leadIn));
     // Calibration, not recorded: the reference images (`all`, deterministic), the full-RT
     // stage cost (the mean of two runs' means over the path), the stage's fixed cost (a budget nothing fits:
     // coverage, select and the empty trace dispatches) and the cost model learned at the

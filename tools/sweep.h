@@ -35,6 +35,7 @@ struct SweepCommand {
   RenderTarget target;  // 640x360 unless told
   uint32_t frames = 4;   // recorded per camera path and configuration, after the warm-up
   uint32_t warmup = 8;   // frames on the path's first camera at the configuration's budget, not recorded
+  uint32_t leadIn = 0;   // frames of the camera moving along the path before the last recorded frame, not recorded
   uint32_t budgets = 6;  // the headline shares of full RT, then more (unless budgetList is given)
   uint32_t repeats = 3;  // each repeat runs every configuration once; every repeat is imaged
   uint32_t orderSeed = 1;  // shuffles each repeat's configurations; 0: all, none, then budgets ascending
