@@ -92,6 +92,10 @@ def parse_args(argv):
     return a
 
 
+def lead_in_text(a):
+    return f" (the last after {a.lead_in} frames moving)" if a.lead_in else ""
+
+
 def bench_scenes():
     if not BENCH_SCENES.is_dir():
         print(f"run.py: {BENCH_SCENES} is absent: only the generated scenes are benchmarked", file=sys.stderr)
@@ -787,7 +791,7 @@ def main(argv):
         scenes = sorted({r["scene"] for r in rows})
     else:
         print(f"run.py: {len(scenes)} scenes x {a.paths} x policies {policies} x {a.budgets} budgets x {a.repeats} repeats, "
-              f"{a.frames} frames (+{a.warmup} warm-up per configuration, the last after {a.lead_in} moving) at {a.size}, order seed {a.order_seed} -> {out_dir}")
+              f"{a.frames} frames (+{a.warmup} warm-up per configuration{lead_in_text(a)}) at {a.size}, order seed {a.order_seed} -> {out_dir}")
         rows, oracle, calibration, skipped = sweep_scenes(a, scenes, out_dir)
         if not rows:
             print("run.py: no scene rendered", file=sys.stderr)
@@ -802,7 +806,7 @@ def main(argv):
     cmd = "bench/run.py " + " ".join(argv)
     preamble = (f"Command: `{cmd.strip()}`, {minutes:.1f} min, {len(scenes) - len(skipped)} scenes"
                 + (f"; failed: {', '.join(f'{n} (exit {rc})' for n, rc in skipped)}" if skipped else "")
-                + f"; {a.size}, {a.frames} frames per path after {a.warmup} warm-up (the last after {a.lead_in} frames moving), {a.budgets} budgets, {a.repeats} repeats\n\n")
+                + f"; {a.size}, {a.frames} frames per path after {a.warmup} warm-up{lead_in_text(a)}, {a.budgets} budgets, {a.repeats} repeats\n\n")
     if a.aggregate_only:  # the sweep's own command, time and settings
         with open(out_dir / "headline.json") as f:
             preamble = json.load(f)["preamble"]
