@@ -140,8 +140,10 @@ class Progress:
 def run_sweep(a, scene, out, progress):
     w, h = a.size.split("x")
     cmd = [a.raybudget, "sweep", str(scene), "--out", str(out), "--width", w, "--height", h, "--frames", str(a.frames),
-           "--warmup", str(a.warmup), "--lead-in", str(a.lead_in), "--budgets", str(a.budgets), "--repeats", str(a.repeats), "--policies", a.policies,
+           "--warmup", str(a.warmup), "--budgets", str(a.budgets), "--repeats", str(a.repeats), "--policies", a.policies,
            "--paths", a.paths, "--order-seed", str(a.order_seed)]
+    if a.lead_in:  # only where asked: builds before the option refuse it (--raybudget OLD)
+        cmd += ["--lead-in", str(a.lead_in)]
     if a.validation:
         cmd.append("--validation")
     if a.prior_time_scale:
