@@ -258,7 +258,7 @@ def frame_kinds(points):
     lead-in had no `lead_in` column: their later frames all follow a jump)."""
     ids = {x["frame"] for q in points for x in q["frames"]}
     moving = {x["frame"] for q in points for x in q["frames"] if num(x.get("lead_in") or "0") > 0}
-    kinds = {"still": sorted(ids & {"0"} - moving), "jumps": sorted(ids - {"0"} - moving), "moving": sorted(moving)}
+    kinds = {"still": sorted((ids & {"0"}) - moving), "jumps": sorted(ids - {"0"} - moving), "moving": sorted(moving)}
     return {k: v for k, v in kinds.items() if v}
 
 

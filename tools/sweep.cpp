@@ -351,14 +351,13 @@ int runSweep(const SweepCommand& c) {
   Sweep sweep(c, scene, renderer, csv, perPath * c.paths.size());
   std::cout << "sweep " << c.scene << ": " << scene.objects.size() << " objects, device " << renderer.deviceName() << '\n';
   const Camera start = pathStartCamera(scene, renderer.aspect());
+  const FlythroughShape shape = flythroughShape(scene, start);  // a scan of the scene's objects: once
   for (size_t pathIndex = 0; pathIndex < c.paths.size(); ++pathIndex) {
     const std::string& pathName = c.paths[pathIndex];
-    const std::vector<Camera> path = c.replayPaths.empty() ? cameraPath(pathName, start, c.frames, flythroughShape(scene, start))
-                                                           : replayedPath(c, pathName, start);
+    const std::vector<Camera> path = c.replayPaths.empty() ? cameraPath(pathName, start, c.frames, shape) : replayedPath(c, pathName, start);
     writePathJson(out / "paths" / (pathName + ".json"), pathName, path);
     std::vector<Camera> leadIn;
-    for (uint32_t back = c.leadIn; back > 0; --back)
-      leadIn.push_back(cameraApproaching(pathName, start, c.frames - 1, c.frames, back, flythroughShape(scene, start)));
+    for (uint32_t back = c.leadIn; back > 0; --back) leadIn.push_back(cameraApproaching(pathName, start, c.frames - 1, c.frames, back, shape));
     sweep.newPath(std::move(leadIn));
     // Calibration, not recorded: the reference images (`all`, deterministic), the full-RT
     // stage cost (the mean of two runs' means over the path), the stage's fixed cost (a budget nothing fits:
