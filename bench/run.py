@@ -799,6 +799,13 @@ def main(argv):
             print("run.py: no scene rendered", file=sys.stderr)
             return 1
         write_csv(out_dir / "frames.csv", rows, list(rows[0].keys()))
+    # The tables show the policies the frames hold (an --aggregate-only of a run of a few
+    # policies, without --policies, would else show empty columns for the others).
+    present = {r["policy"] for r in rows}
+    absent = [p for p in policies if p not in present]
+    if absent:
+        print(f"run.py: no frames of {', '.join(absent)} in {out_dir / 'frames.csv'}: left out of the tables")
+    policies = [p for p in policies if p in present]
     points = repeat_points(rows)
     summary = summarize(points)
     write_csv(out_dir / "summary.csv", summary)

@@ -108,9 +108,25 @@ def main(raybudget, out):
                  f"plots/error_vs_time_{scenes[0].stem}.png", f"strips/{scenes[0].stem}.png"]:
         if not (out / name).is_file() or (out / name).stat().st_size == 0:
             fail(f"{name} was not written")
+    check_aggregate_only(out)
     check_order_independence(raybudget, scenes[0], out / "order")
     print(f"ok: {len(rows)} frames; none: FLIP {none_flip:.4f}, RMSE {none_rmse:.4f}")
     return 0
+
+
+def check_aggregate_only(out):
+    """Re-aggregating a run of two policies without --policies shows those two, not empty
+    columns for the default list's others."""
+    cmd = [sys.executable, str(ROOT / "bench" / "run.py"), "--aggregate-only", "--out", str(out)]
+    run = subprocess.run(cmd, capture_output=True, text=True)
+    if run.returncode != 0:
+        fail(f"--aggregate-only exited {run.returncode}: {run.stderr[-2000:]}")
+    header = next(line for line in (out / "headline.md").read_text().splitlines() if line.startswith("| at |"))
+    columns = [c.strip() for c in header.strip("|").split("|")]
+    if columns != ["at", "oracle", "density", "random"]:
+        fail(f"--aggregate-only's table shows {columns}, expected the run's policies alone")
+    if "no frames of paper" not in run.stdout:
+        fail("--aggregate-only should say which requested policies the frames lack")
 
 
 def sweep_selections(raybudget, scene, out, *args, frames="3", expect_error=None):
