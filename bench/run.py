@@ -785,6 +785,9 @@ def main(argv):
     scenes = [pathlib.Path(s) for s in a.scenes] if a.scenes else default_scenes(a.quick)
     policies = [p for p in a.policies.split(",") if p]
     started = time.time()
+    if a.compare and not (pathlib.Path(a.compare) / "headline.json").is_file():  # before an hour of sweeps, not after
+        print(f"run.py: --compare {a.compare}: no headline.json there", file=sys.stderr)
+        return 2
     if a.aggregate_only:
         rows = read_rows(out_dir / "frames.csv")
         oracle = [dict(r, fraction=num(r["fraction"]), flip=num(r["flip"])) for r in read_rows(out_dir / "oracle.csv")]
@@ -838,7 +841,8 @@ def main(argv):
         other = pathlib.Path(a.compare)
         with open(other / "headline.json") as f:
             text = "Against " + a.compare + ":\n\n" + compare(figures, json.load(f)["figures"])
-        text += "\n" + case_spread(points, repeat_points(read_rows(other / "frames.csv")), policies)
+        if (other / "frames.csv").is_file():  # a published folder (docs/benchmarks) has the figures alone
+            text += "\n" + case_spread(points, repeat_points(read_rows(other / "frames.csv")), policies)
         with open(out_dir / "compare.md", "w") as f:
             f.write(text)
         print(text)

@@ -127,6 +127,17 @@ def check_aggregate_only(out):
         fail(f"--aggregate-only's table shows {columns}, expected the run's policies alone")
     if "no frames of paper" not in run.stdout:
         fail("--aggregate-only should say which requested policies the frames lack")
+    # --compare with a published folder (headline.json alone, as docs/benchmarks) compares the
+    # figures; one without headline.json is refused before any sweep.
+    published = out / "published"
+    published.mkdir(exist_ok=True)
+    shutil.copy(out / "headline.json", published / "headline.json")
+    run = subprocess.run(cmd + ["--compare", str(published)], capture_output=True, text=True)
+    if run.returncode != 0 or "Against" not in (out / "compare.md").read_text():
+        fail(f"--compare with a published folder: exit {run.returncode}, {run.stderr[-2000:]}")
+    run = subprocess.run(cmd + ["--compare", str(out / "nothing-here")], capture_output=True, text=True)
+    if run.returncode != 2 or "no headline.json" not in run.stderr:
+        fail(f"--compare with a folder without headline.json should be refused at once: exit {run.returncode}")
 
 
 def sweep_selections(raybudget, scene, out, *args, frames="3", expect_error=None):
