@@ -82,10 +82,11 @@ render options:
                         (adds the per-object metrics pass to coverage)
   --item-stats          write items.csv: per object and effect (item) in the last frame, its
                         pixels, whether traced, and with benefit or classified the display
-                        error its tracing removed, its clock ticks and traversal work, and
-                        with benefit its learned benefit, cost per traced pixel and cost
-                        per pixel a reduced rate skips; with --explain=frames also
-                        items-N.csv for each frame N
+                        error its tracing removed, its clock ticks and traversal work, the
+                        pixels traced and those its rate skipped with their fill's ticks,
+                        and with benefit its learned benefit, cost per traced pixel and
+                        cost per pixel a reduced rate skips, and its share of tiles; with
+                        --explain=frames also items-N.csv for each frame N
   --budget-confidence C
                         the share of frames the stage should hold T in if recent prediction
                         errors recur: the selection's budget is divided by that quantile of

@@ -16,17 +16,19 @@ namespace {
 void writeItemStats(const std::filesystem::path& path, const std::vector<raybudget::ObjectMetrics>& metrics) {
   std::FILE* f = std::fopen(path.string().c_str(), "w");
   if (!f) throw raybudget::Error("cannot write " + path.string());
-  std::fprintf(f, "object,effect,pixels,traced,rate,error,ticks,work,benefit,cost_per_pixel,fill_per_pixel\n");
+  std::fprintf(f, "object,effect,pixels,traced,rate,error,ticks,work,benefit,cost_per_pixel,fill_per_pixel,traced_pixels,skipped_pixels,skipped_ticks,"
+                 "tile_share\n");
   const char* effects[] = {"shadows", "reflections", "refractions"};
   for (size_t i = 0; i < metrics.size(); ++i) {
     const raybudget::ObjectMetrics& m = metrics[i];
     const uint32_t pixels[] = {m.pixels, m.reflectionPixels, m.refractionPixels};
     for (uint32_t e = 0; e < 3; ++e)
       if (pixels[e] > 0)
-        std::fprintf(f, "%zu,%s,%u,%d,%s,%.6g,%llu,%u,%.6g,%.6g,%.6g\n", i, effects[e], pixels[e], int((m.selectedItems >> e) & 1u),
+        std::fprintf(f, "%zu,%s,%u,%d,%s,%.6g,%llu,%u,%.6g,%.6g,%.6g,%u,%u,%llu,%.6g\n", i, effects[e], pixels[e], int((m.selectedItems >> e) & 1u),
                      raybudget::itemRateName(m.itemRate[e]), double(m.itemError[e]),
                      static_cast<unsigned long long>(m.itemTicks[e]), m.itemWork[e], double(m.itemBenefit[e]), double(m.itemCostPerPixel[e]),
-                     double(m.itemFillPerPixel[e]));
+                     double(m.itemFillPerPixel[e]), m.itemTracedPixels[e], m.itemSkippedPixels[e],
+                     static_cast<unsigned long long>(m.itemSkippedTicks[e]), double(m.itemTileShare[e]));
   }
   std::fclose(f);
 }

@@ -306,6 +306,12 @@ struct ObjectMetrics {
   std::array<float, 3> itemBenefit{};
   std::array<float, 3> itemCostPerPixel{};  // `benefit`: the learned cost per traced pixel, work units (0: not learned)
   std::array<float, 3> itemFillPerPixel{};  // `benefit`: the learned cost per pixel a reduced rate skipped (0: not learned)
+  // This frame's counts behind the learned costs (`benefit` and `classified`): the pixels its
+  // trace passes traced for the item (`itemTicks` over them is its cost per traced pixel at its
+  // rate), and of the pixels its reduced rate skipped, those in the fill's timed workgroups
+  // (one in four) and their ticks.
+  std::array<uint32_t, 3> itemTracedPixels{}, itemSkippedPixels{};
+  std::array<uint64_t, 3> itemSkippedTicks{};
   // The share of its 8x8 tiles a selected item is traced on: 1, or below for `benefit`'s
   // partial item (with rates chosen per item: the budget the knapsack left, docs/SELECTION.md)
   std::array<float, 3> itemTileShare{1.0f, 1.0f, 1.0f};

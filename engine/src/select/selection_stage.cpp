@@ -511,6 +511,9 @@ struct SelectionStage::Impl {
         out[i].itemBenefit[e] = item.benefit;
         out[i].itemCostPerPixel[e] = item.workPerPixel;
         out[i].itemFillPerPixel[e] = item.fillPerPixel;
+        out[i].itemTracedPixels[e] = item.pixels;
+        out[i].itemSkippedPixels[e] = item.skippedPixels;
+        out[i].itemSkippedTicks[e] = uint64_t(item.skippedTicks) * RB_CLOCK_UNIT;
         if (totals.selectedLast == i * RB_ITEMS_PER_OBJECT + e + 1 && ((selected[i] >> e) & 1u)) out[i].itemTileShare[e] = totals.benefit;
       }
     }
