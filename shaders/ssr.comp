@@ -99,12 +99,18 @@ vec4 reflectionAt(Surface s, vec3 ng, out float hitDistance) {
   return vec4(textureLod(previousFrame, uv, 0.0).rgb, fade);
 }
 
-// Whether `pixel` shows a smooth surface (rougher pixels, most of a frame, read two texels
-// and get nothing written: envReflection reads ssrImage only below the cut-off).
-bool wantsReflection(ivec2 pixel) {
+// The part of `pixel`'s surface a mirror ray needs (object, position, normal, roughness) where it
+// is smooth: four of readSurface's seven fetches, no layers. Rougher pixels, most of a frame,
+// read two texels and get nothing written: envReflection reads ssrImage only below the cut-off.
+bool readSmoothSurface(ivec2 pixel, out Surface s) {
   if (any(greaterThanEqual(uvec2(pixel), frame.sizeLightsFrame.xy))) return false;
+  s.objectId = texelFetch(gObjectId, pixel, 0).r;
   vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
-  return texelFetch(gObjectId, pixel, 0).r != RB_NO_OBJECT && rti.r < frame.ssr.y && rti.a <= 0.5;
+  if (s.objectId == RB_NO_OBJECT || rti.r >= frame.ssr.y || rti.a > 0.5) return false;
+  s.roughness = rti.r;
+  s.position = surfacePosition(pixel);
+  s.normal = surfaceNormal(pixel);
+  return true;
 }
 
 // The reflection on `s` (geometric normal ng), a neighbour of the surface `marched` whose ray met a surface
@@ -147,7 +153,7 @@ void main() {
   for (int i = 0; i < 4; ++i) {
     ivec2 pixel = quad + ivec2(i & 1, i >> 1);
     Surface s;
-    if (!wantsReflection(pixel) || !readSurface(pixel, s)) continue;
+    if (!readSmoothSurface(pixel, s)) continue;
     float distance = length(s.position - frame.cameraPositionNear.xyz);
     bool same = haveMarched && s.objectId == marched.objectId && dot(s.normal, marched.normal) > 0.95 &&
                 abs(distance - length(marched.position - frame.cameraPositionNear.xyz)) < 0.02 * distance;
