@@ -39,7 +39,7 @@ void traceShadows(ivec2 pixel) {
   uint rate = probe ? RB_RATE_FULL : itemRate(sel, RB_ITEM_SHADOWS);
   if (!rateTraces(rate, pixel)) return;  // the lighting pass fills it
   Surface s;
-  if (!readSurface(pixel, s) || s.unlit) return;
+  if (!readSurfacePoint(pixel, objectId, s)) return;  // unlit
   uint start = clockNow();
   vec3 p, ng;
   readExactSurface(pixel, p, ng);

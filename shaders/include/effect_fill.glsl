@@ -149,7 +149,7 @@ bvec2 fillEffects(ivec2 pixel, uint objectId, Selection sel, bool past, inout La
   left = past;
   if (past) return bvec2(false);
   Surface s;
-  if (!readFillSurface(pixel, objectId, s)) return bvec2(false);
+  if (!readSurfacePoint(pixel, objectId, s)) return bvec2(false);
   bvec2 paths = surfacePaths(s, RB_RT_REFLECTIONS | RB_RT_REFRACTIONS);
   bool pending[2] = bool[2](skipped[0] && paths.x, skipped[1] && paths.y);
   bvec2 filled = bvec2(pending[0], pending[1]);

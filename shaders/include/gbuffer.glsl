@@ -61,28 +61,30 @@ bool readSurface(ivec2 pixel, out Surface s) {
   return true;
 }
 
-// The channels that say which effects the surface shows (metallic, roughness, transmission, IOR,
-// unlit): two of readSurface's seven fetches. Returns whether the surface is lit.
+// The channels that say which effects the surface shows (roughness, transmission, IOR, unlit,
+// and metallic where the surface transmits: it decides only whether it refracts, and 0 stands
+// elsewhere): one or two of readSurface's seven fetches. Returns whether the surface is lit.
 bool readEffectChannels(ivec2 pixel, inout Surface s) {
-  s.metallic = texelFetch(gBaseMetal, pixel, 0).a;
   vec4 rti = texelFetch(gRoughTransIor, pixel, 0);
   s.roughness = rti.r;
   s.transmission = rti.g;
   s.ior = rti.b;
   s.unlit = rti.a > 0.5;
+  s.metallic = s.transmission > 0.0 ? texelFetch(gBaseMetal, pixel, 0).a : 0.0;
   return !s.unlit;
 }
 
-// The part of the surface a reduced rate's fill reads at a pixel it skipped (object,
-// position, normal, and the channels that say which effects the surface shows): four of the
-// seven fetches, where a skipped pixel's fetches are most of what it costs on lavapipe.
-bool readFillSurface(ivec2 pixel, uint objectId, out Surface s) {
+// The part of the surface that the shadow rays and a reduced rate's fill read at a pixel
+// (object, position, normal, and the channels that say which effects the surface shows):
+// three or four of readSurface's seven fetches, no layers, where those fetches are much of
+// what a pixel of theirs costs on lavapipe. The rest of the surface is not read.
+bool readSurfacePoint(ivec2 pixel, uint objectId, out Surface s) {
   s.objectId = objectId;
   s.position = surfacePosition(pixel);
   s.normal = surfaceNormal(pixel);
-  s.seenFromInside = false;  // not read by a fill
+  s.seenFromInside = false;  // not read by them
   bool lit = readEffectChannels(pixel, s);
-  s.layers = noLayers(s.normal, s.ior);  // not read by a fill
+  s.layers = noLayers(s.normal, s.ior);  // not read by them
   return lit;
 }
 
