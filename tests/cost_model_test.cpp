@@ -314,6 +314,24 @@ TEST(CostModel, AColdFirstFrameDoesNotHoldTheFixedCostUp) {
   EXPECT_DOUBLE_EQ(k.fixedMs(), 1.4);
 }
 
+// A still view's frames, whose coverage pass kept the frame before's counts, teach an overhead
+// of their own, which only such frames are selected with: the first moving frame after them
+// pays the whole coverage pass again.
+TEST(CostModel, FramesThatKeptTheCoverageHaveAnOverheadOfTheirOwn) {
+  select::TimeScale k(640, 360);
+  const double scale = k.msPerUnit(CostUnit::Work);
+  k.learn(CostUnit::Work, {scale, 0.0, 0.2, 1.0, false});
+  EXPECT_DOUBLE_EQ(k.fixedMs(true), 1.2) << "none kept yet: the counted frames' overhead";
+  select::StageMeasurement kept{scale, 0.0, 0.2, 0.4, false};
+  kept.coverageReused = true;
+  for (int f = 0; f < 3; ++f) k.learn(CostUnit::Work, kept);
+  EXPECT_DOUBLE_EQ(k.fixedMs(true), 0.6);
+  EXPECT_DOUBLE_EQ(k.fixedMs(), 1.2) << "the counted frames' overhead is the counted frames'";
+  EXPECT_DOUBLE_EQ(k.overheadMs(false), 1.0);
+  k.set({.stageOverheadMs = 0.8});
+  EXPECT_DOUBLE_EQ(k.overheadMs(true), 0.8) << "a saved model holds the counted overhead alone";
+}
+
 // Frames that traced nothing time the trace passes' fixed cost (their dispatches over an
 // empty tile list); the scale then fits what the work adds beyond it.
 // The budget's headroom: none until a quarter of the window was measured, then the chosen

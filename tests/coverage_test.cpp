@@ -3,6 +3,7 @@
 // same G-buffer materials, and A, P, D, V, C, R from engine/src/select/metrics.h.
 #include <cmath>
 #include <set>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
@@ -180,6 +181,66 @@ TEST(ObjectParams, ChangedAtRunTimeTheNextFrameUsesThem) {
   const std::vector<ObjectMetrics> restarted = frame();
   EXPECT_EQ(restarted[i].C, restarted[i].V * 7.0f) << "a restart keeps the edited values";
   test::expectValidationClean(r.validationMessages());
+}
+
+// On a still view the coverage pass keeps the frame before's counts (RenderSettings::
+// reuseStillCoverage) and computes only the objects' metrics: every frame's metrics, selection
+// and image are those of counting again; the first frame after a change of view counts, and so
+// does the first after a restart of the selection.
+TEST(CoverageGpu, AStillViewKeepsTheFrameBeforesCountsAndSelectsAlike) {
+  const Scene scene = loadScene(test::defaultScenePath());
+  RenderSettings s = test::settingsFor(Policy::Benefit, 192, 112);
+  s.rayTracing.rate = ItemRate::Auto;
+  s.learnTimeScale = false;  // the same selection in both runs: no timing, no deadline
+  s.budgetMs = 4.0f;
+  s.objectMetrics = true;
+  const Camera still = defaultCamera(scene, 192.0f / 112.0f);
+  Camera moved = still;
+  moved.position.x += 0.25f;
+  const std::vector<Camera> path = {still, still, still, still, moved, moved, moved};
+  auto run = [&](bool reuse) {
+    RenderSettings r = s;
+    r.reuseStillCoverage = reuse;
+    Renderer renderer(scene, r, test::kCheckSelection);
+    std::vector<FrameTiming> timings;
+    std::vector<std::vector<ObjectMetrics>> metrics;
+    for (const Camera& c : path) {
+      for (const FrameTiming& t : renderer.render(c)) timings.push_back(t);
+      for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
+      metrics.push_back(renderer.objectMetrics());
+    }
+    // A restart, on the same view.
+    for (const FrameTiming& t : renderer.restartSelection(Policy::Density, 4.0f)) timings.push_back(t);
+    for (const FrameTiming& t : renderer.render(moved)) timings.push_back(t);
+    for (const FrameTiming& t : renderer.finish()) timings.push_back(t);
+    metrics.push_back(renderer.objectMetrics());
+    test::expectValidationClean(renderer.validationMessages());
+    return std::tuple(timings, metrics, renderer.readback().ldrRgba8);
+  };
+  const auto [reusedTimings, reusedMetrics, reusedImage] = run(true);
+  const auto [countedTimings, countedMetrics, countedImage] = run(false);
+  ASSERT_EQ(reusedTimings.size(), path.size() + 1);
+  const std::vector<bool> expected = {false, true, true, true, false, true, true, false};
+  for (size_t f = 0; f < reusedTimings.size(); ++f) {
+    EXPECT_EQ(reusedTimings[f].coverageReused, expected[f]) << "frame " << f;
+    EXPECT_FALSE(countedTimings[f].coverageReused) << "frame " << f;
+    EXPECT_TRUE(reusedTimings[f].selectionMatchesCpu.value_or(false)) << "frame " << f;
+    EXPECT_EQ(reusedTimings[f].selectedObjects, countedTimings[f].selectedObjects) << "frame " << f;
+    EXPECT_EQ(reusedTimings[f].selectedValue, countedTimings[f].selectedValue) << "frame " << f;
+  }
+  for (size_t f = 0; f < reusedMetrics.size(); ++f) {
+    ASSERT_EQ(reusedMetrics[f].size(), countedMetrics[f].size());
+    for (size_t o = 0; o < reusedMetrics[f].size(); ++o) {
+      const ObjectMetrics &a = reusedMetrics[f][o], &b = countedMetrics[f][o];
+      EXPECT_EQ(a.pixels, b.pixels) << "frame " << f << ", object " << o;
+      EXPECT_EQ(a.reflectionPixels, b.reflectionPixels) << "frame " << f << ", object " << o;
+      EXPECT_EQ(a.refractionPixels, b.refractionPixels) << "frame " << f << ", object " << o;
+      EXPECT_EQ(a.R, b.R) << "frame " << f << ", object " << o;
+      EXPECT_EQ(a.C, b.C) << "frame " << f << ", object " << o;
+      EXPECT_EQ(a.selected, b.selected) << "frame " << f << ", object " << o;
+    }
+  }
+  EXPECT_EQ(reusedImage, countedImage) << "the same frames";
 }
 
 }  // namespace

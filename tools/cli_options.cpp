@@ -94,6 +94,8 @@ render options:
   --no-stage-deadline   budgeted policies: the trace passes trace all that was selected even
                         past T (default: they stop once the stage has run for T on the
                         device's clock and leave the pixels left to their fallbacks)
+  --no-coverage-reuse   count every frame's coverage (default: on a still view the coverage
+                        pass keeps the frame before's counts, coverage_reused in stats.csv)
   --probe-share F       benefit: the share of the trace budget for the sparse probe, which
                         traces left-out items on a few rotating tiles to measure their
                         benefit, not shown; 0..0.5 (default 0.05; 0: no probe)
@@ -239,6 +241,7 @@ bool parseImageOption(const std::vector<std::string>& args, size_t& i, RenderSet
   else if (a == "--shadow-slope-bias") s.shadowSlopeBias = parseWithin(a, optionValue(args, i), 0.0f, 16.0f);
   else if (a == "--budget-confidence") s.budgetConfidence = parseWithin(a, optionValue(args, i), 0.5f, 0.99f);
   else if (a == "--no-stage-deadline") s.stageDeadline = false;
+  else if (a == "--no-coverage-reuse") s.reuseStillCoverage = false;
   else return false;
   return true;
 }

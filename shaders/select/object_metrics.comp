@@ -1,9 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_realtime_clock : require
 // Per object: A, P, D, V = A*P/D, C = V*Q, R = (S*I + V)*K from its coverage, in the
 // operation order of engine/src/select/metrics.cpp (precise: no contraction), which the
 // tests check this against.
 #include "include/bindings.glsl"
+#include "include/stage_clock.glsl"
 
 layout(local_size_x = RB_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DrawPush push; };
@@ -14,6 +16,7 @@ float wide(uint lo, uint hi) {
 }
 
 void main() {
+  stampStageStart();  // (where coverage kept the frame before's counts, the stage begins here)
   uint i = gl_GlobalInvocationID.x;
   if (i >= push.objectMaterial.x) return;
   GpuCoverage cov = coverage[i];

@@ -134,6 +134,10 @@ struct RenderSettings {
   // itself (FrameTiming::fillCutPixels). The selection's prediction decides what is traced, the
   // deadline bounds the stage where the prediction was wrong (docs/SELECTION.md, "The deadline").
   bool stageDeadline = true;
+  // On a still view (the camera and every object where they were the frame before) the
+  // coverage pass keeps the frame before's counts and only computes the objects' metrics
+  // again: the same selection inputs for less of the stage's fixed cost (FrameTiming::coverageReused).
+  bool reuseStillCoverage = true;
   // Learn the cost model's time scale and the stage's overhead (coverage + select) from the
   // timestamps (off: the prior stays, so a run selects the same objects on any machine;
   // per-object work per pixel is learned from the deterministic work counters either way).
@@ -236,6 +240,8 @@ struct FrameTiming {
   // still view the temporal fill carries what a reduced rate traced, and `benefit` with rates
   // chosen per item values the rates for it (docs/SELECTION.md).
   uint32_t stillFrames = 0;
+  // The coverage pass kept the frame before's counts (RenderSettings::reuseStillCoverage)
+  bool coverageReused = false;
   // false when every candidate fit the budget for certain (their summed cost at most 31/32
   // of T), so the select pass skipped the sort and selected them all
   bool selectionSorted = false;

@@ -61,6 +61,7 @@ struct Context::Impl {
     passes::ShadowMapPass::Recorded shadowMapsRecorded;
     uint32_t probesCaptured = 0;
     uint32_t stillFrames = 0;  // FrameTiming::stillFrames
+    bool coverageReused = false;  // FrameTiming::coverageReused
     PassSkip ssr = PassSkip::NoPreviousFrame;  // None: smooth surfaces reflect what is on screen
     PassSkip behindGlass = PassSkip::NoTransmissionInView;  // None: glass shows the opaque frame lit behind it
     glm::uvec4 behindGlassRect{0};                          // the pixels lit for it
@@ -101,6 +102,9 @@ struct Context::Impl {
   bool environmentReady = false;
   bool tracedMaskWritten = true;  // the traced mask may hold marks (at first: undefined contents)
   bool objectsMoved = false;
+  // The coverage buffers hold the last recorded frame's counts (CoveragePass::record's reuse),
+  // counted with the classifier or without.
+  bool coverageCounted = false, coverageClassified = false;
   uint32_t stillFrames = 0;  // the frames before this one in a row with its view and objects
   std::vector<FrameTiming> completed;  // collected, not yet returned
   glm::vec3 origin{0.0f};  // the render space's origin in world space (raybudget::renderOrigin)
@@ -175,6 +179,7 @@ struct Context::Impl {
     t.shadowMapTexels = slot.shadowMapsRecorded.texels;
     t.probesCaptured = slot.probesCaptured;
     t.stillFrames = slot.stillFrames;
+    t.coverageReused = slot.coverageReused;
     t.skipped = slot.skipped;
     const uint32_t s = uint32_t(&slot - slots);
     const auto ms = timestamps.read(s);
@@ -426,8 +431,15 @@ struct Context::Impl {
     const PassSkip nothingTraced = settings.policy == Policy::None ? PassSkip::PolicyTracesNothing
                                    : stageSkipped                  ? PassSkip::BudgetBelowFixedCost
                                                                    : PassSkip::NoEffectInScene;
-    run(Pass::Coverage, settings.objectMetrics || traced ? PassSkip::None : nothingTraced,
-        [&] { selection.recordCoverage(fc, classify); });
+    // On a still view the coverage buffers hold what the frame before counted, if it counted
+    // with the same classifier on the G-buffer this frame draws (not a host's, which may differ).
+    const bool countCoverage = settings.objectMetrics || traced;
+    slot.coverageReused = countCoverage && settings.reuseStillCoverage && !hostGBuffer && stillFrames > 0 && coverageCounted &&
+                          coverageClassified == classify;
+    run(Pass::Coverage, countCoverage ? PassSkip::None : nothingTraced,
+        [&] { selection.recordCoverage(fc, classify, slot.coverageReused); });
+    coverageCounted = countCoverage;
+    coverageClassified = classify;
     if (traced) computeToCompute(cmd);
     // The mask's clear is the select pass's (the stage's fixed cost).
     if (!traced && tracedMaskWritten) clearTracedMask(cmd);
@@ -518,6 +530,7 @@ struct Context::Impl {
     collectAll();
     settings = next;
     selection.restart(settings);
+    coverageCounted = false;
   }
 
   void setCostModel(const CostModel& m) {

@@ -10,7 +10,7 @@ StatsCsv::StatsCsv(const std::filesystem::path& path) : out_(path), path_(path) 
   if (!out_) throw Error(path.string() + ": cannot open for writing");
   out_ << "frame";
   for (size_t p = 0; p < kPassCount; ++p) out_ << ',' << passName(Pass(p)) << "_ms";
-  out_ << ",total_ms,rt_stage_ms,tlas_rebuild_ms,traced_tiles,rays,budget_ms,trace_budget_ms,budget_below_fixed_cost,predicted_trace_ms,measured_trace_ms,selected_objects,selected_value,selection_changes,optimal_value_bound,selection_sorted,candidates_ms,item_option_changes,shadow_map_views,shadow_map_draws,shadow_map_texels,probes_captured,partial_share,still_frames,deadline_cut_pixels,fill_cut_pixels\n";
+  out_ << ",total_ms,rt_stage_ms,tlas_rebuild_ms,traced_tiles,rays,budget_ms,trace_budget_ms,budget_below_fixed_cost,predicted_trace_ms,measured_trace_ms,selected_objects,selected_value,selection_changes,optimal_value_bound,selection_sorted,candidates_ms,item_option_changes,shadow_map_views,shadow_map_draws,shadow_map_texels,probes_captured,partial_share,still_frames,deadline_cut_pixels,fill_cut_pixels,coverage_reused\n";
 }
 
 void StatsCsv::add(const FrameTiming& t) {
@@ -23,7 +23,8 @@ void StatsCsv::add(const FrameTiming& t) {
        << t.traceBudgetMs << ',' << (t.budgetBelowFixedCost ? 1 : 0) << ',' << t.predictedTraceMs << ','
        << t.measuredTraceMs << ',' << t.selectedObjects << ',' << std::setprecision(8) << t.selectedValue << ',' << t.selectionChanges << ',' << t.optimalValueBound << ','
        << (t.selectionSorted ? 1 : 0) << ',' << std::setprecision(4) << t.candidatesMs << ',' << t.itemOptionChanges << ',' << t.shadowMapViews << ','
-       << t.shadowMapDraws << ',' << t.shadowMapTexels << ',' << t.probesCaptured << ',' << t.partialShare << ',' << t.stillFrames << ',' << t.deadlineCutPixels << ',' << t.fillCutPixels << '\n';
+       << t.shadowMapDraws << ',' << t.shadowMapTexels << ',' << t.probesCaptured << ',' << t.partialShare << ',' << t.stillFrames << ',' << t.deadlineCutPixels << ',' << t.fillCutPixels << ','
+       << (t.coverageReused ? 1 : 0) << '\n';
   if (!out_) throw Error(path_.string() + ": write failed");
 }
 

@@ -222,6 +222,7 @@ void TimeScale::set(const CostModel& m) {
   restore(scales_[size_t(CostUnit::PaperCost)], m.msPerPaperCost);
   restore(scales_[size_t(CostUnit::ItemWork)], m.msPerItemWorkUnit);
   restore(overhead_, m.stageOverheadMs);
+  overheadReused_.clear();  // (not saved: learned again from the first still frames)
   restore(traceFixed_, m.traceFixedMs);
   restore(msPerRay_[rayKind(CostUnit::Work)], m.msPerRay);
   restore(msPerRay_[rayKind(CostUnit::ItemWork)], m.msPerItemRay);
@@ -242,7 +243,7 @@ CostModel TimeScale::saved() const {
 // scales 5-20x off it held the headroom at 8-14x for 40 frames, so that only such frames
 // followed.
 void TimeScale::learn(CostUnit unit, const StageMeasurement& m) {
-  overhead_.add(m.overheadMs);
+  (m.coverageReused ? overheadReused_ : overhead_).add(m.overheadMs);
   RecentMedian& k = scales_[size_t(unit)];
   const double used = m.msPerUnitUsed;
   if (m.work * used <= 1e-3) {  // nothing traced: the trace passes' time is their fixed cost

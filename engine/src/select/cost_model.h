@@ -158,6 +158,7 @@ struct StageMeasurement {
   // The stage's deadline cut the frame and `work` still counts what it left out: its measured
   // time is a lower bound on what the whole selection costs (TimeScale::learn).
   bool cutShort = false;
+  bool coverageReused = false;  // the coverage pass kept the frame before's counts (a still view)
 };
 
 // The last kSize observations of a quantity and their median (the lower middle of an even
@@ -212,12 +213,16 @@ class TimeScale {
   // Whether the scale is learned from enough frames for its errors to be noise, not the cold
   // start's bias (a saved state counts as a window).
   bool settled(CostUnit unit) const { return scales_[size_t(unit)].size() >= kSettledObservations; }
-  double overheadMs() const { return overhead_.value(); }
+  // The coverage and select passes' recent time; `coverageReused`: in the frames whose coverage
+  // pass kept the frame before's counts (a still view: its metrics alone), where any were seen.
+  double overheadMs(bool coverageReused = false) const {
+    return coverageReused && !overheadReused_.empty() ? overheadReused_.value() : overhead_.value();
+  }
   double traceFixedMs() const { return traceFixed_.value(); }
   // The stage's fixed cost t0: overhead + the trace passes' fixed cost.
-  double fixedMs() const { return overheadMs() + traceFixedMs(); }
+  double fixedMs(bool coverageReused = false) const { return overheadMs(coverageReused) + traceFixedMs(); }
   // How many frames the fixed cost's parts were observed in (a saved state counts as a window).
-  size_t fixedCostObservations() const { return std::min(overhead_.size(), traceFixed_.size()); }
+  size_t fixedCostObservations() const { return std::min(overhead_.size() + overheadReused_.size(), traceFixed_.size()); }
   // The headroom the budget leaves for prediction errors: the `confidence` quantile of the
   // recent frames' measured over predicted work time over their median (the spread; the
   // bias is the scale's to learn), at least 1; 1 before kRatioWindow / 4 frames were measured.
@@ -253,7 +258,7 @@ class TimeScale {
  private:
   uint32_t width_, height_;
   std::array<RecentMedian, 3> scales_;  // per cost unit
-  RecentMedian overhead_, traceFixed_;
+  RecentMedian overhead_, overheadReused_, traceFixed_;
   std::array<RecentMedian, 2> msPerRay_;  // per ray traced (objects), per prior ray (items)
   static size_t rayKind(CostUnit unit) { return unit == CostUnit::ItemWork ? 1 : 0; }
   static constexpr size_t kRatioWindow = 32;

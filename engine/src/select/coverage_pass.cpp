@@ -28,18 +28,20 @@ CoveragePass::CoveragePass(const vk::Context& ctx, passes::PassLayouts& layouts)
       classifying_(coveragePipeline(ctx, layout_.pipelineLayout, true)),
       metrics_(vk::createComputePipeline(ctx, layout_.pipelineLayout, kSpirv_object_metrics_comp)) {}
 
-void CoveragePass::record(const passes::FrameContext& fc, bool classify) const {
+void CoveragePass::record(const passes::FrameContext& fc, bool classify, bool reuse) const {
   const VkCommandBuffer cmd = fc.cmd;
-  vkCmdFillBuffer(cmd, fc.selection.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
+  if (!reuse) vkCmdFillBuffer(cmd, fc.selection.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
   // The stage's clock (shaders/include/stage_clock.glsl): it begins here.
   vkCmdFillBuffer(cmd, fc.selection.tileList.buffer, kTileListListBytes, kTileListHeaderBytes - kTileListListBytes, 0);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify ? classifying_ : coverage_);
   layout_.bind(fc, VK_PIPELINE_BIND_POINT_COMPUTE);
-  vkCmdDispatch(cmd, vk::groupsFor(fc.selection.tiles, RB_GROUP_SIZE), 1, 1);  // one invocation per tile
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  if (!reuse) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify ? classifying_ : coverage_);
+    vkCmdDispatch(cmd, vk::groupsFor(fc.selection.tiles, RB_GROUP_SIZE), 1, 1);  // one invocation per tile
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
   const uint32_t objects = fc.selection.objects;
   gpu::DrawPush push{};
   push.objectMaterial.x = objects;

@@ -12,8 +12,11 @@ class CoveragePass {
  public:
   CoveragePass(const vk::Context& ctx, passes::PassLayouts& layouts);
   // Clears the coverage, counts (and with `classify` the classifier's reflection and
-  // refraction pixels, else 0), then computes the records; barriers included.
-  void record(const passes::FrameContext& fc, bool classify) const;
+  // refraction pixels, else 0), then computes the records; barriers included. `reuse`: the
+  // coverage buffers hold what the frame before counted on the same view, objects and
+  // classifier (a still view: Context decides), so only the records are computed again (their
+  // R holds this frame's S) and the stage's clock starts there.
+  void record(const passes::FrameContext& fc, bool classify, bool reuse) const;
 
  private:
   const passes::PassLayout& layout_;

@@ -119,6 +119,7 @@ struct SelectionStage::Impl {
     float traceBudgetMs = 0.0f;  // ... and the part of T it left for the work
     float selectBudgetMs = 0.0f;  // ... of which the selection's (the rest: `benefit`'s probe)
     bool belowFixedCost = false;  // T at or below the stage's fixed cost: nothing traced
+    bool coverageReused = false;  // the coverage pass kept the frame before's counts (CoveragePass::record)
     double deadlineReserveMs = 0.0;  // the deadline's reserve (StageDeadline::reserveMs)
     bool underDeadline = false;      // ... and whether the trace passes had deadlines
   };
@@ -134,6 +135,7 @@ struct SelectionStage::Impl {
   std::unique_ptr<GpuSelector> selector;
   TimeScale timeScale;
   StageDeadline deadline;
+  bool coverageReused = false;  // this frame's coverage pass keeps the frame before's counts
   std::vector<Slot> slots;
   bool checkCpu = false;  // compare every frame with the CPU references (tests)
 
@@ -185,7 +187,9 @@ struct SelectionStage::Impl {
   }
 
   // T at or below the stage's learned fixed cost: nothing can be traced.
-  bool belowFixedCost(const RenderSettings& s) const { return double(s.budgetMs) <= timeScale.fixedMs(); }
+  bool belowFixedCost(const RenderSettings& s, bool coverageReused = false) const {
+    return double(s.budgetMs) <= timeScale.fixedMs(coverageReused);
+  }
 
   void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s, uint32_t stillFrames) {
     const VkCommandBuffer cmd = fc.cmd;
@@ -196,11 +200,12 @@ struct SelectionStage::Impl {
     slot.scaleSettled = timeScale.settled(costUnitOf(policy));
     slot.workPerRay = float(timeScale.priorWorkPerRay(costUnitOf(policy)));
     slot.traceFixedMs = timeScale.traceFixedMs();
-    slot.belowFixedCost = belowFixedCost(s);
+    slot.coverageReused = coverageReused;
+    slot.belowFixedCost = belowFixedCost(s, coverageReused);
     slot.deadlineReserveMs = deadline.reserveMs(s.budgetMs);
     slot.underDeadline = deadlineTicksFor(s).x != 0u;
     // Room for the prediction's recent errors (cost_model.h's headroom).
-    slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float((double(s.budgetMs) - timeScale.fixedMs()) / timeScale.headroom(s.budgetConfidence));
+    slot.traceBudgetMs = slot.belowFixedCost ? 0.0f : float((double(s.budgetMs) - timeScale.fixedMs(coverageReused)) / timeScale.headroom(s.budgetConfidence));
     // `benefit` keeps a share of the trace budget for the probe of what it leaves out.
     const bool probe = policy == Policy::Benefit && s.benefitAblation != BenefitAblation::NoProbe;
     const float probeBudgetMs = probe ? slot.traceBudgetMs * s.probeShare : 0.0f;
@@ -447,7 +452,7 @@ struct SelectionStage::Impl {
     timeScale.learn(costUnitOf(policy), {slot.msPerUnit, predictedWork, t.measuredTraceMs, t.rtStageMs() - t.measuredTraceMs,
                                          r[0] > 0 && r[3] == 0 && !slot.belowFixedCost, slot.selectBudgetMs, t.raysTraced,
                                          double(std::bit_cast<float>(r[9])) / slot.msPerUnit, slot.scaleSettled,
-                                         uint64_t(header[8]), cutShort});  // the items' prior's rays (tile list header)
+                                         uint64_t(header[8]), cutShort, slot.coverageReused});  // the items' prior's rays (tile list header)
   }
 
   std::vector<uint32_t> changedParams;  // objects whose K, Q, I the next frame uploads
@@ -536,7 +541,8 @@ void SelectionStage::beginFrame(VkCommandBuffer cmd, uint32_t slot) {
 
 bool SelectionStage::skipsStage(uint32_t slot, const RenderSettings& settings) {
   Impl& m = *impl_;
-  const bool below = isBudgeted(settings.policy) && m.timeScale.fixedCostObservations() >= 3 && m.belowFixedCost(settings);
+  // Below the least fixed cost (a still view's, where one was seen): nothing could be bought.
+  const bool below = isBudgeted(settings.policy) && m.timeScale.fixedCostObservations() >= 3 && m.belowFixedCost(settings, true);
   m.skippedInRow = below && m.skippedInRow + 1 < kRemeasureEvery ? m.skippedInRow + 1 : 0;
   m.slots[slot].stageSkipped = m.skippedInRow > 0;
   return m.slots[slot].stageSkipped;
@@ -548,7 +554,10 @@ void SelectionStage::setObjectParams(uint32_t object, float K, float Q, float I)
   impl_->changedParams.push_back(object);
 }
 
-void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classify) const { impl_->coverage.record(fc, classify); }
+void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classify, bool reuse) {
+  impl_->coverageReused = reuse;
+  impl_->coverage.record(fc, classify, reuse);
+}
 
 void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames) {
   impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames);

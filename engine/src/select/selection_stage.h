@@ -42,7 +42,8 @@ class SelectionStage {
   bool skipsStage(uint32_t slot, const RenderSettings& settings);
   static constexpr uint32_t kRemeasureEvery = 32;
   // The coverage pass (with `classify`, the classifier's pixel counts too); barriers included.
-  void recordCoverage(const passes::FrameContext& fc, bool classify) const;
+  // `reuse`: the coverage buffers still hold this view's counts (CoveragePass::record).
+  void recordCoverage(const passes::FrameContext& fc, bool classify, bool reuse);
   // The select pass for `slot`: with a budgeted policy the GPU selection within T less the
   // learned overhead (and the copies its stats need), else none / all; then the tile list,
   // ready for the trace passes' indirect dispatch. `stillFrames`: the frames before this one in
