@@ -105,6 +105,7 @@ struct Context::Impl {
   // The coverage buffers hold the last recorded frame's counts (CoveragePass::record's reuse),
   // counted with the classifier or without.
   bool coverageCounted = false, coverageClassified = false;
+  static constexpr uint32_t kRecountStillCoverage = 8;
   uint32_t stillFrames = 0;  // the frames before this one in a row with its view and objects
   std::vector<FrameTiming> completed;  // collected, not yet returned
   glm::vec3 origin{0.0f};  // the render space's origin in world space (raybudget::renderOrigin)
@@ -433,9 +434,11 @@ struct Context::Impl {
                                                                    : PassSkip::NoEffectInScene;
     // On a still view the coverage buffers hold what the frame before counted, if it counted
     // with the same classifier on the G-buffer this frame draws (not a host's, which may differ).
+    // Every kRecountStillCoverage-th still frame counts anyway, so that the counted frames'
+    // overhead (TimeScale::overheadMs) stays current through a still view.
     const bool countCoverage = settings.objectMetrics || traced;
-    slot.coverageReused = countCoverage && settings.reuseStillCoverage && !hostGBuffer && stillFrames > 0 && coverageCounted &&
-                          coverageClassified == classify;
+    slot.coverageReused = countCoverage && settings.reuseStillCoverage && !hostGBuffer && stillFrames % kRecountStillCoverage != 0 &&
+                          coverageCounted && coverageClassified == classify;
     run(Pass::Coverage, countCoverage ? PassSkip::None : nothingTraced,
         [&] { selection.recordCoverage(fc, classify, slot.coverageReused); });
     coverageCounted = countCoverage;
