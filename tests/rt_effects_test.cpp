@@ -1100,7 +1100,9 @@ TEST(RtBudget, ABudgetBelowTheFixedCostLeavesTheStageOutAndShowsTheFallbacks) {
     }
     (out ? left : ran) += 1;
   }
-  EXPECT_GE(left, 30u);
+  // (Three counted frames make t0 known; a still view counts its coverage one frame in 8, so the
+  // stage leaves itself out from about the 16th frame of 40.)
+  EXPECT_GE(left, 20u);
   EXPECT_GE(ran, 1u) << "the fixed cost is measured again now and then";
   const FrameImages image = renderer.readback();
   RenderSettings n = s;
