@@ -448,7 +448,7 @@ struct Context::Impl {
     if (!traced && tracedMaskWritten) clearTracedMask(cmd);
     run(Pass::Select, traced ? PassSkip::None : nothingTraced, [&] {
       clearTracedMask(cmd);
-      selection.recordSelect(fc, s, settings, stillFrames);
+      selection.recordSelect(fc, s, settings, stillFrames, slot.coverageReused);
     });
     tracedMaskWritten = traced != 0;
     // Shadows at a reduced ray rate are filled in the lighting pass (shaders/include/shadow_fill.glsl),

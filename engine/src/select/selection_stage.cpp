@@ -135,7 +135,6 @@ struct SelectionStage::Impl {
   std::unique_ptr<GpuSelector> selector;
   TimeScale timeScale;
   StageDeadline deadline;
-  bool coverageReused = false;  // this frame's coverage pass keeps the frame before's counts
   std::vector<Slot> slots;
   bool checkCpu = false;  // compare every frame with the CPU references (tests)
 
@@ -187,11 +186,11 @@ struct SelectionStage::Impl {
   }
 
   // T at or below the stage's learned fixed cost: nothing can be traced.
-  bool belowFixedCost(const RenderSettings& s, bool coverageReused = false) const {
+  bool belowFixedCost(const RenderSettings& s, bool coverageReused) const {
     return double(s.budgetMs) <= timeScale.fixedMs(coverageReused);
   }
 
-  void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s, uint32_t stillFrames) {
+  void recordSelect(const passes::FrameContext& fc, Slot& slot, const RenderSettings& s, uint32_t stillFrames, bool coverageReused) {
     const VkCommandBuffer cmd = fc.cmd;
     const Policy policy = toSelectPolicy(s.policy);
     slot.selected = true;
@@ -554,13 +553,13 @@ void SelectionStage::setObjectParams(uint32_t object, float K, float Q, float I)
   impl_->changedParams.push_back(object);
 }
 
-void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classify, bool reuse) {
-  impl_->coverageReused = reuse;
+void SelectionStage::recordCoverage(const passes::FrameContext& fc, bool classify, bool reuse) const {
   impl_->coverage.record(fc, classify, reuse);
 }
 
-void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames) {
-  impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames);
+void SelectionStage::recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames,
+                                  bool coverageReused) {
+  impl_->recordSelect(fc, impl_->slots[slot], settings, stillFrames, coverageReused);
 }
 
 glm::uvec3 SelectionStage::deadlineTicks(const RenderSettings& s) const { return impl_->deadlineTicksFor(s); }

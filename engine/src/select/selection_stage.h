@@ -43,13 +43,15 @@ class SelectionStage {
   static constexpr uint32_t kRemeasureEvery = 32;
   // The coverage pass (with `classify`, the classifier's pixel counts too); barriers included.
   // `reuse`: the coverage buffers still hold this view's counts (CoveragePass::record).
-  void recordCoverage(const passes::FrameContext& fc, bool classify, bool reuse);
+  void recordCoverage(const passes::FrameContext& fc, bool classify, bool reuse) const;
   // The select pass for `slot`: with a budgeted policy the GPU selection within T less the
   // learned overhead (and the copies its stats need), else none / all; then the tile list,
   // ready for the trace passes' indirect dispatch. `stillFrames`: the frames before this one in
   // a row whose camera and objects were where they are now (rates priced for a still view's
   // temporal fill, shared/selection.h's RB_FILL_QUALITY_STILL).
-  void recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames);
+  // `coverageReused`: this frame's coverage pass kept the frame before's counts (recordCoverage's
+  // `reuse`), whose frames the stage's overhead is learned and predicted apart for.
+  void recordSelect(const passes::FrameContext& fc, uint32_t slot, const RenderSettings& settings, uint32_t stillFrames, bool coverageReused);
   // The stage's deadlines for the frame's uniforms in device-clock ticks (stage_deadline.h), the
   // effects pass's (x), the shadow pass's (y) and the fill's (z): 0, none, unless a budgeted
   // policy learns its time scale with RenderSettings::stageDeadline.
