@@ -1,5 +1,7 @@
 // The selection policies on the GPU equal their CPU reference exactly: thousands of random
 // candidate sets (1 to 100,000 candidates; ties, zeros, huge and tiny values).
+#include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -58,6 +60,39 @@ TEST_F(GpuSelection, RateSegmentsEqualTheCpuReferenceOnRandomSets) {
     for (uint32_t id : cpu.ids) upgraded += id % 4 != 0;
   }
   EXPECT_GT(upgraded, 100u) << "the sets should take later segments too";
+}
+
+// Where everything is taken the walk sums cost and value in no order (the order of frame mode's
+// candidates is the GPU scheduling's): the same pairs under other IDs, so in another order,
+// give the same sums bit for bit, within the fixed-point bound of the exact sum.
+TEST_F(GpuSelection, EverythingTakenSumsTheSameInAnyOrder) {
+  select::GpuSelector gpu(ctx, 6000);
+  bvh::Rng rng(13);
+  size_t floatOrderMattered = 0;
+  for (size_t n : {1u, 2u, 37u, 1000u, 5000u}) {
+    const std::vector<Candidate> c = test::randomCandidates(rng, n);
+    std::vector<Candidate> shuffled = c;
+    for (size_t i = n; i > 1; --i) std::swap(shuffled[i - 1].id, shuffled[size_t(rng.next() * float(i)) % i].id);
+    gpu.select(c, Policy::All, 1.0f);
+    const select::GpuSelector::WalkSums a = gpu.lastWalkSums();
+    gpu.select(shuffled, Policy::All, 1.0f);
+    const select::GpuSelector::WalkSums b = gpu.lastWalkSums();
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.cost), std::bit_cast<uint32_t>(b.cost)) << n << " candidates";
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.value), std::bit_cast<uint32_t>(b.value)) << n << " candidates";
+    double cost = 0.0, value = 0.0;
+    float inIdOrder = 0.0f, inShuffledOrder = 0.0f;
+    for (const Candidate& x : c) cost += x.cost, value += x.value;
+    std::vector<Candidate> byId = shuffled;
+    std::sort(byId.begin(), byId.end(), [](const Candidate& l, const Candidate& r) { return l.id < r.id; });
+    for (const Candidate& x : c) inIdOrder += x.value;
+    for (const Candidate& x : byId) inShuffledOrder += x.value;
+    floatOrderMattered += inIdOrder != inShuffledOrder;
+    // Each term rounds to 2^-30 of a power of two at most twice the largest; three float roundings.
+    const double bound = double(n) * std::ldexp(1.0, -30) + 4.0 * std::ldexp(1.0, -24);
+    EXPECT_NEAR(a.cost, cost, bound * cost) << n << " candidates";
+    EXPECT_NEAR(a.value, value, bound * value) << n << " candidates";
+  }
+  EXPECT_GT(floatOrderMattered, 0u) << "a float sum in list order should differ for some set";
 }
 
 class GpuSelectionSort : public test::ValidatedGpuTest, public ::testing::WithParamInterface<select::SortMethod> {};

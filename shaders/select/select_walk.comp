@@ -15,12 +15,14 @@
 // the flags there. With `benefit` in frame mode it then sets the frame's probe stride.
 #include "include/select_common.glsl"
 #include "include/select_apply.glsl"
+#include "include/order_free_sum.glsl"
 
 // The device's subgroup size: the workgroup is one subgroup (were it more, each would walk
 // the same order to the same selection and write the same values).
 layout(local_size_x_id = 0) in;
 
-// What was selected: predicted cost and value summed in selection order, and the count.
+// What was selected: predicted cost and value summed in selection order (or, where everything
+// is, in none), and the count.
 struct Picked {
   float cost, value;
   uint count;
@@ -277,19 +279,27 @@ Picked selectPaper(uint n, float budget, uint pointers) {
   return p;
 }
 
+// Whether candidate `id`'s item was left out (with rate segments, a left-out item's segments
+// add up to its full cost).
+bool leftOut(uint id) {
+  uint item = candidateItem(id);
+  return (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) == 0u;
+}
+
 // `benefit`, frame mode, after the walk: the probe stride for what the walk left out (the
 // least that keeps its predicted cost within the probe budget, shared/selection.h), kept in
 // the items' totals record for the tile list and the trace passes; the probe's predicted cost.
 float setProbeStride(uint n) {
   subgroupMemoryBarrierBuffer();
   subgroupBarrier();  // the lanes' marks in the frame's selection are visible
-  float lanePart = 0.0;
-  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
-    GpuCandidate c = candidates[ci];
-    uint item = candidateItem(c.id);  // with rate segments, a left-out item's add up to its full cost
-    if ((selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) == 0u) lanePart += c.cost;
-  }
-  float left = subgroupAdd(lanePart), budget = push.budget.z;
+  float laneLargest = 0.0;
+  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
+    if (leftOut(candidates[ci].id)) laneLargest = largerTerm(laneLargest, candidates[ci].cost);
+  float largest = subgroupLargest(laneLargest);
+  uvec3 laneParts = uvec3(0u);
+  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
+    if (leftOut(candidates[ci].id)) laneParts += fixedParts(candidates[ci].cost, largest);
+  float left = fixedSum(laneParts, largest), budget = push.budget.z;
   uint stride = 0u;
   if (left > 0.0 && budget > 0.0) {
     float ratio = ceil(exactQuotient(left, budget));
@@ -297,6 +307,15 @@ float setProbeStride(uint n) {
   }
   if (gl_SubgroupInvocationID == 0u) items[push.walk.z * RB_ITEMS_PER_OBJECT].pixels = stride;
   return stride == 0u ? 0.0 : left / float(stride);
+}
+
+// Whether candidate `id` was selected and is priced by the prior (its learned work per pixel is 0).
+bool pricedByThePrior(uint id, uint policy) {
+  if (policy != RB_SELECT_BENEFIT) return (selected[id] & RB_ITEMS_ALL) != 0u && costs[id].workPerPixel == 0.0;
+  uint item = candidateItem(id);
+  bool taken = rateSegmentsWalk() ? scratch[item] > id % RB_SEGMENT_SLOTS
+                                  : (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) != 0u;
+  return taken && items[item].workPerPixel == 0.0;
 }
 
 // Frame mode, after the walk: the predicted cost of the selected candidates whose item (or
@@ -309,23 +328,14 @@ float priorPricedCost(uint n) {
   subgroupBarrier();  // the lanes' marks in the frame's selection (or the items' levels) are visible
   uint policy = push.sizes.z;
   if (policy == RB_SELECT_PAPER || policy == RB_SELECT_NONE) return 0.0;
-  float lanePart = 0.0;
-  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize) {
-    GpuCandidate c = candidates[ci];
-    bool taken;
-    float learned;
-    if (policy == RB_SELECT_BENEFIT) {
-      uint item = candidateItem(c.id);
-      taken = rateSegmentsWalk() ? scratch[item] > c.id % RB_SEGMENT_SLOTS
-                                 : (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) != 0u;
-      learned = items[item].workPerPixel;
-    } else {
-      taken = (selected[c.id] & RB_ITEMS_ALL) != 0u;
-      learned = costs[c.id].workPerPixel;
-    }
-    if (taken && learned == 0.0) lanePart += c.cost;
-  }
-  return subgroupAdd(lanePart);
+  float laneLargest = 0.0;
+  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
+    if (pricedByThePrior(candidates[ci].id, policy)) laneLargest = largerTerm(laneLargest, candidates[ci].cost);
+  float largest = subgroupLargest(laneLargest);
+  uvec3 laneParts = uvec3(0u);
+  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
+    if (pricedByThePrior(candidates[ci].id, policy)) laneParts += fixedParts(candidates[ci].cost, largest);
+  return fixedSum(laneParts, largest);
 }
 
 void main() {
@@ -335,7 +345,15 @@ void main() {
   bool everything = policy == RB_SELECT_ALL || allCandidatesFit();  // (no order needed)
   if (rateSegmentsWalk()) clearLevels();
   if (everything || policy == RB_SELECT_NONE) {
-    Picked lanePart = Picked(0.0, 0.0, 0u);
+    // Everything is taken: its cost and value are summed in no order (include/order_free_sum.glsl).
+    float laneCost = 0.0, laneValue = 0.0;
+    for (uint ci = gl_SubgroupInvocationID; everything && ci < n; ci += gl_SubgroupSize) {
+      laneCost = largerTerm(laneCost, candidates[ci].cost);
+      laneValue = largerTerm(laneValue, candidates[ci].value);
+    }
+    float largestCost = subgroupLargest(laneCost), largestValue = subgroupLargest(laneValue);
+    uvec3 costParts = uvec3(0u), valueParts = uvec3(0u);
+    uint laneCount = 0u;
     // Four candidates per lane and step, their loads issued together: one subgroup walks
     // them all, so on a GPU each step's load latency, not the work, sets the pace.
     for (uint base = 0u; base < n; base += 4u * gl_SubgroupSize) {
@@ -349,10 +367,14 @@ void main() {
         if (ci >= n) continue;
         mark(ci, c[k].id, everything);
         if (everything && rateSegmentsWalk()) atomicMax(scratch[c[k].id / RB_SEGMENT_SLOTS], c[k].id % RB_SEGMENT_SLOTS + 1u);
-        if (everything) lanePart = Picked(lanePart.cost + c[k].cost, lanePart.value + c[k].value, lanePart.count + 1u);
+        if (everything) {
+          costParts += fixedParts(c[k].cost, largestCost);
+          valueParts += fixedParts(c[k].value, largestValue);
+          ++laneCount;
+        }
       }
     }
-    p = Picked(subgroupAdd(lanePart.cost), subgroupAdd(lanePart.value), subgroupAdd(lanePart.count));
+    p = Picked(fixedSum(costParts, largestCost), fixedSum(valueParts, largestValue), subgroupAdd(laneCount));
   } else if (policy == RB_SELECT_PAPER) {
     p = selectPaper(n, budget, push.stage.w);
   } else {

@@ -259,6 +259,9 @@ struct GpuItemCost {
 // (select_common.glsl's allCandidatesFit says why).
 #define RB_ALL_FIT_UNITS 1015808u
 #define RB_ALL_FIT_MAX_CANDIDATES 262144u  // 2^18: the rounding bound holds up to here
+// The most candidates a selector holds: the walk's sums in no order (include/order_free_sum.glsl)
+// are exact up to here.
+#define RB_ORDER_FREE_MAX_TERMS 4194304u  // 2^22
 
 // The merge sort (shaders/select/select_block_sort.comp, select_merge.comp): keys sorted
 // completely by one workgroup of RB_MERGE_LANES invocations (one SIMD batch on lavapipe),

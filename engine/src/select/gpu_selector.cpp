@@ -65,7 +65,7 @@ vk::Owned<VkPipeline> createWalkPipeline(const vk::Context& ctx, VkPipelineLayou
 struct GpuSelector::Impl {
   const vk::Context& ctx;
   uint32_t capacity, padded;
-  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, slots, mergeArgs, walkOrder, placeholder;
+  vk::Buffer candidates, order, relevance, spare, scratch, flags, result, readback, sums, slots, mergeArgs, walkOrder, placeholder;
   vk::ComputeSet set;
   vk::Owned<VkPipeline> keys, bitonic, blockSort, merge, gather, walk, candidatesFromObjects, apply;
   bool mergeSort = false;  // a CPU device: the barrier-free merge sort beats the bitonic sort
@@ -74,6 +74,9 @@ struct GpuSelector::Impl {
 
   Impl(const vk::Context& c, uint32_t cap, SortMethod sort)
       : ctx(c), capacity(cap), padded(paddedSize(cap)), timestamps(c, 1, 1) {
+    if (cap > RB_ORDER_FREE_MAX_TERMS)
+      throw Error("GPU selection: a capacity of " + std::to_string(cap) + " candidates exceeds the most its sums hold exactly, " +
+                  std::to_string(RB_ORDER_FREE_MAX_TERMS));
     mergeSort = sort == SortMethod::Merge || (sort == SortMethod::Auto && c.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
     const uint32_t keySlots = mergeSort ? std::max(cap, 1u) : padded;  // the bitonic sort pads to a power of two
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -91,6 +94,7 @@ struct GpuSelector::Impl {
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     result = vk::createBuffer(c, 48, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    sums = vk::createBuffer(c, 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);  // select()'s copy of the result words
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9, 14, 15 until bindFrame
     const std::vector<VkDescriptorType> types(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
@@ -241,6 +245,8 @@ struct GpuSelector::Impl {
       timestamps.end(cmd, 0, 0);
       const VkBufferCopy back{0, 0, std::max(n, 1u) * 4ull};
       vkCmdCopyBuffer(cmd, flags.buffer, readback.buffer, 1, &back);
+      const VkBufferCopy words{0, 0, 48};
+      vkCmdCopyBuffer(cmd, result.buffer, sums.buffer, 1, &words);
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
     gpuMs = timestamps.read(0)[0].value_or(0.0);
@@ -265,6 +271,10 @@ Selection GpuSelector::select(std::span<const Candidate> candidates, Policy poli
   return impl_->run(candidates, policy, budget, options);
 }
 double GpuSelector::lastGpuMs() const { return impl_->gpuMs; }
+GpuSelector::WalkSums GpuSelector::lastWalkSums() const {
+  const auto* r = static_cast<const uint32_t*>(impl_->sums.mapped);
+  return {std::bit_cast<float>(r[1]), std::bit_cast<float>(r[2])};
+}
 void GpuSelector::bindFrame(const FrameBuffers& buffers) { impl_->bindFrame(buffers); }
 void GpuSelector::recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, FrameScale scale, const PolicyOptions& options,
                               const ItemFrame& items) const {

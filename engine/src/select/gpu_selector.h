@@ -42,6 +42,11 @@ class GpuSelector {
                            const PolicyOptions& options = {});
   // GPU milliseconds of the last select() (keys, sort, walk; timestamps).
   double lastGpuMs() const;
+  // The walk's own sums of what the last select() selected (frame mode reports these).
+  struct WalkSums {
+    float cost = 0.0f, value = 0.0f;
+  };
+  WalkSums lastWalkSums() const;
 
   // Frame mode. The renderer's per-object buffers (shared/selection.h): records in, the
   // selection out (uint per object, written here), K/Q/I with S updated for the next frame,
