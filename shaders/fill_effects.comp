@@ -41,7 +41,7 @@ struct FillCharge {
 // Adds the lanes' charges whose object the next pixel leaves (`flush`), or all at the end, to
 // their items: a subgroup's call, made where it is uniform.
 void addCharge(inout FillCharge c, bool flush) {
-  addItemCounts(flush ? c.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(0u), uvec3(0u, c.ticks), uvec3(0u, c.pixels));
+  addItemCounts(flush ? c.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), uvec3(0u), uvec3(0u), uvec3(0u, c.ticks), uvec3(0u, c.pixels));
   if (flush) c = FillCharge(RB_NO_OBJECT, uvec2(0u), uvec2(0u));
 }
 

@@ -130,6 +130,6 @@ void main() {
   if (composingPass()) composeStored(pixel);
   if (measuringItems() && !behind) {
     float error = measure ? displayError(color + indirect, fallbackColor + ambient + indirect) : 0.0;
-    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(error, 0.0, 0.0), uvec3(0u));
+    addItemCounts(measure ? s.objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), errorUnits(vec3(error, 0.0, 0.0), pixel), uvec3(0u));
   }
 }

@@ -132,7 +132,7 @@ void traceEffects(ivec2 pixel, Surface s, Selection sel, bvec2 here) {
     uvec2 ticks = uvec2(reflects ? clockShare(0u, pathTicks[0], reflectors) + own : 0u, refracts ? clockShare(0u, pathTicks[1], refractors) + own : 0u);
     // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
     uvec3 counted = uvec3(0u, reflects && (probed[0] || rates[0] != RB_RATE_FULL) ? 1u : 0u, refracts && (probed[1] || rates[1] != RB_RATE_FULL) ? 1u : 0u);
-    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), vec3(0.0, reflectionError, refractionError), counted);
+    addItemCounts(s.objectId, uvec3(0u, work[0], work[1]), uvec3(0u, ticks), errorUnits(vec3(0.0, reflectionError, refractionError), pixel), counted);
   }
 }
 

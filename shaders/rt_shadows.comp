@@ -71,7 +71,7 @@ void traceShadows(ivec2 pixel) {
   addObjectWork(s.objectId, probe ? 0u : work);  // (the per-object cost model learns from selected pixels)
   // The pixels a probe or a reduced rate traced are counted here (a full rate's at selection).
   bool counted = probe || reduced;
-  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), vec3(0.0), uvec3(counted ? 1u : 0u, 0u, 0u));
+  if (measuringItems()) addItemCounts(s.objectId, uvec3(work, 0u, 0u), uvec3(ticks, 0u, 0u), uvec3(0u), uvec3(counted ? 1u : 0u, 0u, 0u));
 }
 
 // Past the deadline: where the pixel would have been traced (or probed), -1 in the light's

@@ -61,7 +61,7 @@ void countFillCut(uint left) {
 void leavePixel(uint objectId, bool left, bvec3 full, float work, bool shadows) {
   if (left) objectCosts[objectId].pixels = 0u;
   countCut(left ? 1u : 0u, work, shadows);
-  if (measuringItems()) addItemCounts(any(full) ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), vec3(0.0), uvec3(full) * 0xFFFFFFFFu);
+  if (measuringItems()) addItemCounts(any(full) ? objectId : RB_NO_OBJECT, uvec3(0u), uvec3(0u), uvec3(0u), uvec3(full) * 0xFFFFFFFFu);
 }
 
 #endif
