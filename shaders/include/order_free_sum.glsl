@@ -24,11 +24,13 @@ int fixedExponent(float largest) {
   return max(e, -96);
 }
 
-// A term's three parts at the scale of `largest` (a finite sum's: fixedSum returns the
-// largest term where it is +inf or NaN).
-uvec3 fixedParts(float x, float largest) {
-  if (!(largest < uintBitsToFloat(0x7F800000u))) return uvec3(0u);
-  uint q = uint(roundEven(x * powerOfTwo(30 - fixedExponent(largest))));
+// The factor that takes a term to fixed point at the scale of `largest` (0 where the largest
+// is +inf or NaN: fixedSum then returns it).
+float fixedScale(float largest) { return largest < uintBitsToFloat(0x7F800000u) ? powerOfTwo(30 - fixedExponent(largest)) : 0.0; }
+
+// A term's three parts at a sum's fixedScale.
+uvec3 fixedParts(float x, float scale) {
+  uint q = uint(roundEven(x * scale));
   return uvec3(q & 1023u, (q >> 10) & 1023u, q >> 20);
 }
 

@@ -18,8 +18,9 @@ layout(set = 0, binding = 4, std430) buffer FlagBlock { uint selectedFlags[]; };
 // (allCandidatesFit), w 1 when the selection needed an order (FrameTiming::selectionSorted);
 // then x `benefit`'s items whose option (left out, or a rate) changed since the last frame,
 // y the predicted cost of the selected candidates priced by the prior (float bits;
-// select_walk.comp's priorPricedCost).
-layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; uvec4 result2; uvec4 result3; };
+// select_walk.comp's priorPricedCost); then the candidate pass's largest x cost and y value
+// (float bits), the walk's scales for its sums in no order.
+layout(set = 0, binding = 5, std430) buffer ResultBlock { uvec4 result; uvec4 result2; uvec4 result3; uvec4 result4; };
 // Frame mode: the renderer's per-object records, selection and K/Q/I/S (shared/selection.h).
 layout(set = 0, binding = 6, std430) readonly buffer RecordBlock { GpuObjectRecord records[]; };
 layout(set = 0, binding = 7, std430) buffer SelectedBlock { uint selected[]; };

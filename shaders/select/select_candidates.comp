@@ -18,7 +18,9 @@ layout(local_size_x = RB_GROUP_SIZE) in;
 // Appends a candidate and adds its cost to the candidates' total for allCandidatesFit
 // (select_common.glsl): in units of 2^-20 budget rounded up, one candidate at most 2^21
 // (anything above one budget fails anyway), summed per subgroup, then into 64 bits (lo, hi)
-// with an explicit carry. Every lane calls it (those with nothing to add with add = false).
+// with an explicit carry. Keeps the largest cost and value (result4.xy: a non-negative
+// float's bits order as the float), the scales of the walk's sums where every candidate
+// fits. Every lane calls it (those with nothing to add with add = false).
 void append(bool add, uint id, float cost, float value, float distance) {
   uint units = 0u;
   if (add) {
@@ -29,9 +31,14 @@ void append(bool add, uint id, float cost, float value, float distance) {
     units = u <= 2097152.0 ? uint(u) : 2097152u;  // NaN compares false: the cap
   }
   uint sum = subgroupAdd(units);
+  uvec2 top = subgroupMax(add ? uvec2(floatBitsToUint(cost), floatBitsToUint(value)) & 0x7FFFFFFFu : uvec2(0u));
   if (subgroupElect()) {
     uint old = atomicAdd(result2.y, sum);
     if (old + sum < old) atomicAdd(result2.z, 1u);
+    // (A plain read first: after the first few subgroups hardly any has a larger one, and
+    // atomics on one word queue up. A stale read costs only an atomic.)
+    if (top.x > result4.x) atomicMax(result4.x, top.x);
+    if (top.y > result4.y) atomicMax(result4.y, top.y);
   }
 }
 

@@ -279,6 +279,10 @@ Picked selectPaper(uint n, float budget, uint pointers) {
   return p;
 }
 
+// Frame mode: the largest candidate's cost, which the candidate pass kept, the scale of the
+// walk's cost sums in no order.
+float largestCandidateCost() { return uintBitsToFloat(result4.x); }
+
 // Whether candidate `id`'s item was left out (with rate segments, a left-out item's segments
 // add up to its full cost).
 bool leftOut(uint id) {
@@ -292,13 +296,10 @@ bool leftOut(uint id) {
 float setProbeStride(uint n) {
   subgroupMemoryBarrierBuffer();
   subgroupBarrier();  // the lanes' marks in the frame's selection are visible
-  float laneLargest = 0.0;
-  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
-    if (leftOut(candidates[ci].id)) laneLargest = largerTerm(laneLargest, candidates[ci].cost);
-  float largest = subgroupLargest(laneLargest);
+  float largest = largestCandidateCost(), scale = fixedScale(largest);
   uvec3 laneParts = uvec3(0u);
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
-    if (leftOut(candidates[ci].id)) laneParts += fixedParts(candidates[ci].cost, largest);
+    if (leftOut(candidates[ci].id)) laneParts += fixedParts(candidates[ci].cost, scale);
   float left = fixedSum(laneParts, largest), budget = push.budget.z;
   uint stride = 0u;
   if (left > 0.0 && budget > 0.0) {
@@ -328,13 +329,10 @@ float priorPricedCost(uint n) {
   subgroupBarrier();  // the lanes' marks in the frame's selection (or the items' levels) are visible
   uint policy = push.sizes.z;
   if (policy == RB_SELECT_PAPER || policy == RB_SELECT_NONE) return 0.0;
-  float laneLargest = 0.0;
-  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
-    if (pricedByThePrior(candidates[ci].id, policy)) laneLargest = largerTerm(laneLargest, candidates[ci].cost);
-  float largest = subgroupLargest(laneLargest);
+  float largest = largestCandidateCost(), scale = fixedScale(largest);
   uvec3 laneParts = uvec3(0u);
   for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
-    if (pricedByThePrior(candidates[ci].id, policy)) laneParts += fixedParts(candidates[ci].cost, largest);
+    if (pricedByThePrior(candidates[ci].id, policy)) laneParts += fixedParts(candidates[ci].cost, scale);
   return fixedSum(laneParts, largest);
 }
 
@@ -345,13 +343,20 @@ void main() {
   bool everything = policy == RB_SELECT_ALL || allCandidatesFit();  // (no order needed)
   if (rateSegmentsWalk()) clearLevels();
   if (everything || policy == RB_SELECT_NONE) {
-    // Everything is taken: its cost and value are summed in no order (include/order_free_sum.glsl).
-    float laneCost = 0.0, laneValue = 0.0;
-    for (uint ci = gl_SubgroupInvocationID; everything && ci < n; ci += gl_SubgroupSize) {
-      laneCost = largerTerm(laneCost, candidates[ci].cost);
-      laneValue = largerTerm(laneValue, candidates[ci].value);
+    // Everything is taken: its cost and value are summed in no order (include/order_free_sum.glsl),
+    // at the scale of the largest term: in frame mode the candidate pass kept them, select()'s
+    // are found here.
+    float largestCost = largestCandidateCost(), largestValue = uintBitsToFloat(result4.y);
+    if (push.walk.y == 0u) {
+      float laneCost = 0.0, laneValue = 0.0;
+      for (uint ci = gl_SubgroupInvocationID; everything && ci < n; ci += gl_SubgroupSize) {
+        laneCost = largerTerm(laneCost, candidates[ci].cost);
+        laneValue = largerTerm(laneValue, candidates[ci].value);
+      }
+      largestCost = subgroupLargest(laneCost);
+      largestValue = subgroupLargest(laneValue);
     }
-    float largestCost = subgroupLargest(laneCost), largestValue = subgroupLargest(laneValue);
+    float costScale = fixedScale(largestCost), valueScale = fixedScale(largestValue);
     uvec3 costParts = uvec3(0u), valueParts = uvec3(0u);
     uint laneCount = 0u;
     // Four candidates per lane and step, their loads issued together: one subgroup walks
@@ -368,8 +373,8 @@ void main() {
         mark(ci, c[k].id, everything);
         if (everything && rateSegmentsWalk()) atomicMax(scratch[c[k].id / RB_SEGMENT_SLOTS], c[k].id % RB_SEGMENT_SLOTS + 1u);
         if (everything) {
-          costParts += fixedParts(c[k].cost, largestCost);
-          valueParts += fixedParts(c[k].value, largestValue);
+          costParts += fixedParts(c[k].cost, costScale);
+          valueParts += fixedParts(c[k].value, valueScale);
           ++laneCount;
         }
       }

@@ -92,9 +92,9 @@ struct GpuSelector::Impl {
     walkOrder = vk::createBuffer(c, 2ull * padded * 16, storage, false);  // the walk's records; `paper`'s second order from `padded`
     scratch = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);  // `paper`'s taken flags
     flags = vk::createBuffer(c, std::max(cap, 1u) * 4ull, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    result = vk::createBuffer(c, 48, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    result = vk::createBuffer(c, kResultBytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     readback = vk::createBuffer(c, std::max(cap, 1u) * 4ull, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-    sums = vk::createBuffer(c, 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);  // select()'s copy of the result words
+    sums = vk::createBuffer(c, kResultBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);  // select()'s copy of the result words
     placeholder = vk::createBuffer(c, 32, storage, false);  // bindings 6-9, 14, 15 until bindFrame
     const std::vector<VkDescriptorType> types(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     set = vk::createComputeSet(c, types, sizeof(SelectPush));
@@ -245,7 +245,7 @@ struct GpuSelector::Impl {
       timestamps.end(cmd, 0, 0);
       const VkBufferCopy back{0, 0, std::max(n, 1u) * 4ull};
       vkCmdCopyBuffer(cmd, flags.buffer, readback.buffer, 1, &back);
-      const VkBufferCopy words{0, 0, 48};
+      const VkBufferCopy words{0, 0, kResultBytes};
       vkCmdCopyBuffer(cmd, result.buffer, sums.buffer, 1, &words);
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });

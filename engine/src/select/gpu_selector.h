@@ -71,6 +71,7 @@ class GpuSelector {
   // capacity must hold RB_ITEMS_PER_OBJECT per object.
   void recordFrame(VkCommandBuffer cmd, uint32_t objects, Policy policy, float budget, FrameScale scale,
                    const PolicyOptions& options, const ItemFrame& items = {}) const;
+  static constexpr uint32_t kResultBytes = 64;  // select_common.glsl's ResultBlock: 16 words
   VkBuffer resultBuffer() const;
   // The frame's candidates (GpuCandidate, resultBuffer().x of them) for CPU-side stats.
   VkBuffer candidateBuffer() const;

@@ -152,7 +152,7 @@ struct SelectionStage::Impl {
     const VkDeviceSize records = std::max<VkDeviceSize>(1, buffers.objects);
     for (Slot& slot : slots) {
       slot.tileHeader = vk::createBuffer(c, kTileListHeaderBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-      slot.result = vk::createBuffer(c, 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+      slot.result = vk::createBuffer(c, GpuSelector::kResultBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
       if (s.optimalBound || checkCpu)
         // Up to three rate segments per item (`benefit` with rates chosen per item).
         slot.candidates = vk::createBuffer(c, records * RB_ITEMS_PER_OBJECT * 3 * sizeof(gpu::GpuCandidate), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -224,7 +224,7 @@ struct SelectionStage::Impl {
       }
       selector->recordFrame(cmd, buffers.objects, policy, slot.selectBudgetMs, {float(slot.msPerUnit), slot.workPerRay}, policyOptions(s), slot.items);
       readToTransfer(cmd);
-      const VkBufferCopy result{0, 0, 48};
+      const VkBufferCopy result{0, 0, GpuSelector::kResultBytes};
       vkCmdCopyBuffer(cmd, selector->resultBuffer(), slot.result.buffer, 1, &result);
       if (s.optimalBound || check) copyWhole(cmd, selector->candidateBuffer(), slot.candidates);
       if (check) {
