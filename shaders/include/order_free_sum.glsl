@@ -5,7 +5,7 @@
 // them, which the GPU's scheduling decides: a float sum in list order differed between two
 // identical frames in its last bits, and a probe stride taken from one could differ by one.
 // Each term becomes a fixed-point integer at 2^-30 of the power of two above the largest
-// term (found first: a maximum is exact), in three 10-bit parts whose sums are exact (below
+// term (a maximum, exact in any order), in three 10-bit parts whose sums are exact (below
 // 2^32 for up to 2^22 terms); the float sum is then three products and adds in one order.
 // RB_ORDER_FREE_MAX_TERMS (shared/selection.h) bounds the terms. Needs
 // GL_KHR_shader_subgroup_arithmetic.
