@@ -19,8 +19,8 @@ layout(local_size_x = RB_GROUP_SIZE) in;
 // (select_common.glsl): in units of 2^-20 budget rounded up, one candidate at most 2^21
 // (anything above one budget fails anyway), summed per subgroup, then into 64 bits (lo, hi)
 // with an explicit carry. Keeps the largest cost and value (result4.xy: a non-negative
-// float's bits order as the float), the scales of the walk's sums where every candidate
-// fits. Every lane calls it (those with nothing to add with add = false).
+// float's bits order as the float), the scales of the walk's sums in no order
+// (include/order_free_sum.glsl). Every lane calls it (those with nothing to add with add = false).
 void append(bool add, uint id, float cost, float value, float distance) {
   uint units = 0u;
   if (add) {
