@@ -201,6 +201,8 @@ void markSelected(uint id) {
   else selected[id] = RB_ITEMS_ALL;
 }
 void clearSelected(uint id) { selected[push.sizes.z == RB_SELECT_BENEFIT ? id / RB_ITEMS_PER_OBJECT : id] = 0u; }
+// Whether the frame's selection marks `benefit`'s item `item` (an object's RB_ITEMS_PER_OBJECT bits).
+bool itemMarked(uint item) { return (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) != 0u; }
 
 uvec2 candidateKey(uint i, uint which) {
   if (i >= candidateCount()) return uvec2(0xFFFFFFFFu);

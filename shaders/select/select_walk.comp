@@ -283,13 +283,6 @@ Picked selectPaper(uint n, float budget, uint pointers) {
 // walk's cost sums in no order.
 float largestCandidateCost() { return uintBitsToFloat(result4.x); }
 
-// Whether candidate `id`'s item was left out (with rate segments, a left-out item's segments
-// add up to its full cost).
-bool leftOut(uint id) {
-  uint item = candidateItem(id);
-  return (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) == 0u;
-}
-
 // `benefit`, frame mode, after the walk: the probe stride for what the walk left out (the
 // least that keeps its predicted cost within the probe budget, shared/selection.h), kept in
 // the items' totals record for the tile list and the trace passes; the probe's predicted cost.
@@ -298,8 +291,8 @@ float setProbeStride(uint n) {
   subgroupBarrier();  // the lanes' marks in the frame's selection are visible
   float largest = largestCandidateCost(), scale = fixedScale(largest);
   uvec3 laneParts = uvec3(0u);
-  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)
-    if (leftOut(candidates[ci].id)) laneParts += fixedParts(candidates[ci].cost, scale);
+  for (uint ci = gl_SubgroupInvocationID; ci < n; ci += gl_SubgroupSize)  // (a left-out item's segments add up to its full cost)
+    if (!itemMarked(candidateItem(candidates[ci].id))) laneParts += fixedParts(candidates[ci].cost, scale);
   float left = fixedSum(laneParts, largest), budget = push.budget.z;
   uint stride = 0u;
   if (left > 0.0 && budget > 0.0) {
@@ -314,8 +307,7 @@ float setProbeStride(uint n) {
 bool pricedByThePrior(uint id, uint policy) {
   if (policy != RB_SELECT_BENEFIT) return (selected[id] & RB_ITEMS_ALL) != 0u && costs[id].workPerPixel == 0.0;
   uint item = candidateItem(id);
-  bool taken = rateSegmentsWalk() ? scratch[item] > id % RB_SEGMENT_SLOTS
-                                  : (selected[item / RB_ITEMS_PER_OBJECT] & (1u << (item % RB_ITEMS_PER_OBJECT))) != 0u;
+  bool taken = rateSegmentsWalk() ? scratch[item] > id % RB_SEGMENT_SLOTS : itemMarked(item);
   return taken && items[item].workPerPixel == 0.0;
 }
 
