@@ -243,6 +243,49 @@ TEST(CostModel, AStillViewsFillQualitiesRiseFromThePriorsAsItsFramesCoverTheRate
     EXPECT_EQ(select::rateSegment(0, float(RB_FILL_SHARE_PRIOR), still[e]).rate, RB_RATE_SIXTEENTH) << "effect " << e;
 }
 
+// Detail defeats the spatial fill (shared/selection.h's RB_FILL_DETAIL_COS): a reflection or
+// refraction item's qualities are the frame's where its object is smooth (g = 1, bit for bit),
+// fall with g (1/16's as g^2) on a moving view, so that a detailed mirror offers full rate
+// alone, and still rise to RB_FILL_QUALITY_STILL on a still view, whose temporal fill keeps
+// the detail; shadows keep the frame's.
+TEST(CostModel, DetailLowersAnItemsSpatialFillQualities) {
+  EXPECT_EQ(select::fillSmoothness(0, 0, 0), 1.0f) << "nothing to fill";
+  EXPECT_EQ(select::fillSmoothness(400, 0, 100), 0.75f);
+  EXPECT_EQ(select::fillSmoothness(100, 400, 100), 0.75f) << "the larger count: glass needs both";
+  EXPECT_EQ(select::fillSmoothness(400, 0, 900), 0.0f) << "at most every pixel";
+  for (uint32_t still : {0u, 1u, 2u, 5u, 15u}) {
+    const select::FrameFillQualities frame = select::frameFillQualities(still, kEveryEffect);
+    const select::FillStill shares = select::frameFillStill(still, kEveryEffect);
+    for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
+      const select::FillQuality smooth = select::itemFillQuality(e, frame, shares, 1.0f);
+      EXPECT_EQ(smooth.quarter, frame[e].quarter) << "effect " << e << " after " << still;
+      EXPECT_EQ(smooth.sixteenth, frame[e].sixteenth) << "effect " << e << " after " << still;
+      const select::FillQuality rough = select::itemFillQuality(e, frame, shares, 0.5f);
+      if (e == RB_ITEM_SHADOWS) {
+        EXPECT_EQ(rough.quarter, frame[e].quarter);
+        continue;
+      }
+      if (still < 15) {
+        EXPECT_LT(rough.sixteenth, frame[e].sixteenth) << "effect " << e << " after " << still;
+      }
+      if (still < 3) {
+        EXPECT_LT(rough.quarter, frame[e].quarter) << "effect " << e << " after " << still;
+      }
+      if (still == 0) {
+        EXPECT_FLOAT_EQ(rough.quarter, 0.5f * select::fillQualities(e).quarter);
+        EXPECT_FLOAT_EQ(rough.sixteenth, 0.25f * select::fillQualities(e).sixteenth);
+      } else if (still >= 15) {
+        EXPECT_FLOAT_EQ(rough.sixteenth, float(RB_FILL_QUALITY_STILL)) << "the temporal fill keeps the detail";
+      }
+    }
+  }
+  // On a moving view a flat mirror offers 1/16, 1/4 and full rate; a detailed one full rate alone.
+  const select::FrameFillQualities moving = select::priorFillQualities();
+  EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::itemFillQuality(RB_ITEM_REFLECTIONS, moving, {}, 1.0f)), 3u);
+  EXPECT_EQ(select::rateSegments(float(RB_FILL_SHARE_PRIOR), select::itemFillQuality(RB_ITEM_REFLECTIONS, moving, {}, 0.2f)), 1u);
+  EXPECT_EQ(select::frameFillStill(7, kEveryEffect & ~RB_RT_REFLECTIONS).sixteenth, 0.0f) << "no history, no carry";
+}
+
 TEST(CostModel, ItemWorkAndValueFollowTheirDefinitions) {
   // Before measurement: a shadow ray per light; reflections one more path, refractions two.
   EXPECT_EQ(select::predictedItemWork(RB_ITEM_SHADOWS, 10, 0.0f, 3, 6.0f), 10.0f * 3.0f * 6.0f);

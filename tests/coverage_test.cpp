@@ -1,7 +1,9 @@
 // The heuristic's per-object pass on the GPU against its CPU reference: coverage counted
 // from the same object-ID image, the classifier's reflection and refraction pixels from the
 // same G-buffer materials, and A, P, D, V, C, R from engine/src/select/metrics.h.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
 #include <tuple>
 
@@ -11,6 +13,7 @@
 
 #include "select/metrics.h"
 #include "select/object_params.h"
+#include "shared/selection.h"
 #include "support/render_helpers.h"
 #include "support/test_scenes.h"
 
@@ -37,8 +40,39 @@ uint32_t pixelClasses(const FrameImages& img, size_t pixel, float maxRoughness) 
 
 // Pixels the classifier marked over a scene (the checks below need some of each).
 struct Classified {
-  uint32_t reflection = 0, refraction = 0;
+  uint32_t reflection = 0, refraction = 0, detailed = 0;
 };
+
+glm::vec3 shadingNormal(const FrameImages& img, size_t pixel) {
+  const uint16_t* n = &img.normals[4 * pixel];
+  return glm::normalize(glm::vec3(glm::unpackHalf1x16(n[0]), glm::unpackHalf1x16(n[1]), glm::unpackHalf1x16(n[2])));
+}
+
+// The detail count's CPU reference (shared/selection.h's RB_FILL_DETAIL_COS): per object, the
+// pixels needing reflection or refraction rays in a 2x2 quad (at even coordinates, as the
+// coverage pass gathers them) with a pixel of the object whose normal is further from theirs
+// than the cosine; `ambiguous` counts those whose decision a normal within 1e-5 of the cosine
+// makes (the GPU normalises and takes the dot product in its own roundings).
+void detailedPixels(const FrameImages& img, uint32_t w, uint32_t h, float maxRoughness, std::vector<uint32_t>& detailed,
+                    std::vector<uint32_t>& ambiguous) {
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const size_t pixel = size_t(y) * w + x;
+      const uint32_t id = img.objectIds[pixel];
+      if (id == 0xFFFFFFFFu || pixelClasses(img, pixel, maxRoughness) == 0) continue;
+      bool apart = false, near = false;
+      for (uint32_t qy = y & ~1u; qy < std::min(h, (y & ~1u) + 2); ++qy)
+        for (uint32_t qx = x & ~1u; qx < std::min(w, (x & ~1u) + 2); ++qx) {
+          const size_t other = size_t(qy) * w + qx;
+          if (other == pixel || img.objectIds[other] != id) continue;
+          const float d = glm::dot(shadingNormal(img, pixel), shadingNormal(img, other));
+          apart = apart || d < float(RB_FILL_DETAIL_COS);
+          near = near || std::fabs(d - float(RB_FILL_DETAIL_COS)) < 1e-5f;
+        }
+      detailed[id] += apart;
+      ambiguous[id] += near;
+    }
+}
 
 // Returns how many 8x8 tiles show more than three objects (the coverage pass sums three
 // per tile in registers and adds the pixels of any further one on its own).
@@ -56,6 +90,8 @@ size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t
   test::expectValidationClean(renderer.validationMessages());
   EXPECT_EQ(gpu.size(), scene.objects.size());
   if (gpu.size() != scene.objects.size()) return 0;
+  std::vector<uint32_t> detailed(scene.objects.size()), ambiguous(scene.objects.size());
+  detailedPixels(img, w, h, s.rayTracing.maxRoughness, detailed, ambiguous);
   std::vector<select::Coverage> cov(scene.objects.size());
   std::vector<Classified> classes(scene.objects.size());
   for (uint32_t y = 0; y < h; ++y)
@@ -80,9 +116,11 @@ size_t checkScene(const Scene& scene, const Camera& camera, uint32_t w, uint32_t
     EXPECT_EQ(g.pixels, cov[o.id].pixels) << name;
     EXPECT_EQ(g.reflectionPixels, classes[o.id].reflection) << name;
     EXPECT_EQ(g.refractionPixels, classes[o.id].refraction) << name;
+    EXPECT_LE(std::abs(int64_t(g.detailedPixels) - int64_t(detailed[o.id])), int64_t(ambiguous[o.id])) << name << ": detailed pixels";
     if (classified) {
       classified->reflection += g.reflectionPixels;
       classified->refraction += g.refractionPixels;
+      classified->detailed += g.detailedPixels;
     }
     visible += g.pixels > 0;
     const float slackV = cpu.A / cpu.D * kCentroidSlack;
@@ -106,6 +144,8 @@ TEST(CoverageGpu, MatchesTheCpuReferenceOnTheDefaultScene) {
   checkScene(scene, defaultCamera(scene, 1.5f), 240, 160, &classified);
   EXPECT_GT(classified.reflection, 0u) << "the court's mirrors and chrome need reflection rays";
   EXPECT_GT(classified.refraction, 0u) << "the court's glass needs refraction rays";
+  EXPECT_GT(classified.detailed, 0u) << "the court's small chrome and glass spheres are detailed at this size";
+  EXPECT_LT(classified.detailed, classified.reflection) << "its flat mirror panel is not";
   // Close up and at an angle: objects cut by the screen edge, some behind the camera; an odd
   // size, so that edge tiles are partial with objects in them.
   Camera close = defaultCamera(scene, 1.5f);

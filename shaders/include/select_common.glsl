@@ -123,6 +123,30 @@ float tracedPixelCost(uint rate) { return RB_TRACED_PIXEL_COST(rate); }
 // frameFillQualities fills the push constants).
 vec2 fillQualities(uint effect) { return vec2(push.sixteenthQuality[effect], push.quarterQuality[effect]); }
 
+// The share of object i's reflection and refraction pixels whose neighbours' normals agree
+// (shared/selection.h's RB_FILL_DETAIL_COS; cost_model.cpp's fillSmoothness).
+float fillSmoothness(uint i) {
+  uvec4 c = coverage[i].sumYHi;
+  uint pixels = max(c.y, c.z);
+  return pixels == 0u ? 1.0 : exactQuotient(float(pixels - min(c.w, pixels)), float(pixels));
+}
+
+// Item (object i, effect)'s fill qualities at 1/16 (x) and 1/4 (y): a shadow item's are the
+// frame's; a reflection or refraction item's spatial priors are scaled by its object's
+// smoothness g (g and g^2) before the still view's move toward RB_FILL_QUALITY_STILL (with
+// g = 1 the frame's, bit for bit; cost_model.cpp's itemFillQuality).
+vec2 itemFillQualities(uint i, uint effect) {
+  if (effect == RB_ITEM_SHADOWS) return fillQualities(effect);
+  bool reflections = effect == RB_ITEM_REFLECTIONS;
+  float g = fillSmoothness(i);
+  precise float g2 = g * g;
+  precise float quarter = (reflections ? RB_FILL_QUALITY_QUARTER_REFLECTIONS : RB_FILL_QUALITY_QUARTER_REFRACTIONS) * g;
+  precise float sixteenth = (reflections ? RB_FILL_QUALITY_SIXTEENTH_REFLECTIONS : RB_FILL_QUALITY_SIXTEENTH_REFRACTIONS) * g2;
+  precise float q4 = quarter + (RB_FILL_QUALITY_STILL - quarter) * push.quarterQuality.w;
+  precise float q16 = sixteenth + (RB_FILL_QUALITY_STILL - sixteenth) * push.sixteenthQuality.w;
+  return vec2(q16, q4);
+}
+
 // The share of an item's full-rate value that `rate` keeps at fill qualities q (fillQualities):
 // its traced pixels' and the filled ones' (cost_model.cpp's keepShare).
 float keepShare(uint rate, vec2 q) {
@@ -140,12 +164,11 @@ bool aboveChord(vec2 a, vec2 b, vec2 c) {
 }
 
 // The reduced rates on the upper convex hull of an item's options skip, 1/16, 1/4, full in
-// (cost share, value share) at fill share `fill` and the effect's fill qualities
+// (cost share, value share) at fill share `fill` and the item's fill qualities q (itemFillQualities)
 // (RB_HULL_* bits): a rate below the line between its neighbours on the hull is
 // left out (Funkhouser and Sequin's dominated option), so that the segments' value per cost
 // falls (cost_model.cpp's rateHull).
-uint rateHull(uint effect, float fill) {
-  vec2 q = fillQualities(effect);
+uint rateHull(vec2 q, float fill) {
   vec2 skip = vec2(0.0), full = vec2(1.0);
   vec2 sixteenth = vec2(rateShare(RB_RATE_SIXTEENTH, fill), keepShare(RB_RATE_SIXTEENTH, q));
   vec2 quarter = vec2(rateShare(RB_RATE_QUARTER, fill), keepShare(RB_RATE_QUARTER, q));
@@ -181,7 +204,7 @@ float segmentCostShare(uint k, float fill, uint hull) {
 uint itemHull(uint item) {
   GpuItemCost c = items[item];
   uint effect = item % RB_ITEMS_PER_OBJECT;
-  return rateHull(effect, fillShare(effect, c.fillPerPixel, c.workPerPixel));
+  return rateHull(itemFillQualities(item / RB_ITEMS_PER_OBJECT, effect), fillShare(effect, c.fillPerPixel, c.workPerPixel));
 }
 
 // Whether the walk selects rate segments (`benefit` with RB_RATE_AUTO), and a candidate's item.

@@ -26,15 +26,17 @@ void addWide(uint index, uint word, uint value) {
   }
 }
 
-// Adds pixels of one object (a tile slot's layout below: ID, pixels, sum x, sum y) and how
-// many of them need reflection rays (low 16 bits of `classes`) and refraction rays (high).
-void addCoverage(uvec4 slot, uint classes) {
+// Adds pixels of one object (a tile slot's layout below: ID, pixels, sum x, sum y), how
+// many of them need reflection rays (low 16 bits of `classes`) and refraction rays (high), and
+// how many of those are detailed (shared/selection.h's RB_FILL_DETAIL_COS).
+void addCoverage(uvec4 slot, uint classes, uint detailed) {
   if (slot.y == 0u) return;
   atomicAdd(coverage[slot.x].pixelsSumX.x, slot.y);
   addWide(slot.x, 1u, slot.z);
   addWide(slot.x, 3u, slot.w);
   if ((classes & 0xFFFFu) != 0u) atomicAdd(coverage[slot.x].sumYHi.y, classes & 0xFFFFu);
   if ((classes >> 16) != 0u) atomicAdd(coverage[slot.x].sumYHi.z, classes >> 16);
+  if (detailed != 0u) atomicAdd(coverage[slot.x].sumYHi.w, detailed);
 }
 
 // The classifier: which effects a pixel needs rays for, as the trace shader decides
@@ -53,6 +55,7 @@ uint pixelClasses(float roughness, float transmission, float unlit, float metall
 struct TileSlots {
   uvec4 s0, s1, s2;
   uvec4 classes;  // x, y, z: the slots' pixelClasses sums
+  uvec4 detailed; // x, y, z: the slots' detailed pixels
   uint crowded;   // 0 or 1 (a bool member makes glslang emit invalid SPIR-V)
 };
 
@@ -61,28 +64,48 @@ void addToSlot(inout uvec4 slot, uint x, uint y) { slot += uvec4(0u, 1u, x, y); 
 // The slots are tested one after the other in straight-line code: a chain of calls with
 // ||, which would read shorter, measured about 0.07 ms slower on lavapipe (one run of
 // alternating builds).
-void addPixel(inout TileSlots t, uint id, uint x, uint y, uint classes) {
+void addPixel(inout TileSlots t, uint id, uint x, uint y, uint classes, uint detailed) {
   if (id == RB_NO_OBJECT) return;
   if (t.s0.x == RB_NO_OBJECT) t.s0.x = id;
   if (id == t.s0.x) {
     addToSlot(t.s0, x, y);
     t.classes.x += classes;
+    t.detailed.x += detailed;
     return;
   }
   if (t.s1.x == RB_NO_OBJECT) t.s1.x = id;
   if (id == t.s1.x) {
     addToSlot(t.s1, x, y);
     t.classes.y += classes;
+    t.detailed.y += detailed;
     return;
   }
   if (t.s2.x == RB_NO_OBJECT) t.s2.x = id;
   if (id == t.s2.x) {
     addToSlot(t.s2, x, y);
     t.classes.z += classes;
+    t.detailed.z += detailed;
     return;
   }
   t.crowded = 1u;
-  addCoverage(uvec4(id, 1u, x, y), classes);
+  addCoverage(uvec4(id, 1u, x, y), classes, detailed);
+}
+
+// Which pixels of a 2x2 quad (gather order: w, z, x, y) that need reflection or refraction rays
+// (`classes`) share the quad with a pixel of their object whose normal is further from theirs
+// than RB_FILL_DETAIL_COS (1 each; shared/selection.h). Clamped texels past the image's edge
+// repeat the edge pixel, which agrees with itself.
+uvec4 detailedPixels(vec2 at, uvec4 ids, uvec4 classes) {
+  vec4 nx = textureGather(gNormal, at, 0), ny = textureGather(gNormal, at, 1), nz = textureGather(gNormal, at, 2);
+  vec3 n[4] = vec3[4](normalize(vec3(nx.x, ny.x, nz.x)), normalize(vec3(nx.y, ny.y, nz.y)), normalize(vec3(nx.z, ny.z, nz.z)),
+                      normalize(vec3(nx.w, ny.w, nz.w)));
+  uvec4 detailed = uvec4(0u);
+  for (int j = 0; j < 4; ++j) {
+    if (classes[j] == 0u) continue;
+    for (int k = 0; k < 4; ++k)
+      if (k != j && ids[k] == ids[j] && dot(n[j], n[k]) < RB_FILL_DETAIL_COS) detailed[j] = 1u;
+  }
+  return detailed;
 }
 
 void main() {
@@ -90,7 +113,7 @@ void main() {
   uint t = gl_GlobalInvocationID.x;
   uvec2 first, last;
   if (!screenTile(t, first, last)) return;
-  TileSlots slots = TileSlots(uvec4(RB_NO_OBJECT, 0u, 0u, 0u), uvec4(RB_NO_OBJECT, 0u, 0u, 0u), uvec4(RB_NO_OBJECT, 0u, 0u, 0u), uvec4(0u), 0u);
+  TileSlots slots = TileSlots(uvec4(RB_NO_OBJECT, 0u, 0u, 0u), uvec4(RB_NO_OBJECT, 0u, 0u, 0u), uvec4(RB_NO_OBJECT, 0u, 0u, 0u), uvec4(0u), uvec4(0u), 0u);
   // One gather per 2x2 quad: a quarter of the fetches, which were half the pass on lavapipe.
   // At (x + 1, y + 1) / size the gather returns w (x, y), z (x + 1, y), x (x, y + 1) and
   // y (x + 1, y + 1); the sampler clamps, so texels past the image edge are skipped here.
@@ -110,14 +133,18 @@ void main() {
         if (glass) metal = textureGather(gBaseMetal, at, 3);
       }
       bool right = x + 1u < last.x, below = y + 1u < last.y;
-      addPixel(slots, q.w, x, y, pixelClasses(rough.w, trans.w, unlit.w, metal.w));
-      if (right) addPixel(slots, q.z, x + 1u, y, pixelClasses(rough.z, trans.z, unlit.z, metal.z));
-      if (below) addPixel(slots, q.x, x, y + 1u, pixelClasses(rough.x, trans.x, unlit.x, metal.x));
-      if (right && below) addPixel(slots, q.y, x + 1u, y + 1u, pixelClasses(rough.y, trans.y, unlit.y, metal.y));
+      uvec4 classes = uvec4(pixelClasses(rough.x, trans.x, unlit.x, metal.x), pixelClasses(rough.y, trans.y, unlit.y, metal.y),
+                            pixelClasses(rough.z, trans.z, unlit.z, metal.z), pixelClasses(rough.w, trans.w, unlit.w, metal.w));
+      // Detail only where a pixel needs reflection or refraction rays: most quads skip the reads.
+      uvec4 detailed = kClassify && any(notEqual(classes, uvec4(0u))) ? detailedPixels(at, q, classes) : uvec4(0u);
+      addPixel(slots, q.w, x, y, classes.w, detailed.w);
+      if (right) addPixel(slots, q.z, x + 1u, y, classes.z, detailed.z);
+      if (below) addPixel(slots, q.x, x, y + 1u, classes.x, detailed.x);
+      if (right && below) addPixel(slots, q.y, x + 1u, y + 1u, classes.y, detailed.y);
     }
-  addCoverage(slots.s0, slots.classes.x);
-  addCoverage(slots.s1, slots.classes.y);
-  addCoverage(slots.s2, slots.classes.z);
+  addCoverage(slots.s0, slots.classes.x, slots.detailed.x);
+  addCoverage(slots.s1, slots.classes.y, slots.detailed.y);
+  addCoverage(slots.s2, slots.classes.z, slots.detailed.z);
   // The tile's objects for the tile list (shared/config.h): ID + 1 per slot, 0 when free
   // (RB_NO_OBJECT + 1 wraps to 0); every tile writes all its words, so none needs a clear.
   uint base = t * RB_TILE_OBJECT_WORDS;

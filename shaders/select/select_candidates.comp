@@ -138,8 +138,8 @@ void main() {
         continue;
       }
       // Rates chosen per item: a candidate per segment of the item's hull (shared/selection.h).
-      uint hull = rateHull(effect, fill);
-      vec2 q = fillQualities(effect);
+      vec2 q = itemFillQualities(i, effect);
+      uint hull = rateHull(q, fill);
       for (uint k = 0u; k < 3u; ++k)
         append(add && k < rateSegments(hull), item * RB_SEGMENT_SLOTS + k, cost * segmentCostShare(k, fill, hull),
                value * segmentValueShare(k, hull, q), r.apdv.z);

@@ -14,7 +14,7 @@ namespace raybudget::gpu {
 // the classifier marked for reflection and refraction rays.
 struct GpuCoverage {
   uvec4 pixelsSumX;  // x pixels, y sum x lo, z sum x hi, w sum y lo
-  uvec4 sumYHi;      // x sum y hi, y reflection pixels, z refraction pixels, w unused
+  uvec4 sumYHi;      // x sum y hi, y reflection pixels, z refraction pixels, w of those the detailed ones (RB_FILL_DETAIL_COS)
 };
 
 // 32 bytes: the object's authored or derived K, Q, I, and w = 1 when it was selected last
@@ -145,6 +145,18 @@ struct GpuObjectCost {
 // all along; cost_model.cpp's frameFillQualities): after a camera jump or on a moving view
 // the prior stands. Shadows beyond RB_SHADOW_HISTORY_LIGHTS lights keep the prior.
 #define RB_FILL_QUALITY_STILL 0.98
+// Detail defeats the spatial fill: where the normals of neighbouring pixels differ (a small
+// curved mirror, a normal map's bumps), what tracing changes differs between them too, and the
+// fill, weighting neighbours by normal agreement and shrinking a mean they disagree on, keeps
+// the fallback (bench/rate_keep.py: a normal-mapped mirror's 1/16 keeps -0.14-0.22 of its gap,
+// MetalRoughSpheres' small spheres 0.02-0.07, flat mirrors 0.6-0.8). The coverage pass counts,
+// per object, the pixels needing reflection or refraction rays in a 2x2 quad where two pixels of
+// the object have normals further apart than this cosine (GpuCoverage::sumYHi.w); the share of
+// the others, g, scales a reflection or refraction item's spatial quality: g q(1/4) and g^2
+// q(1/16) (1/16's neighbours lie four pixels apart), before the still view's move toward
+// RB_FILL_QUALITY_STILL, which the temporal fill keeps whatever the detail
+// (select_common.glsl's itemFillQualities, cost_model.cpp's itemFillQuality).
+#define RB_FILL_DETAIL_COS 0.995
 // The share of an item's full-rate cost a rate costs is not the share of its rays: every pixel
 // of the item is still read, and the skipped ones are filled (fill_effects.comp: they read their
 // surface and their neighbours', and with the temporal fill reproject and write their history).
@@ -291,8 +303,9 @@ struct SelectPush {
                  // w frame mode: the work a ray costs (what was never traced is priced at)
   uvec4 walk;    // x `paper` pointer hops per pick (0: as many as fit), y 1: frame mode, z objects, w `benefit`'s rate (RB_RATE_*)
   uvec4 items;   // `benefit`: x effects traced (RB_RT_* bits), y lights, z pixels on screen, w RB_BENEFIT_* and RB_ITEM_COSTS_UNTIMED bits
-  vec4 quarterQuality;    // `benefit` with rates: the fill's quality q(1/4) per effect (RB_ITEM_*) this frame
-  vec4 sixteenthQuality;  // and q(1/16) (cost_model.cpp's frameFillQualities)
+  vec4 quarterQuality;    // `benefit` with rates: the fill's quality q(1/4) per effect (RB_ITEM_*) this frame,
+                          // w: the share of 1/4's skipped pixels a still view traced, for reflections and refractions
+  vec4 sixteenthQuality;  // and q(1/16), w 1/16's share (cost_model.cpp's frameFillQualities, frameFillStill)
 };
 
 // Frame mode with up to RB_APPLY_IN_WALK_OBJECTS objects: the walk applies the selection to

@@ -321,6 +321,10 @@ struct ObjectMetrics {
   // The share of its 8x8 tiles a selected item is traced on: 1, or below for `benefit`'s
   // partial item (with rates chosen per item: the budget the knapsack left, docs/SELECTION.md)
   std::array<float, 3> itemTileShare{1.0f, 1.0f, 1.0f};
+  // Of the reflection and refraction pixels (the counts above), those in a 2x2 quad where two pixels of
+  // the object have normals further apart than RB_FILL_DETAIL_COS: where a reduced rate's
+  // spatial fill keeps little (docs/SELECTION.md, "Ray rates").
+  uint32_t detailedPixels = 0;
 };
 
 // The ray tracer's acceleration structure, built once when the Renderer is made.

@@ -94,6 +94,28 @@ FrameFillQualities frameFillQualities(uint32_t stillFrames, uint32_t history) {
 
 FrameFillQualities priorFillQualities() { return frameFillQualities(0, 0); }
 
+FillStill frameFillStill(uint32_t stillFrames, uint32_t history) {
+  if (!(history & RB_RT_REFLECTIONS)) return {};
+  auto traced = [&](uint32_t period) { return std::min(1.0f, float(stillFrames) / float(period - 1)); };
+  return {traced(RB_RATE_PERIOD(RB_RATE_QUARTER)), traced(RB_RATE_PERIOD(RB_RATE_SIXTEENTH))};
+}
+
+float fillSmoothness(uint32_t reflectionPixels, uint32_t refractionPixels, uint32_t detailed) {
+  const uint32_t pixels = std::max(reflectionPixels, refractionPixels);
+  return pixels == 0 ? 1.0f : exactQuotient(float(pixels - std::min(detailed, pixels)), float(pixels));
+}
+
+FillQuality itemFillQuality(uint32_t effect, const FrameFillQualities& frame, FillStill still, float smoothness) {
+  if (effect == RB_ITEM_SHADOWS) return frame[effect];
+  const FillQuality prior = fillQualities(effect);
+  // One rounding per operation, as the GPU's precise ones.
+  const float g2 = smoothness * smoothness;
+  const float quarter = prior.quarter * smoothness, sixteenth = prior.sixteenth * g2;
+  const float still4 = float(RB_FILL_QUALITY_STILL) - quarter, still16 = float(RB_FILL_QUALITY_STILL) - sixteenth;
+  const float moved4 = still4 * still.quarter, moved16 = still16 * still.sixteenth;
+  return {sixteenth + moved16, quarter + moved4};
+}
+
 float keepShare(uint32_t rate, FillQuality q) {
   if (rate != RB_RATE_QUARTER && rate != RB_RATE_SIXTEENTH) return 1.0f;
   // Two roundings, as the GPU's precise product and sum.

@@ -48,6 +48,20 @@ static_assert(RB_RT_SHADOWS == 1u << RB_ITEM_SHADOWS && RB_RT_REFLECTIONS == 1u 
 using FrameFillQualities = std::array<FillQuality, RB_ITEMS_PER_OBJECT>;
 FrameFillQualities frameFillQualities(uint32_t stillFrames, uint32_t history);
 FrameFillQualities priorFillQualities();  // frameFillQualities(0, 0)
+// The share of each rate's skipped pixels the still frames before this one traced, for the
+// reflections and refractions (0 where `history` lacks them; SelectPush's quarterQuality.w and
+// sixteenthQuality.w).
+struct FillStill {
+  float quarter = 0.0f, sixteenth = 0.0f;
+};
+FillStill frameFillStill(uint32_t stillFrames, uint32_t history);
+// The share of an object's reflection and refraction pixels (the larger count) that are not
+// detailed (GpuCoverage::sumYHi.w; shared/selection.h's RB_FILL_DETAIL_COS): g.
+float fillSmoothness(uint32_t reflectionPixels, uint32_t refractionPixels, uint32_t detailed);
+// An item's fill qualities: a shadow item's the frame's, a reflection or refraction item's the
+// effect's priors times g (1/4) and g^2 (1/16), moved toward RB_FILL_QUALITY_STILL by the still
+// shares (select_common.glsl's itemFillQualities, bit for bit; at g = 1 the frame's).
+FillQuality itemFillQuality(uint32_t effect, const FrameFillQualities& frame, FillStill still, float smoothness);
 // The share of an item's full-rate value `rate` keeps at the qualities q (1 at full rate).
 float keepShare(uint32_t rate, FillQuality q);
 

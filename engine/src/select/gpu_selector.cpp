@@ -25,10 +25,11 @@ namespace {
 
 using gpu::SelectPush;
 
-// The frame's fill quality at one rate per effect (x, y, z: RB_ITEM_*), as SelectPush holds it.
-glm::vec4 qualities(const ItemFrame& frame, float FillQuality::*rate) {
+// The frame's fill quality at one rate per effect (x, y, z: RB_ITEM_*) and its still share
+// (w), as SelectPush holds them.
+glm::vec4 qualities(const ItemFrame& frame, float FillQuality::*rate, float FillStill::*still) {
   static_assert(RB_ITEMS_PER_OBJECT == 3);
-  return {frame.qualities[0].*rate, frame.qualities[1].*rate, frame.qualities[2].*rate, 0.0f};
+  return {frame.qualities[0].*rate, frame.qualities[1].*rate, frame.qualities[2].*rate, frame.still.*still};
 }
 static_assert(uint32_t(Policy::Paper) == RB_SELECT_PAPER && uint32_t(Policy::Density) == RB_SELECT_DENSITY &&
               uint32_t(Policy::Nearest) == RB_SELECT_NEAREST && uint32_t(Policy::Random) == RB_SELECT_RANDOM && uint32_t(Policy::Benefit) == RB_SELECT_BENEFIT);
@@ -127,8 +128,8 @@ struct GpuSelector::Impl {
       throw Error(std::string("frame selection runs the budgeted policies, not ") + policyName(policy));
     SelectPush push{glm::uvec4(0, padded, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, options.graphPointers),
                     glm::vec4(budget, scale.kappa, items.probeBudget, scale.workPerRay), glm::uvec4(options.paperHops, 1, objects, items.rate),
-                    glm::uvec4(items.effects, items.lights, items.pixels, items.ablation), qualities(items, &FillQuality::quarter),
-                    qualities(items, &FillQuality::sixteenth)};
+                    glm::uvec4(items.effects, items.lights, items.pixels, items.ablation), qualities(items, &FillQuality::quarter, &FillStill::quarter),
+                    qualities(items, &FillQuality::sixteenth, &FillStill::sixteenth)};
     vkCmdFillBuffer(cmd, result.buffer, 0, VK_WHOLE_SIZE, 0);  // the candidate count
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -228,7 +229,8 @@ struct GpuSelector::Impl {
     const ItemFrame atPriors;  // (unread: only frame mode prices segments and marks item levels)
     SelectPush push{glm::uvec4(n, pad, uint32_t(policy), options.seed), glm::uvec4(0, 0, 0, segments ? groups : options.graphPointers),
                     glm::vec4(budget, 0, 0, 0), glm::uvec4(options.paperHops, 0, 0, segments ? RB_RATE_AUTO : RB_RATE_FULL), glm::uvec4(0),
-                    qualities(atPriors, &FillQuality::quarter), qualities(atPriors, &FillQuality::sixteenth)};
+                    qualities(atPriors, &FillQuality::quarter, &FillStill::quarter),
+                    qualities(atPriors, &FillQuality::sixteenth, &FillStill::sixteenth)};
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd, 0);
       if (n > 0) {

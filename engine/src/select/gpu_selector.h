@@ -27,6 +27,7 @@ struct ItemFrame {
   float probeBudget = 0.0f;  // the sparse probe's share of the budget (shared/selection.h)
   uint32_t rate = RB_RATE_FULL;
   FrameFillQualities qualities = priorFillQualities();  // how well each effect's fill keeps a rate's value
+  FillStill still;  // how far a still view moved the reflections' and refractions' qualities (itemFillQuality)
 };
 
 class GpuSelector {

@@ -53,7 +53,9 @@ ItemFrame itemFrame(const RenderSettings& s, uint32_t lights, float probeBudget,
   if (s.benefitAblation == BenefitAblation::NoHysteresis) ablation = RB_BENEFIT_WITHOUT_HYSTERESIS;
   if (s.benefitAblation == BenefitAblation::PriorOnly) ablation = RB_BENEFIT_PRIOR_ONLY;
   if (!s.learnTimeScale) ablation |= RB_ITEM_COSTS_UNTIMED;
-  return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate), frameFillQualities(stillFrames, historyEffects(s, lights))};
+  const uint32_t history = historyEffects(s, lights);
+  return {effects, lights, s.width * s.height, ablation, probeBudget, rateCode(rt.rate), frameFillQualities(stillFrames, history),
+          frameFillStill(stillFrames, history)};
 }
 
 // An item's rate (RB_RATE_*) in an object's word of the frame's selection (rates.glsl's itemRate).
@@ -62,11 +64,23 @@ uint32_t selectedRate(uint32_t word, uint32_t effect) { return (word >> (RB_RATE
 // An item's fill share as the candidate pass left it (its segments: rateSegment).
 float itemFill(uint32_t effect, const gpu::GpuItemCost& item) { return fillShare(effect, item.fillPerPixel, item.workPerPixel); }
 
+// Each item's fill qualities this frame (itemFillQuality), from the frame's and its object's
+// smoothness in the coverage counts.
+std::vector<FillQuality> itemFillQualities(const ItemFrame& frame, const gpu::GpuCoverage* counts, uint32_t objects) {
+  std::vector<FillQuality> q(size_t(objects) * RB_ITEMS_PER_OBJECT);
+  for (uint32_t i = 0; i < objects; ++i) {
+    const float g = fillSmoothness(counts[i].sumYHi.y, counts[i].sumYHi.z, counts[i].sumYHi.w);
+    for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) q[i * RB_ITEMS_PER_OBJECT + e] = itemFillQuality(e, frame.qualities, frame.still, g);
+  }
+  return q;
+}
+
 // The IDs of a frame's selection flags: objects, or with `benefit` items (one bit each), or
 // with rates chosen per item each selected item's segments up to the one its rate ends on
-// (`learned`: the items as the candidate pass left them, whose fill shares set their segments).
+// (`learned`: the items as the candidate pass left them, whose fill shares and `qualities`
+// set their segments).
 std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool items, bool segments, const gpu::GpuItemCost* learned,
-                                  const FrameFillQualities& qualities) {
+                                  std::span<const FillQuality> qualities) {
   std::vector<uint32_t> ids;
   for (uint32_t i = 0; i < objects; ++i)
     for (uint32_t e = 0; e < (items ? RB_ITEMS_PER_OBJECT : 1u); ++e) {
@@ -79,7 +93,7 @@ std::vector<uint32_t> selectedIds(const uint32_t* flags, uint32_t objects, bool 
       const uint32_t rate = selectedRate(flags[i], e);
       uint32_t last = 0;
       const float fill = itemFill(e, learned[id]);
-      while (last + 1 < rateSegments(fill, qualities[e]) && rateSegment(last, fill, qualities[e]).rate != rate) ++last;
+      while (last + 1 < rateSegments(fill, qualities[id]) && rateSegment(last, fill, qualities[id]).rate != rate) ++last;
       for (uint32_t k = 0; k <= last; ++k) ids.push_back(id * RB_SEGMENT_SLOTS + k);
     }
   return ids;
@@ -314,7 +328,8 @@ struct SelectionStage::Impl {
     auto itemOf = [&](uint32_t id) { return segments ? id / RB_SEGMENT_SLOTS : id; };
     double left = 0.0, prior = 0.0;
     // The candidates taken (items, or their rate segments), in ascending order.
-    const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments, after, frame.qualities);
+    const std::vector<FillQuality> qualities = itemFillQualities(frame, counts, buffers.objects);
+    const std::vector<uint32_t> taken = selectedIds(selected, buffers.objects, true, segments, after, qualities);
     for (const gpu::GpuCandidate& c : candidates) {
       const uint32_t item = itemOf(c.id);
       if (item < items && !((selected[item / RB_ITEMS_PER_OBJECT] >> (item % RB_ITEMS_PER_OBJECT)) & 1u)) left += c.cost;
@@ -346,7 +361,7 @@ struct SelectionStage::Impl {
       if (!segments && rate != (on ? frame.rate : 0u)) return false;
       if (!on && rate != 0u) return false;
       const bool candidate = records[i].crCandidatePixels.z > 0.5f && pixelsOf(i, e) > 0;
-      if (candidate) expected += segments ? rateSegments(fill[id], frame.qualities[e]) : 1u;
+      if (candidate) expected += segments ? rateSegments(fill[id], qualities[id]) : 1u;
       const bool probed = stride != 0 && candidate && !on;  // the probe marks what the walk left out
       if (((selected[i] >> (RB_PROBE_SHIFT + e)) & 1u) != (probed ? 1u : 0u)) return false;
     }
@@ -362,8 +377,8 @@ struct SelectionStage::Impl {
       float value = itemValue(pixels, frame.pixels, records[i].apdv.y, learned[item].benefit, before[item].selectedLast != 0, kqiS.x, kqiS.z, frame.ablation);
       if (segments) {
         const uint32_t k = c.id % RB_SEGMENT_SLOTS;
-        if (k >= rateSegments(fill[item], frame.qualities[e])) return false;
-        const RateSegment s = rateSegment(k, fill[item], frame.qualities[e]);
+        if (k >= rateSegments(fill[item], qualities[item])) return false;
+        const RateSegment s = rateSegment(k, fill[item], qualities[item]);
         cost *= s.costShare;
         value *= s.valueShare;
       }
@@ -430,8 +445,10 @@ struct SelectionStage::Impl {
       }
       if (checkCpu) {
         const auto* flags = static_cast<const uint32_t*>(slot.selection.mapped);
-        const std::vector<uint32_t> gpuIds = selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO,
-                                                         static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped), slot.items.qualities);
+        const std::vector<uint32_t> gpuIds =
+            selectedIds(flags, buffers.objects, policy == Policy::Benefit, slot.items.rate == RB_RATE_AUTO,
+                        static_cast<const gpu::GpuItemCost*>(slot.itemsAfter.mapped),
+                        itemFillQualities(slot.items, static_cast<const gpu::GpuCoverage*>(slot.coverage.mapped), buffers.objects));
         const Selection cpu = selectObjects(policy, c, slot.selectBudgetMs, policyOptions(s));
         t.selectionMatchesCpu = gpuIds == cpu.ids && (policy != Policy::Benefit || partialMatches(slot, cpu.partial));
         t.costsMatchCpu = costsMatchCpu(slot, policy, g);
@@ -503,6 +520,7 @@ struct SelectionStage::Impl {
       out[i] = {std::bit_cast<uint32_t>(g.crCandidatePixels.w), cov[i].sumYHi.y, cov[i].sumYHi.z, g.apdv.x, g.apdv.y, g.apdv.z, g.apdv.w,
                 g.crCandidatePixels.x, g.crCandidatePixels.y, g.crCandidatePixels.z > 0.5f, (selected[i] & RB_ITEMS_ALL) != 0u};
       out[i].selectedItems = selected[i] & RB_ITEMS_ALL;
+      out[i].detailedPixels = cov[i].sumYHi.w;
       for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
         const uint32_t rate = selectedRate(selected[i], e);
         out[i].itemRate[e] = itemRateOfCode(rate);
