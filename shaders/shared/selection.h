@@ -149,9 +149,10 @@ struct GpuObjectCost {
 // curved mirror, a normal map's bumps), what tracing changes differs between them too, and the
 // fill, weighting neighbours by normal agreement and shrinking a mean they disagree on, keeps
 // the fallback (bench/rate_keep.py: a normal-mapped mirror's 1/16 keeps -0.14-0.22 of its gap,
-// MetalRoughSpheres' small spheres 0.02-0.07, flat mirrors 0.6-0.8). The coverage pass counts,
-// per object, the pixels needing reflection or refraction rays in a 2x2 quad where two pixels of
-// the object have normals further apart than this cosine (GpuCoverage::sumYHi.w); the share of
+// MetalRoughSpheres' small spheres 0.02-0.07; the priors, from the court and the plaza, keep
+// 0.60 at 1/16 and 0.78 at 1/4). The coverage pass counts, per object, the pixels needing
+// reflection or refraction rays in a 2x2 quad where two pixels of the object have normals
+// further apart than this cosine (GpuCoverage::sumYHi.w); the share of
 // the others, g, scales a reflection or refraction item's spatial quality: g q(1/4) and g^2
 // q(1/16) (1/16's neighbours lie four pixels apart), before the still view's move toward
 // RB_FILL_QUALITY_STILL, which the temporal fill keeps whatever the detail
