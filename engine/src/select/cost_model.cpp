@@ -76,29 +76,31 @@ FillQuality fillQualities(uint32_t effect) {
   return q;
 }
 
+namespace {
+// The share of each rate's skipped pixels the still frames before this one traced.
+FillStill stillShares(uint32_t stillFrames) {
+  auto traced = [&](uint32_t period) { return std::min(1.0f, float(stillFrames) / float(period - 1)); };
+  return {traced(RB_RATE_PERIOD(RB_RATE_QUARTER)), traced(RB_RATE_PERIOD(RB_RATE_SIXTEENTH))};
+}
+// A quality moved toward RB_FILL_QUALITY_STILL by `share` (one rounding per operation, as the
+// GPU's precise ones).
+float towardStill(float quality, float share) { return quality + (float(RB_FILL_QUALITY_STILL) - quality) * share; }
+}  // namespace
+
 FrameFillQualities frameFillQualities(uint32_t stillFrames, uint32_t history) {
   FrameFillQualities q;
+  const FillStill shares = stillShares(stillFrames);
   for (uint32_t e = 0; e < RB_ITEMS_PER_OBJECT; ++e) {
     q[e] = fillQualities(e);
     if (!((history >> e) & 1u)) continue;
-    // The share of a pattern's skipped pixels the still frames before this one traced.
-    auto toward = [&](float& prior, uint32_t period) {
-      const float traced = std::min(1.0f, float(stillFrames) / float(period - 1));
-      prior += (float(RB_FILL_QUALITY_STILL) - prior) * traced;
-    };
-    toward(q[e].quarter, RB_RATE_PERIOD(RB_RATE_QUARTER));
-    toward(q[e].sixteenth, RB_RATE_PERIOD(RB_RATE_SIXTEENTH));
+    q[e] = {towardStill(q[e].sixteenth, shares.sixteenth), towardStill(q[e].quarter, shares.quarter)};
   }
   return q;
 }
 
 FrameFillQualities priorFillQualities() { return frameFillQualities(0, 0); }
 
-FillStill frameFillStill(uint32_t stillFrames, uint32_t history) {
-  if (!(history & RB_RT_REFLECTIONS)) return {};
-  auto traced = [&](uint32_t period) { return std::min(1.0f, float(stillFrames) / float(period - 1)); };
-  return {traced(RB_RATE_PERIOD(RB_RATE_QUARTER)), traced(RB_RATE_PERIOD(RB_RATE_SIXTEENTH))};
-}
+FillStill frameFillStill(uint32_t stillFrames, uint32_t history) { return history & RB_RT_REFLECTIONS ? stillShares(stillFrames) : FillStill{}; }
 
 float fillSmoothness(uint32_t reflectionPixels, uint32_t refractionPixels, uint32_t detailed) {
   const uint32_t pixels = std::max(reflectionPixels, refractionPixels);
@@ -108,12 +110,8 @@ float fillSmoothness(uint32_t reflectionPixels, uint32_t refractionPixels, uint3
 FillQuality itemFillQuality(uint32_t effect, const FrameFillQualities& frame, FillStill still, float smoothness) {
   if (effect == RB_ITEM_SHADOWS) return frame[effect];
   const FillQuality prior = fillQualities(effect);
-  // One rounding per operation, as the GPU's precise ones.
   const float g2 = smoothness * smoothness;
-  const float quarter = prior.quarter * smoothness, sixteenth = prior.sixteenth * g2;
-  const float still4 = float(RB_FILL_QUALITY_STILL) - quarter, still16 = float(RB_FILL_QUALITY_STILL) - sixteenth;
-  const float moved4 = still4 * still.quarter, moved16 = still16 * still.sixteenth;
-  return {sixteenth + moved16, quarter + moved4};
+  return {towardStill(prior.sixteenth * g2, still.sixteenth), towardStill(prior.quarter * smoothness, still.quarter)};
 }
 
 float keepShare(uint32_t rate, FillQuality q) {
