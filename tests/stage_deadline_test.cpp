@@ -112,6 +112,17 @@ TEST(StageDeadline, TheFillsTimeComesFromFramesUnderDeadlines) {
   EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T));
   EXPECT_EQ(d.shadowTicks(T), d.ticks(1.75, T));
   EXPECT_DOUBLE_EQ(d.reserveMs(T), select::StageDeadline::kDrainShare * T + 1.0);
+  // A frame whose effects pass was cut for a fill that then came in shorter, the stage ending
+  // a reserve before T, renews the fill's time (a moving camera's fill after a still one's).
+  select::StageDeadline::Frame shortFill = effectsCut;
+  shortFill.reserveMs = d.reserveMs(T);
+  shortFill.stageMs = T - shortFill.reserveMs - 0.25;
+  shortFill.fillMs = 0.5;
+  for (int f = 0; f < 5; ++f) d.learnFrame(shortFill);
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.0, T)) << "two of the last 7 fills still took 1 ms";
+  d.learnFrame(shortFill);
+  EXPECT_EQ(d.effectsTicks(T), d.ticks(3.5, T));
+  EXPECT_EQ(d.shadowTicks(T), d.ticks(2.25, T)) << "the effects pass's own time is a cut one's: not renewed";
 }
 
 // Every pixel past the deadline (1 tick: all of them) shows what `none` shows: the shadow maps

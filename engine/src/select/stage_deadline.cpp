@@ -20,6 +20,8 @@ void StageDeadline::learnFrame(const Frame& f) {
   if (!f.effectsCut && !f.fillCut) {
     effectsMs_.add(f.effectsMs);
     if (f.underDeadline) fillMs_.add(f.fillMs);
+  } else if (!f.fillCut && f.underDeadline && f.stageMs < f.budgetMs - f.reserveMs) {
+    fillMs_.add(f.fillMs);  // the effects pass cut for a fill that came in shorter (stage_deadline.h)
   }
   if (f.cut) learnCut(f.fillCut ? stageWithWholeFill(f.stageMs, f.fillMs) : f.stageMs, f.budgetMs, f.reserveMs);
 }
