@@ -17,12 +17,10 @@ void StageDeadline::learn(uint32_t spanTicks, double spanMs) {
 }
 
 void StageDeadline::learnFrame(const Frame& f) {
-  if (!f.effectsCut && !f.fillCut) {
-    effectsMs_.add(f.effectsMs);
-    if (f.underDeadline) fillMs_.add(f.fillMs);
-  } else if (!f.fillCut && f.underDeadline && f.stageMs < f.budgetMs - f.reserveMs) {
-    fillMs_.add(f.fillMs);  // the effects pass cut for a fill that came in shorter (stage_deadline.h)
-  }
+  if (!f.effectsCut && !f.fillCut) effectsMs_.add(f.effectsMs);
+  // A cut effects pass stops the fill's time from being learned only where the stage overran.
+  const bool overran = f.effectsCut && f.stageMs >= f.budgetMs - f.reserveMs;
+  if (!f.fillCut && f.underDeadline && !overran) fillMs_.add(f.fillMs);
   if (f.cut) learnCut(f.fillCut ? stageWithWholeFill(f.stageMs, f.fillMs) : f.stageMs, f.budgetMs, f.reserveMs);
 }
 
